@@ -1,0 +1,134 @@
+#pragma once
+/// \file
+/// Colour types and the exact conversions between linear `Color` and 8-bit sRGB `Rgb8`.
+///
+/// Conventions:
+/// - `mpr::Color` is *linear* RGB (radiance-proportional), nominally in [0, 1]; samplers average
+///   and interpolate in this space.
+/// - `mpr::Rgb8` is 8-bit *sRGB-encoded* RGB, the encoding of ordinary PNG/JPEG files.
+/// - `to_rgb8(Color)` clamps to [0, 1] (NaN becomes 0), applies the sRGB transfer function
+///   (IEC 61966-2-1) and rounds to nearest. It is exact: the result equals
+///   `round(255 * encode(x))` evaluated in real arithmetic, and `to_rgb8(to_color(p)) == p` for
+///   every 8-bit value.
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+
+namespace mpr {
+
+/// Linear RGB colour.
+using Color = Eigen::Array3f;
+
+/// An 8-bit sRGB-encoded RGB pixel.
+struct Rgb8 {
+  std::uint8_t r = 0;
+  std::uint8_t g = 0;
+  std::uint8_t b = 0;
+  friend constexpr bool operator==(const Rgb8&, const Rgb8&) = default;
+};
+
+/// sRGB decoding of an encoded value in [0, 1] to linear, in double precision.
+[[nodiscard]] inline double srgb_decode(double encoded) noexcept {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+/// sRGB encoding of a linear value in [0, 1], in double precision.
+[[nodiscard]] inline double srgb_encode(double linear) noexcept {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+namespace detail {
+
+/// Tables for the exact 8-bit conversions (built once at start-up).
+struct SrgbTables {
+  /// Linear value of each 8-bit code.
+  std::array<float, 256> decoded{};
+  /// threshold[k]: the smallest float x with round(255 * encode(x)) > k; +inf for k = 255.
+  std::array<float, 256> threshold{};
+  /// bin_start[i]: the 8-bit code of the lower edge i / kBins of bin i.
+  static constexpr int kBins = 8192;
+  std::array<std::uint8_t, kBins> bin_start{};
+
+  SrgbTables() noexcept {
+    for (int k = 0; k < 256; ++k) decoded[k] = static_cast<float>(srgb_decode(k / 255.0));
+    for (int k = 0; k < 255; ++k) {
+      // The real boundary between codes k and k+1, rounded *up* to a float, so that the float
+      // comparison `x >= threshold[k]` is the exact real comparison.
+      const double boundary = srgb_decode((k + 0.5) / 255.0);
+      float f = static_cast<float>(boundary);
+      if (static_cast<double>(f) < boundary) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+      threshold[k] = f;
+    }
+    threshold[255] = std::numeric_limits<float>::infinity();
+    // Thresholds are at least 1/255/12.92 = 3.0e-4 apart, wider than a bin (1.2e-4), so each bin
+    // holds at most one threshold and one comparison finishes the lookup.
+    int k = 0;
+    for (int i = 0; i < kBins; ++i) {
+      const float edge = static_cast<float>(i) / kBins;
+      while (edge >= threshold[k]) ++k;
+      bin_start[i] = static_cast<std::uint8_t>(k);
+    }
+  }
+};
+
+inline const SrgbTables srgb_tables{};
+
+} // namespace detail
+
+/// Exact linear-to-8-bit sRGB conversion of one channel (see the file comment).
+[[nodiscard]] inline std::uint8_t linear_to_srgb8(float linear) noexcept {
+  if (!(linear > 0.0f)) return 0; // also NaN
+  if (linear >= 1.0f) return 255;
+  const auto& t = detail::srgb_tables;
+  // linear < 1, so linear * kBins < kBins exactly (a power-of-two scaling).
+  const int k = t.bin_start[static_cast<int>(linear * static_cast<float>(detail::SrgbTables::kBins))];
+  return static_cast<std::uint8_t>(k + (linear >= t.threshold[k] ? 1 : 0));
+}
+
+/// 8-bit sRGB to linear conversion of one channel (a table lookup).
+[[nodiscard]] inline float srgb8_to_linear(std::uint8_t code) noexcept { return detail::srgb_tables.decoded[code]; }
+
+/// Linear `Color` to 8-bit sRGB, clamping to [0, 1]; NaN channels become 0.
+[[nodiscard]] inline Rgb8 to_rgb8(const Color& c) noexcept {
+  return {linear_to_srgb8(c[0]), linear_to_srgb8(c[1]), linear_to_srgb8(c[2])};
+}
+
+/// 8-bit sRGB to linear `Color`.
+[[nodiscard]] inline Color to_color(const Rgb8& p) noexcept {
+  return {srgb8_to_linear(p.r), srgb8_to_linear(p.g), srgb8_to_linear(p.b)};
+}
+
+/// Converts what a sampler returns into a stored pixel. Specialise it (or add `from_color`
+/// overloads) to store another pixel type or to accept a sampler's own colour type.
+template <class Px> struct PixelTraits;
+
+/// 8-bit sRGB pixels: linear colour is encoded with `to_rgb8`.
+template <> struct PixelTraits<Rgb8> {
+  [[nodiscard]] static Rgb8 from_color(const Color& c) noexcept { return to_rgb8(c); }
+};
+
+/// Linear float pixels: stored unchanged (no clamping, so HDR values survive).
+template <> struct PixelTraits<Color> {
+  [[nodiscard]] static Color from_color(const Color& c) noexcept { return c; }
+};
+
+/// Scalar float pixels (depth, luminance, masks): a sampler whose colour type is `float` stores
+/// it unchanged; a linear `Color` is stored as its Rec. 709 luminance.
+template <> struct PixelTraits<float> {
+  [[nodiscard]] static float from_color(float value) noexcept { return value; }
+  [[nodiscard]] static float from_color(const Color& c) noexcept {
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+  }
+};
+
+/// `Px` can store the colour type `C`.
+template <class Px, class C>
+concept StorableAs = requires(const C& c) {
+  { PixelTraits<Px>::from_color(c) } -> std::same_as<Px>;
+};
+
+} // namespace mpr

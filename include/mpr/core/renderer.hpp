@@ -1,0 +1,121 @@
+#pragma once
+/// \file
+/// `mpr::Renderer<Surface, Selector, Sampler>`: the composition of the four roles, and
+/// `mpr::render`, which fills several views of one output image in a single call.
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/concepts.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/core/parallel.hpp>
+#include <mpr/core/region.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace mpr {
+
+/// Settings of one render call.
+struct RenderOptions {
+  /// Worker threads, the calling thread included; 0 or less means all hardware threads.
+  /// The image is identical for every thread count.
+  int threads = 0;
+};
+
+/// The renderer of one view: surface, selector and sampler, held by value. Empty (stateless)
+/// policies take no storage. The inner loop is exactly: uv from pixel, point from surface, ray
+/// from selector, colour from sampler; every call is resolved at compile time.
+template <class Surface, class Selector, class Sampler>
+  requires ComposablePolicies<Surface, Selector, Sampler>
+class Renderer {
+public:
+  using scalar_type = typename Surface::scalar_type;
+  using color_type = sampler_color_t<Sampler>;
+  using surface_type = Surface;
+  using selector_type = Selector;
+  using sampler_type = Sampler;
+
+  Renderer() = default;
+  Renderer(Surface surface, Selector selector, Sampler sampler)
+      : surface_(std::move(surface)), selector_(std::move(selector)), sampler_(std::move(sampler)) {}
+
+  [[nodiscard]] const Surface& surface() const noexcept { return surface_; }
+  [[nodiscard]] const Selector& selector() const noexcept { return selector_; }
+  [[nodiscard]] const Sampler& sampler() const noexcept { return sampler_; }
+
+  /// The colour of one pixel of the view that fills `region`.
+  [[nodiscard]] color_type shade(Pixel px, const Region& region) const noexcept {
+    const Vec2<scalar_type> uv = region.pixel_to_uv<scalar_type>(px);
+    const Vec3<scalar_type> point = surface_.point_at(uv);
+    const Ray<scalar_type> ray = selector_.ray_at(px, uv, point);
+    return sampler_.sample(ray);
+  }
+
+  /// The ray shown at `px` (for diagnostics and projection checks).
+  [[nodiscard]] Ray<scalar_type> ray_at(Pixel px, const Region& region) const noexcept {
+    const Vec2<scalar_type> uv = region.pixel_to_uv<scalar_type>(px);
+    return selector_.ray_at(px, uv, surface_.point_at(uv));
+  }
+
+  /// Renders pixels [x_begin, x_end) of row `y` into `out` (image coordinates).
+  /// Preconditions: the span lies inside both `out` and `region`.
+  template <class Px>
+    requires StorableAs<Px, color_type>
+  void render_row(ImageView<Px> out, const Region& region, int y, int x_begin, int x_end) const noexcept {
+    Px* row = out.row(y);
+    for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(shade(Pixel{x, y}, region));
+  }
+
+  /// Renders the view into the part of `region` that lies inside `out`.
+  template <class Px>
+    requires StorableAs<Px, color_type>
+  void render(ImageView<Px> out, const Region& region, const RenderOptions& options = {}) const noexcept;
+
+private:
+  [[no_unique_address]] Surface surface_{};
+  [[no_unique_address]] Selector selector_{};
+  [[no_unique_address]] Sampler sampler_{};
+};
+
+/// One view of a multi-view render: a region of the output and the renderer that fills it.
+/// Holds the renderer by reference; it must outlive the `render` call.
+template <class R> struct View {
+  Region region;
+  const R* renderer;
+};
+
+/// Pairs a region with a renderer for `mpr::render`.
+template <class R> [[nodiscard]] View<R> view(const Region& region, const R& renderer) noexcept {
+  return {region, &renderer};
+}
+
+/// Renders every view into `out` in one pass over the rows, spread over threads. Views may have
+/// different surface, selector and sampler types. Where regions overlap, the later view wins.
+/// Pixels of `out` covered by no view are left unchanged.
+template <class Px, class... R>
+void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... views) noexcept {
+  int y_begin = out.height(), y_end = 0;
+  ((y_begin = std::min(y_begin, std::max(views.region.y, 0)),
+    y_end = std::max(y_end, std::min(views.region.y + views.region.height, out.height()))),
+   ...);
+  const auto row = [&](int y) noexcept {
+    const auto one = [&](const auto& v) noexcept {
+      const Region& r = v.region;
+      if (y < r.y || y >= r.y + r.height) return;
+      const int x0 = std::max(r.x, 0), x1 = std::min(r.x + r.width, out.width());
+      if (x0 < x1) v.renderer->render_row(out, r, y, x0, x1);
+    };
+    (one(views), ...);
+  };
+  detail::parallel_rows(y_begin, y_end, options.threads, row);
+}
+
+template <class Surface, class Selector, class Sampler>
+  requires ComposablePolicies<Surface, Selector, Sampler>
+template <class Px>
+  requires StorableAs<Px, typename Renderer<Surface, Selector, Sampler>::color_type>
+void Renderer<Surface, Selector, Sampler>::render(ImageView<Px> out, const Region& region,
+                                                  const RenderOptions& options) const noexcept {
+  mpr::render(out, options, view(region, *this));
+}
+
+} // namespace mpr

@@ -1,0 +1,17 @@
+#pragma once
+/// \file
+/// Umbrella header: everything in mpr that needs no optional dependency.
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/concepts.hpp>
+#include <mpr/core/error.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/core/pixel.hpp>
+#include <mpr/core/ray.hpp>
+#include <mpr/core/region.hpp>
+#include <mpr/core/renderer.hpp>
+#include <mpr/core/vec.hpp>
+#include <mpr/io/image_io.hpp>
+#include <mpr/sampler/checkerboard_plane.hpp>
+#include <mpr/selector/glc_selector.hpp>
+#include <mpr/surface/planar_surface.hpp>
