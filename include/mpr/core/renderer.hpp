@@ -10,9 +10,21 @@
 #include <mpr/core/region.hpp>
 
 #include <algorithm>
+#include <span>
 #include <utility>
 
 namespace mpr {
+
+/// Optional batch interface of a ray sampler: `sample_rays(rays, out)` writes the colour of
+/// every ray of a span (equal lengths), the same colours as `sample` per ray, but free to walk
+/// its data in a better order (e.g. cameras in the outer loop). `Renderer::render_row` uses it
+/// when present, on chunks of one row; `sample(ray)` stays the contract.
+template <class M>
+concept BatchRaySampler =
+    RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
+                              std::span<sampler_color_t<M>> out) {
+      { m.sample_rays(rays, out) } noexcept;
+    };
 
 /// Settings of one render call.
 struct RenderOptions {
@@ -62,7 +74,21 @@ public:
     requires StorableAs<Px, color_type>
   void render_row(ImageView<Px> out, const Region& region, int y, int x_begin, int x_end) const noexcept {
     Px* row = out.row(y);
-    for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(shade(Pixel{x, y}, region));
+    if constexpr (BatchRaySampler<Sampler>) {
+      // Rays of up to kBatch pixels, then one batch call to the sampler.
+      constexpr int kBatch = 256;
+      Ray<scalar_type> rays[kBatch];
+      color_type colors[kBatch];
+      for (int x0 = x_begin; x0 < x_end; x0 += kBatch) {
+        const int n = std::min(kBatch, x_end - x0);
+        for (int i = 0; i < n; ++i) rays[i] = ray_at(Pixel{x0 + i, y}, region);
+        sampler_.sample_rays(std::span<const Ray<scalar_type>>(rays, static_cast<std::size_t>(n)),
+                             std::span<color_type>(colors, static_cast<std::size_t>(n)));
+        for (int i = 0; i < n; ++i) row[x0 + i] = PixelTraits<Px>::from_color(colors[i]);
+      }
+    } else {
+      for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(shade(Pixel{x, y}, region));
+    }
   }
 
   /// Renders the view into the part of `region` that lies inside `out`.

@@ -1,0 +1,145 @@
+#pragma once
+/// \file
+/// The metric pinhole calibration format `<name>_par.txt` of the Middlebury multi-view data
+/// (Seitz et al., CVPR 2006; captured on the Stanford spherical gantry): reader and writer.
+///
+/// Format: the first line is the image count N; then N lines
+///   `imgname k11 k12 k13 k21 k22 k23 k31 k32 k33 r11 r12 r13 r21 r22 r23 r31 r32 r33 t1 t2 t3`
+/// with K and R row-major, projection `x ~ K [R | t] X` (world to camera `R X + t`), pixel
+/// centres at integer coordinates, image origin top-left. Image names are relative to the
+/// folder of the calibration file.
+
+#include <mpr/core/error.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/io/calibration_text.hpp>
+#include <mpr/io/image_io.hpp>
+#include <mpr/sampler/camera_frame_set.hpp>
+#include <mpr/sampler/pinhole_camera.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mpr {
+
+/// One line of a `_par.txt` file.
+template <std::floating_point T> struct ParEntry {
+  std::string image_name;
+  Mat3<T> K;
+  Mat3<T> R;
+  Vec3<T> t;
+  /// 1-based line in the file (0 for entries not read from a file).
+  std::size_t line = 0;
+};
+
+/// Reads the calibration lines of a `_par.txt` file without loading images. Throws `io_error`
+/// naming the file and line for a missing or malformed count, a wrong number of fields, a
+/// malformed or non-finite number, or fewer/more lines than the count says.
+template <std::floating_point T = double>
+[[nodiscard]] std::vector<ParEntry<T>> read_par_entries(const std::filesystem::path& par_file) {
+  const std::vector<detail::TextLine> lines = detail::read_text_lines(par_file);
+  if (lines.empty()) throw io_error(par_file.string(), "empty file: expected the image count on line 1");
+  detail::require_fields(par_file, lines[0], 1);
+  const long count = detail::parse_count(par_file, lines[0], 0);
+  if (static_cast<std::size_t>(count) != lines.size() - 1)
+    throw io_error(par_file.string(),
+                   "the count says " + std::to_string(count) + " images but " + std::to_string(lines.size() - 1) +
+                       " calibration lines follow",
+                   lines[0].number);
+  std::vector<ParEntry<T>> entries;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const detail::TextLine& line = lines[i];
+    detail::require_fields(par_file, line, 22);
+    ParEntry<T> e;
+    e.image_name = line.fields[0];
+    e.line = line.number;
+    for (int k = 0; k < 9; ++k) e.K(k / 3, k % 3) = static_cast<T>(detail::parse_number(par_file, line, 1 + k));
+    for (int k = 0; k < 9; ++k) e.R(k / 3, k % 3) = static_cast<T>(detail::parse_number(par_file, line, 10 + k));
+    for (int k = 0; k < 3; ++k) e.t[k] = static_cast<T>(detail::parse_number(par_file, line, 19 + k));
+    entries.push_back(std::move(e));
+  }
+  return entries;
+}
+
+/// The pinhole camera of a `_par.txt` entry for an image of `width` x `height`; a bad K or R
+/// becomes an `io_error` naming the file and line ("singular K", "R is not a rotation").
+template <std::floating_point T>
+[[nodiscard]] PinholeCamera<T> par_camera(const std::filesystem::path& par_file, const ParEntry<T>& e, int width,
+                                          int height) {
+  if (!(std::abs(e.K.determinant()) > 0)) throw io_error(par_file.string(), "singular K", e.line);
+  try {
+    return PinholeCamera<T>(e.K, e.R, e.t, width, height);
+  } catch (const argument_error& err) {
+    throw io_error(par_file.string(), err.what(), e.line);
+  }
+}
+
+/// Reads a `_par.txt` file and every image it names into a `CameraFrameSet` (8-bit frames;
+/// names are the image names). Every image must exist, decode, and have the size of the first.
+/// Throws `io_error` naming the file (and line) on any failure.
+template <std::floating_point T = double>
+[[nodiscard]] CameraFrameSet<T, Rgb8> read_par_file(const std::filesystem::path& par_file) {
+  const std::vector<ParEntry<T>> entries = read_par_entries<T>(par_file);
+  if (entries.empty()) throw io_error(par_file.string(), "no images", 1);
+  const std::filesystem::path folder = par_file.parent_path();
+  std::vector<PinholeCamera<T>> cameras;
+  std::vector<Image<Rgb8>> images;
+  std::vector<std::string> names;
+  for (const ParEntry<T>& e : entries) {
+    const std::filesystem::path image_path = folder / e.image_name;
+    Image<Rgb8> image;
+    try {
+      image = read_rgb8(image_path);
+    } catch (const io_error& err) {
+      throw io_error(par_file.string(), std::string("image of this line: ") + err.what(), e.line);
+    }
+    if (!images.empty() && (image.width() != images[0].width() || image.height() != images[0].height()))
+      throw io_error(image_path.string(), "image is " + std::to_string(image.width()) + "x" +
+                                              std::to_string(image.height()) + ", the first image is " +
+                                              std::to_string(images[0].width()) + "x" +
+                                              std::to_string(images[0].height()));
+    cameras.push_back(par_camera(par_file, e, image.width(), image.height()));
+    images.push_back(std::move(image));
+    names.push_back(e.image_name);
+  }
+  return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names));
+}
+
+/// Writes cameras in the `_par.txt` format (K normalised to K(2,2) = 1; 17 significant digits,
+/// so doubles read back exactly). Throws `argument_error` ("cameras") when the lists differ in
+/// length or a camera has lens distortion (the format has none), `io_error` when the file
+/// cannot be written.
+template <std::floating_point T>
+void write_par_file(const std::filesystem::path& par_file, std::span<const std::string> image_names,
+                    std::span<const PinholeCamera<T>> cameras) {
+  if (image_names.size() != cameras.size()) throw argument_error("cameras", "names and cameras differ in number");
+  for (const PinholeCamera<T>& c : cameras)
+    if (c.has_distortion()) throw argument_error("cameras", "the _par.txt format has no lens distortion");
+  for (const std::string& n : image_names)
+    if (n.empty() || n.find_first_of(" \t\r\n") != std::string::npos)
+      throw argument_error("image_names", "empty or containing whitespace: '" + n + "'");
+  std::FILE* f = std::fopen(par_file.string().c_str(), "wb");
+  if (f == nullptr) throw io_error(par_file.string(), "cannot open for writing");
+  bool ok = std::fprintf(f, "%zu\n", cameras.size()) > 0;
+  for (std::size_t i = 0; i < cameras.size() && ok; ++i) {
+    const PinholeCamera<T>& c = cameras[i];
+    ok = std::fprintf(f, "%s", image_names[i].c_str()) > 0;
+    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.K()(k / 3, k % 3))) > 0;
+    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.R()(k / 3, k % 3))) > 0;
+    for (int k = 0; k < 3; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.t()[k])) > 0;
+    ok = ok && std::fprintf(f, "\n") > 0;
+  }
+  if (std::fclose(f) != 0) ok = false;
+  if (!ok) throw io_error(par_file.string(), "write failed");
+}
+
+/// Writes the cameras of a frame set (with its names) in the `_par.txt` format.
+template <std::floating_point T, class Px>
+void write_par_file(const std::filesystem::path& par_file, const CameraFrameSet<T, Px>& frames) {
+  write_par_file<T>(par_file, std::span<const std::string>(frames.names()),
+                    std::span<const PinholeCamera<T>>(frames.cameras()));
+}
+
+} // namespace mpr

@@ -1,0 +1,89 @@
+#pragma once
+/// \file
+/// `mpr::CameraFrameSet`: calibrated cameras and the images they took (a light field captured
+/// by a camera array, a gantry or a multi-view rig), the data behind `CameraFrameSampler`.
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/error.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/sampler/pinhole_camera.hpp>
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace mpr {
+
+/// Camera `i` took image `i`. Images are 8-bit sRGB (`Rgb8`, the default: 3 bytes per pixel,
+/// decoded to linear with the exact table of core/color.hpp while sampling) or linear `Color`.
+/// Every image has exactly its camera's width and height; different cameras may differ in size.
+template <std::floating_point T, class Px = Rgb8> class CameraFrameSet {
+  static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
+
+public:
+  using scalar_type = T;
+  using pixel_type = Px;
+  using camera_type = PinholeCamera<T>;
+
+  CameraFrameSet() = default;
+
+  /// Throws `argument_error` ("frames") when the lists differ in length, when `names` is neither
+  /// empty nor of the same length, or when an image's size differs from its camera's.
+  /// Empty `names` are replaced by "frame <i>".
+  CameraFrameSet(std::vector<camera_type> cameras, std::vector<Image<Px>> images, std::vector<std::string> names = {})
+      : cameras_(std::move(cameras)), images_(std::move(images)), names_(std::move(names)) {
+    if (cameras_.size() != images_.size())
+      throw argument_error("frames", std::to_string(cameras_.size()) + " cameras but " +
+                                         std::to_string(images_.size()) + " images");
+    if (names_.empty())
+      for (std::size_t i = 0; i < cameras_.size(); ++i) names_.push_back("frame " + std::to_string(i));
+    if (names_.size() != cameras_.size()) throw argument_error("frames", "names and cameras differ in number");
+    for (std::size_t i = 0; i < cameras_.size(); ++i)
+      if (images_[i].width() != cameras_[i].width() || images_[i].height() != cameras_[i].height())
+        throw argument_error("frames", names_[i] + ": image is " + std::to_string(images_[i].width()) + "x" +
+                                           std::to_string(images_[i].height()) + " but its camera expects " +
+                                           std::to_string(cameras_[i].width()) + "x" +
+                                           std::to_string(cameras_[i].height()));
+  }
+
+  [[nodiscard]] std::size_t size() const noexcept { return cameras_.size(); }
+  [[nodiscard]] bool empty() const noexcept { return cameras_.empty(); }
+  [[nodiscard]] const camera_type& camera(std::size_t i) const noexcept { return cameras_[i]; }
+  [[nodiscard]] const Image<Px>& image(std::size_t i) const noexcept { return images_[i]; }
+  [[nodiscard]] const std::string& name(std::size_t i) const noexcept { return names_[i]; }
+  [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
+  [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
+  [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
+
+  /// The same frames without frame `i` (for leave-one-out evaluation).
+  [[nodiscard]] CameraFrameSet without(std::size_t i) const {
+    if (i >= size()) throw argument_error("frame index", "out of range");
+    CameraFrameSet out = *this;
+    out.cameras_.erase(out.cameras_.begin() + static_cast<std::ptrdiff_t>(i));
+    out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
+    out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
+    return out;
+  }
+
+  /// The frames with their cameras converted to scalar `U` (images are copied unchanged).
+  template <std::floating_point U> [[nodiscard]] CameraFrameSet<U, Px> cast() const {
+    std::vector<PinholeCamera<U>> cameras;
+    cameras.reserve(size());
+    for (const camera_type& c : cameras_)
+      cameras.emplace_back(c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(),
+                           c.height(),
+                           typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1),
+                                                                 static_cast<U>(c.distortion().k2)},
+                           std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
+    return CameraFrameSet<U, Px>(std::move(cameras), images_, names_);
+  }
+
+private:
+  std::vector<camera_type> cameras_;
+  std::vector<Image<Px>> images_;
+  std::vector<std::string> names_;
+};
+
+} // namespace mpr

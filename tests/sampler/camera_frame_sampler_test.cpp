@@ -1,0 +1,259 @@
+#include "sampler/camera_frame_test_scenes.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/lightfield.hpp>
+#include <mpr/mpr.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <random>
+
+using mpr_test::constant_colour;
+
+namespace {
+
+template <class T, class Interp>
+mpr::CameraFrameSampler<Interp, T, mpr::Color> make_sampler(const std::vector<mpr::PinholeCamera<T>>& cameras,
+                                                            std::vector<mpr::Image<mpr::Color>> images,
+                                                            Interp interp = {},
+                                                            typename mpr::CameraFrameSampler<Interp, T, mpr::Color>::Config
+                                                                config = {}) {
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cameras, std::move(images));
+  return mpr::CameraFrameSampler<Interp, T, mpr::Color>(frames, interp, config);
+}
+
+bool close(const mpr::Color& a, const mpr::Color& b, float tolerance) { return ((a - b).abs() <= tolerance).all(); }
+
+} // namespace
+
+TEST_CASE("camera frame samplers satisfy the sampler concepts", "[camera_frame_sampler]") {
+  STATIC_REQUIRE(mpr::RaySampler<mpr::CameraFrameSampler<mpr::NearestCamera>>);
+  STATIC_REQUIRE(mpr::RaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture, double>>);
+  STATIC_REQUIRE(mpr::RaySampler<mpr::CameraFrameSampler<mpr::CylinderAperture, float, mpr::Color>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<mpr::CheckerboardPlane<float>>);
+  STATIC_REQUIRE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
+                                         mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
+  STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
+                                               mpr::CameraFrameSampler<mpr::NearestCamera, float>>);
+}
+
+TEMPLATE_TEST_CASE("CameraFrameSampler rejects bad configuration", "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(2, 2, 1.0, 8, 6, 8.0);
+  using S = mpr::CameraFrameSampler<mpr::CylinderAperture, T, mpr::Color>;
+  CHECK_THROWS_AS(S(nullptr, mpr::CylinderAperture{1.0}), mpr::argument_error);
+  CHECK_THROWS_AS(S(std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(), mpr::CylinderAperture{1.0}),
+                  mpr::argument_error);
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cams, mpr_test::constant_images(cams));
+  CHECK_THROWS_AS(S(frames, mpr::CylinderAperture{0.0}), mpr::argument_error);
+  CHECK_THROWS_AS(S(frames, mpr::CylinderAperture{-1.0}), mpr::argument_error);
+  CHECK_THROWS_AS(S(frames, mpr::CylinderAperture{std::numeric_limits<double>::quiet_NaN()}), mpr::argument_error);
+  typename S::Config bad;
+  bad.depth = std::numeric_limits<T>::infinity();
+  CHECK_THROWS_AS(S(frames, mpr::CylinderAperture{1.0}, bad), mpr::argument_error);
+  CHECK_NOTHROW(S(frames, mpr::CylinderAperture{1.0}));
+  // Frame sets check their own consistency.
+  CHECK_THROWS_AS((mpr::CameraFrameSet<T, mpr::Color>(cams, {})), mpr::argument_error);
+  std::vector<mpr::Image<mpr::Color>> wrong(4, mpr::Image<mpr::Color>(7, 6));
+  CHECK_THROWS_AS((mpr::CameraFrameSet<T, mpr::Color>(cams, wrong)), mpr::argument_error);
+}
+
+TEMPLATE_TEST_CASE("NearestCamera answers with the camera nearest the ray line", "[camera_frame_sampler]", float,
+                   double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(5, 4, 1.0, 16, 12, 16.0);
+  const auto sampler = make_sampler<T>(cams, mpr_test::constant_images(cams), mpr::NearestCamera{});
+  const mpr::Vec3<T> X(T(0.1), T(-0.2), T(10)); // on the axis of the array, seen by every camera
+  for (std::size_t k = 0; k < cams.size(); ++k) {
+    // A ray through X whose line passes 0.1 from camera k's centre.
+    const mpr::Vec3<T> near_k = cams[k].centre() + mpr::Vec3<T>(T(0.1), T(0.05), T(0));
+    const mpr::Ray<T> ray{X, X - near_k};
+    CHECK(close(sampler.sample(ray), constant_colour(k, cams.size()), 1e-6f));
+  }
+  // A point behind every camera: background (black by default), not NaN.
+  const mpr::Color behind = sampler.sample({mpr::Vec3<T>(0, 0, -5), mpr::Vec3<T>(0, 0, 1)});
+  CHECK(close(behind, mpr::Color::Zero(), 0));
+  // Degenerate direction: background, never NaN.
+  const mpr::Color zero_dir = sampler.sample({X, mpr::Vec3<T>::Zero()});
+  CHECK(zero_dir.allFinite());
+}
+
+TEMPLATE_TEST_CASE("SyntheticAperture averages the cameras that see the point", "[camera_frame_sampler]", float,
+                   double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 16, 12, 16.0);
+  typename mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>::Config config;
+  config.background = mpr::Color(0.5f, 0.25f, 0.125f);
+  const auto sampler = make_sampler<T>(cams, mpr_test::constant_images(cams), mpr::SyntheticAperture{}, config);
+  // Seen by all nine cameras: the mean of the nine colours, whatever the ray direction.
+  mpr::Color mean = mpr::Color::Zero();
+  for (std::size_t k = 0; k < 9; ++k) mean += constant_colour(k, 9);
+  mean /= 9.0f;
+  CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, 20), mpr::Vec3<T>(0, 0, 1)}), mean, 1e-6f));
+  CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, 20), mpr::Vec3<T>(T(0.3), 0, 1)}), mean, 1e-6f));
+  // Field of view: half-width 8 px at f = 16 is 0.5 rad-ish; at depth 1, x = 1.0 is seen by the
+  // cameras at x = 1 (centre) and x = 0 (offset 1 -> pixel 7.5 + 16 = out), so only column x = 1.
+  const mpr::Vec3<T> X(T(1.0), T(0), T(1));
+  mpr::Color column = mpr::Color::Zero();
+  int seen = 0;
+  for (std::size_t k = 0; k < 9; ++k)
+    if (cams[k].project(X)) {
+      column += constant_colour(k, 9);
+      ++seen;
+    }
+  REQUIRE(seen > 0);
+  REQUIRE(seen < 9);
+  CHECK(close(sampler.sample({X, mpr::Vec3<T>(0, 0, 1)}), column / static_cast<float>(seen), 1e-6f));
+  // Nobody sees it: the background.
+  CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, -1), mpr::Vec3<T>(0, 0, 1)}), config.background, 0));
+}
+
+TEMPLATE_TEST_CASE("CylinderAperture weights cameras by 1 - d/r and falls back to the nearest",
+                   "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(4, 1, 1.0, 16, 12, 16.0); // x = -1.5, -0.5, 0.5, 1.5
+  const auto images = mpr_test::constant_images(cams);
+  const auto sampler = make_sampler<T>(cams, images, mpr::CylinderAperture{1.0});
+  // Ray line along z through x = 0.2: distances 1.7, 0.7, 0.3, 1.3 -> cameras 1 and 2 qualify,
+  // weights 0.3 and 0.7.
+  const mpr::Ray<T> ray{mpr::Vec3<T>(T(0.2), 0, 30), mpr::Vec3<T>(0, 0, 2)};
+  const mpr::Color expected = (0.3f * constant_colour(1, 4) + 0.7f * constant_colour(2, 4)) / 1.0f;
+  CHECK(close(sampler.sample(ray), expected, 1e-5f));
+  // Nobody within the radius: the nearest camera (camera 3 at x = 1.5 for a line at x = 4).
+  const auto narrow = make_sampler<T>(cams, images, mpr::CylinderAperture{0.1});
+  const mpr::Ray<T> far{mpr::Vec3<T>(T(1.55), 0, 30), mpr::Vec3<T>(0, 0, 1)};
+  CHECK(close(narrow.sample(far), constant_colour(3, 4), 1e-6f));
+  const mpr::Ray<T> outside{mpr::Vec3<T>(T(4), 0, 300), mpr::Vec3<T>(0, 0, 1)};
+  const mpr::Color c = narrow.sample(outside);
+  CHECK(c.allFinite());
+  CHECK(close(c, constant_colour(3, 4), 1e-6f));
+  // A wide cylinder equals the weighted mean over all cameras.
+  const auto wide = make_sampler<T>(cams, images, mpr::CylinderAperture{100.0});
+  mpr::Color acc = mpr::Color::Zero();
+  float wsum = 0;
+  for (int k = 0; k < 4; ++k) {
+    const float w = 1.0f - static_cast<float>(std::abs(cams[static_cast<std::size_t>(k)].centre().x() - 0.2)) / 100.0f;
+    acc += w * constant_colour(static_cast<std::size_t>(k), 4);
+    wsum += w;
+  }
+  CHECK(close(wide.sample(ray), acc / wsum, 1e-5f));
+}
+
+TEMPLATE_TEST_CASE("pixel reconstruction: bilinear by default, nearest on request; depth option",
+                   "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(1, 1, 1.0, 4, 4, 4.0); // principal point (1.5, 1.5)
+  mpr::Image<mpr::Color> img(4, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) img(x, y) = mpr::Color(static_cast<float>(x), static_cast<float>(y), 0.0f);
+  const std::vector<mpr::Image<mpr::Color>> images{img};
+  const auto bilinear = make_sampler<T>(cams, images, mpr::SyntheticAperture{});
+  typename mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>::Config nearest_config;
+  nearest_config.filter = mpr::PixelFilter::nearest;
+  const auto nearest = make_sampler<T>(cams, images, mpr::SyntheticAperture{}, nearest_config);
+  // Pixel (1.25, 2.75): X = ((1.25 - 1.5) z / 4, (2.75 - 1.5) z / 4, z).
+  const T z = 8;
+  const mpr::Vec3<T> X(T(-0.25) * z / 4, T(1.25) * z / 4, z);
+  const mpr::Ray<T> ray{X, mpr::Vec3<T>(0, 0, 1)};
+  CHECK(close(bilinear.sample(ray), mpr::Color(1.25f, 2.75f, 0), 1e-5f));
+  CHECK(close(nearest.sample(ray), mpr::Color(1, 3, 0), 0));
+  // Border: between the last pixel centre and the image edge the edge pixel repeats.
+  const mpr::Vec3<T> edge(T(1.8) * z / 4, T(0), z); // pixel x = 3.3
+  CHECK(close(bilinear.sample({edge, mpr::Vec3<T>(0, 0, 1)}), mpr::Color(3, 1.5f, 0), 1e-5f));
+  // Outside the image (x = 3.6 >= 3.5): no contribution -> background.
+  const mpr::Vec3<T> out(T(2.1) * z / 4, T(0), z);
+  CHECK(close(bilinear.sample({out, mpr::Vec3<T>(0, 0, 1)}), mpr::Color::Zero(), 0));
+  // depth: the colour is taken at ray.at(depth).
+  typename mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>::Config depth_config;
+  depth_config.depth = T(2);
+  const auto at_depth = make_sampler<T>(cams, images, mpr::SyntheticAperture{}, depth_config);
+  const mpr::Ray<T> shifted{mpr::Vec3<T>(X.x(), X.y(), X.z() - 4), mpr::Vec3<T>(0, 0, 2)};
+  CHECK(close(at_depth.sample(shifted), mpr::Color(1.25f, 2.75f, 0), 1e-5f));
+}
+
+TEST_CASE("8-bit frames are decoded to linear colour with the exact sRGB table", "[camera_frame_sampler]") {
+  const auto cams = mpr_test::grid_cameras<float>(1, 1, 1.0, 4, 4, 4.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images{mpr::Image<mpr::Rgb8>(4, 4, mpr::Rgb8{128, 7, 255})};
+  auto frames = std::make_shared<const mpr::CameraFrameSet<float>>(cams, images);
+  const mpr::CameraFrameSampler<mpr::NearestCamera> sampler(frames);
+  const mpr::Color c = sampler.sample({mpr::Vec3<float>(0, 0, 3), mpr::Vec3<float>(0, 0, 1)});
+  CHECK(c[0] == mpr::srgb8_to_linear(128));
+  CHECK(c[1] == mpr::srgb8_to_linear(7));
+  CHECK(c[2] == 1.0f);
+  CHECK(mpr::to_rgb8(c) == mpr::Rgb8{128, 7, 255});
+}
+
+TEMPLATE_TEST_CASE("refocusing on the scene plane reproduces a held-out view", "[camera_frame_sampler]", float,
+                   double) {
+  using T = TestType;
+  const double depth = 20;
+  auto cams = mpr_test::grid_cameras<T>(4, 4, 1.0, 40, 30, 40.0);
+  auto images = mpr_test::plane_images(cams, depth);
+  // Hold out camera 5 (an inner one).
+  const mpr::PinholeCamera<T> held = cams[5];
+  const mpr::Image<mpr::Color> truth = images[5];
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cams, images)->without(5);
+  auto shared = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(std::move(frames));
+  const mpr::PlanarSurface<T> plane = held.image_plane(static_cast<T>(depth));
+  const mpr::GlcSelector<T> glc = held.glc_on(plane);
+  const mpr::Region region(0, 0, held.width(), held.height());
+  const auto check_policy = [&](const auto& sampler, float tolerance) {
+    const mpr::Renderer renderer(plane, glc, sampler);
+    mpr::Image<mpr::Color> out(held.width(), held.height());
+    renderer.render(out.view(), region, mpr::RenderOptions{1});
+    float worst = 0;
+    for (int y = 2; y < held.height() - 2; ++y)
+      for (int x = 2; x < held.width() - 2; ++x) worst = std::max(worst, (out(x, y) - truth(x, y)).abs().maxCoeff());
+    CHECK(worst <= tolerance);
+  };
+  check_policy(mpr::CameraFrameSampler<mpr::NearestCamera, T, mpr::Color>(shared), 1e-4f);
+  check_policy(mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>(shared), 1e-4f);
+  check_policy(mpr::CameraFrameSampler<mpr::CylinderAperture, T, mpr::Color>(shared, mpr::CylinderAperture{1.5}),
+               1e-4f);
+}
+
+TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path", "[camera_frame_sampler]", float,
+                   double) {
+  using T = TestType;
+  // A 6x5 array of 8-bit frames with texture, viewed off-axis through a tilted focal plane.
+  auto cams = mpr_test::grid_cameras<T>(6, 5, 0.7, 48, 36, 40.0);
+  const auto linear = mpr_test::plane_images(cams, 15.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(5);
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        px(x, y) = mpr::to_rgb8(img(x, y));
+        px(x, y).r = static_cast<std::uint8_t>(px(x, y).r ^ (rng() & 31)); // high-frequency detail
+      }
+    images.push_back(std::move(px));
+  }
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
+  const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
+      mpr::Vec3<T>(T(0.3), T(-0.2), T(-1)), mpr::Vec3<T>(0, 0, 15), mpr::Vec3<T>(0, -1, 0), T(0.9), 64, 48);
+  const mpr::PlanarSurface<T> plane = view.image_plane(T(14)).tilted(T(0.3), T(0.2));
+  const mpr::GlcSelector<T> glc = view.glc_on(plane);
+  const mpr::Region region(0, 0, 64, 48);
+  const auto compare = [&](const auto& sampler) {
+    const mpr::Renderer renderer(plane, glc, sampler);
+    mpr::Image<mpr::Rgb8> batch(64, 48);
+    renderer.render(batch.view(), region, mpr::RenderOptions{2});
+    int worst = 0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const mpr::Rgb8 one = mpr::to_rgb8(renderer.shade({x, y}, region));
+        const mpr::Rgb8 b = batch(x, y);
+        worst = std::max({worst, std::abs(one.r - b.r), std::abs(one.g - b.g), std::abs(one.b - b.b)});
+      }
+    CHECK(worst <= 1);
+  };
+  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{1.2}));
+}

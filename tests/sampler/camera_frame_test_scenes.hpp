@@ -1,0 +1,74 @@
+#pragma once
+// Small synthetic camera arrays for the light-field tests: cameras on a plane looking at a
+// textured plane, their images rendered analytically.
+
+#include <mpr/lightfield.hpp>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace mpr_test {
+
+/// A smooth texture on the plane z = depth: linear in world x and y (so bilinear
+/// reconstruction of a fronto-parallel view of it is exact away from the image border).
+inline mpr::Color plane_texture(double x, double y) {
+  return mpr::Color(static_cast<float>(0.5 + 0.02 * x), static_cast<float>(0.5 + 0.03 * y),
+                    static_cast<float>(0.4 + 0.01 * (x - y)));
+}
+
+/// `nx` x `ny` cameras (R = I, looking along +z) spaced `spacing` apart on the plane z = 0,
+/// centred on the origin, `width` x `height` pixels, focal length `focal`.
+template <class T>
+std::vector<mpr::PinholeCamera<T>> grid_cameras(int nx, int ny, double spacing, int width, int height, double focal) {
+  std::vector<mpr::PinholeCamera<T>> cameras;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const mpr::Vec3<T> c(static_cast<T>((i - 0.5 * (nx - 1)) * spacing), static_cast<T>((j - 0.5 * (ny - 1)) * spacing),
+                           T(0));
+      mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+      K(0, 0) = K(1, 1) = static_cast<T>(focal);
+      K(0, 2) = static_cast<T>(0.5 * (width - 1));
+      K(1, 2) = static_cast<T>(0.5 * (height - 1));
+      cameras.emplace_back(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-c), width, height);
+    }
+  return cameras;
+}
+
+/// Images of the textured plane z = `depth` seen by `cameras` (linear colour).
+template <class T>
+std::vector<mpr::Image<mpr::Color>> plane_images(const std::vector<mpr::PinholeCamera<T>>& cameras, double depth) {
+  std::vector<mpr::Image<mpr::Color>> images;
+  for (const auto& cam : cameras) {
+    mpr::Image<mpr::Color> img(cam.width(), cam.height());
+    const mpr::PinholeCamera<double> c(cam.K().template cast<double>(), cam.R().template cast<double>(),
+                                       cam.t().template cast<double>(), cam.width(), cam.height());
+    for (int y = 0; y < cam.height(); ++y)
+      for (int x = 0; x < cam.width(); ++x) {
+        const mpr::Ray<double> r = c.ray_through({x, y});
+        const double t = (depth - r.origin.z()) / r.direction.z();
+        const mpr::Vec3<double> p = r.at(t);
+        img(x, y) = plane_texture(p.x(), p.y());
+      }
+    images.push_back(std::move(img));
+  }
+  return images;
+}
+
+/// Constant images: camera i shows colour (i / n, 1 - i / n, 0.25).
+template <class T>
+std::vector<mpr::Image<mpr::Color>> constant_images(const std::vector<mpr::PinholeCamera<T>>& cameras) {
+  std::vector<mpr::Image<mpr::Color>> images;
+  const float n = static_cast<float>(cameras.size());
+  for (std::size_t i = 0; i < cameras.size(); ++i)
+    images.emplace_back(cameras[i].width(), cameras[i].height(),
+                        mpr::Color(static_cast<float>(i) / n, 1 - static_cast<float>(i) / n, 0.25f));
+  return images;
+}
+
+inline mpr::Color constant_colour(std::size_t i, std::size_t n) {
+  return mpr::Color(static_cast<float>(i) / static_cast<float>(n), 1 - static_cast<float>(i) / static_cast<float>(n),
+                    0.25f);
+}
+
+} // namespace mpr_test
