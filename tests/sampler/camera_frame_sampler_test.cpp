@@ -237,9 +237,21 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
   const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
       mpr::Vec3<T>(T(0.3), T(-0.2), T(-1)), mpr::Vec3<T>(0, 0, 15), mpr::Vec3<T>(0, -1, 0), T(0.9), 64, 48);
-  const mpr::PlanarSurface<T> plane = view.image_plane(T(14)).tilted(T(0.3), T(0.2));
-  const mpr::GlcSelector<T> glc = view.glc_on(plane);
   const mpr::Region region(0, 0, 64, 48);
+  // Tilted focal plane (general path) and, from a camera of the array's own intrinsics, a
+  // plane parallel to the array at the cameras' pixel scale (the shift-and-add path), seen by a
+  // GLC whose rays sweep across the array.
+  const mpr::PlanarSurface<T> tilted = view.image_plane(T(14)).tilted(T(0.3), T(0.2));
+  mpr::Mat3<T> K = cams[0].K();
+  K(0, 2) = T(31.5);
+  K(1, 2) = T(23.5);
+  const mpr::PinholeCamera<T> straight(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(-0.1), T(0.2), 0), 64, 48);
+  const mpr::PlanarSurface<T> parallel = straight.image_plane(T(15));
+  const auto sweep = [&](const mpr::PlanarSurface<T>& p) {
+    const auto d = [&](T u, T v) { return mpr::Vec3<T>(p.point_at({u, v}) - mpr::Vec3<T>(-1 + 2 * u, T(-0.5) + v, 0)); };
+    return mpr::GlcSelector<T>(p, d(0, 0), d(1, 0), d(0, 1));
+  };
+  for (const auto& [plane, glc] : {std::pair{tilted, view.glc_on(tilted)}, std::pair{parallel, sweep(parallel)}}) {
   const auto compare = [&](const auto& sampler) {
     const mpr::Renderer renderer(plane, glc, sampler);
     mpr::Image<mpr::Rgb8> batch(64, 48);
@@ -256,4 +268,5 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
   compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
   compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{1.2}));
+  }
 }

@@ -16,9 +16,17 @@
 
 namespace mpr {
 
+/// A linear RGB colour stored as four floats (the fourth is 0), 16-byte aligned so that one
+/// SIMD load fetches a pixel: the sampling-time form of a frame.
+struct alignas(16) LinearTexel {
+  float c[4];
+};
+
 /// Camera `i` took image `i`. Images are 8-bit sRGB (`Rgb8`, the default: 3 bytes per pixel,
 /// decoded to linear with the exact table of core/color.hpp while sampling) or linear `Color`.
 /// Every image has exactly its camera's width and height; different cameras may differ in size.
+/// At construction every image is also decoded once into linear `LinearTexel`s (16 bytes per
+/// pixel), which the samplers read; this is the bulk of the memory a frame set takes.
 template <std::floating_point T, class Px = Rgb8> class CameraFrameSet {
   static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
 
@@ -46,6 +54,8 @@ public:
                                            std::to_string(images_[i].height()) + " but its camera expects " +
                                            std::to_string(cameras_[i].width()) + "x" +
                                            std::to_string(cameras_[i].height()));
+    texels_.reserve(images_.size());
+    for (const Image<Px>& image : images_) texels_.push_back(decode(image));
   }
 
   [[nodiscard]] std::size_t size() const noexcept { return cameras_.size(); }
@@ -56,6 +66,8 @@ public:
   [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
   [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
+  /// Image `i` decoded to linear colour, row-major, `width * height` texels.
+  [[nodiscard]] const std::vector<LinearTexel>& texels(std::size_t i) const noexcept { return texels_[i]; }
 
   /// The same frames without frame `i` (for leave-one-out evaluation).
   [[nodiscard]] CameraFrameSet without(std::size_t i) const {
@@ -64,6 +76,7 @@ public:
     out.cameras_.erase(out.cameras_.begin() + static_cast<std::ptrdiff_t>(i));
     out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
     out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
+    out.texels_.erase(out.texels_.begin() + static_cast<std::ptrdiff_t>(i));
     return out;
   }
 
@@ -81,9 +94,22 @@ public:
   }
 
 private:
+  [[nodiscard]] static std::vector<LinearTexel> decode(const Image<Px>& image) {
+    std::vector<LinearTexel> out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
+    const Px* p = image.data();
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if constexpr (std::is_same_v<Px, Rgb8>)
+        out[k] = {{srgb8_to_linear(p[k].r), srgb8_to_linear(p[k].g), srgb8_to_linear(p[k].b), 0.0f}};
+      else
+        out[k] = {{p[k][0], p[k][1], p[k][2], 0.0f}};
+    }
+    return out;
+  }
+
   std::vector<camera_type> cameras_;
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
+  std::vector<std::vector<LinearTexel>> texels_;
 };
 
 } // namespace mpr

@@ -1,0 +1,229 @@
+// Light-field rendering speed: the reference workload of the 2004 GLC system (a 500x500 output
+// from 90 cameras of 640x480 on a planar grid; 1.44 s with the nearest camera, 2.5 s with the
+// full synthetic aperture on a 2.8 GHz Pentium 4) with synthetic images generated in memory,
+// and a full synthetic-aperture refocus of the real Stanford Chess light field (49 views of
+// 1400x800) when the data is present. Each policy runs through the batch path (the sampler's
+// `sample_rays`, cameras in the outer loop) and, for comparison, through the per-pixel
+// `sample(ray)` contract only.
+//
+// usage: lightfield [--quick] [DATA_DIR]
+#include "bench_common.hpp"
+
+#include <mpr/lightfield.hpp>
+#include <mpr/mpr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+using T = float;
+
+/// Hides a sampler's batch interface, so the renderer calls `sample(ray)` per pixel.
+template <class S> struct PerPixel {
+  using scalar_type = typename S::scalar_type;
+  using color_type = typename S::color_type;
+  S inner;
+  [[nodiscard]] color_type sample(const mpr::Ray<scalar_type>& ray) const noexcept { return inner.sample(ray); }
+};
+
+// nx x ny cameras, `spacing` apart on z = 0, looking along +z, images of a textured plane at
+// z = depth (a checkerboard modulated by smooth colour ramps).
+std::shared_ptr<const mpr::CameraFrameSet<T>> synthetic_array(int nx, int ny, T spacing, int w, int h, T focal, T depth) {
+  std::vector<mpr::PinholeCamera<T>> cameras;
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const mpr::Vec3<T> c((static_cast<T>(i) - T(0.5) * static_cast<T>(nx - 1)) * spacing,
+                           (static_cast<T>(j) - T(0.5) * static_cast<T>(ny - 1)) * spacing, 0);
+      mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+      K(0, 0) = K(1, 1) = focal;
+      K(0, 2) = T(0.5) * static_cast<T>(w - 1);
+      K(1, 2) = T(0.5) * static_cast<T>(h - 1);
+      cameras.emplace_back(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-c), w, h);
+      mpr::Image<mpr::Rgb8> img(w, h);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const T X = c.x() + (static_cast<T>(x) - K(0, 2)) / focal * depth;
+          const T Y = c.y() + (static_cast<T>(y) - K(1, 2)) / focal * depth;
+          const bool dark = (static_cast<int>(std::floor(X)) + static_cast<int>(std::floor(Y))) & 1;
+          img(x, y) = mpr::Rgb8{static_cast<std::uint8_t>(dark ? 40 : 200 + 50 * std::sin(X)),
+                                static_cast<std::uint8_t>(dark ? 30 : 150 + 60 * std::cos(Y)),
+                                static_cast<std::uint8_t>(x * 255 / w)};
+        }
+      images.push_back(std::move(img));
+    }
+  return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(cameras), std::move(images));
+}
+
+/// Median CPU time of the calling thread over `repeats` runs (after one warm-up), in ms: on a
+/// machine shared with other jobs this is what a single-threaded run costs when it has a core.
+template <class Fn> double thread_cpu_ms(int repeats, Fn&& fn) {
+  fn();
+  std::vector<double> ms;
+  for (int i = 0; i < repeats; ++i) {
+    timespec a{}, b{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &a);
+    fn();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
+    ms.push_back((static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec)) * 1e3);
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+std::string load_average() {
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  char text[64] = "unknown";
+  if (f != nullptr) {
+    if (std::fgets(text, sizeof text, f) == nullptr) std::snprintf(text, sizeof text, "unknown");
+    std::fclose(f);
+  }
+  std::string s = text;
+  while (!s.empty() && (s.back() == '\n')) s.pop_back();
+  return s;
+}
+
+struct Result {
+  double batch_ms, per_pixel_ms, cpu_ms;
+};
+
+template <class Sampler>
+Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr::GlcSelector<T>& glc,
+               const Sampler& sampler, int w, int h, int threads, int repeats, bool per_pixel) {
+  const mpr::Region region(0, 0, w, h);
+  mpr::Image<mpr::Rgb8> a(w, h), b(w, h);
+  const mpr::Renderer batch(plane, glc, sampler);
+  const mpr_bench::Timing tb = mpr_bench::time_repeated(repeats, [&] { batch.render(a.view(), region, {threads}); });
+  const double cpu = threads == 1 ? thread_cpu_ms(repeats, [&] { batch.render(a.view(), region, {1}); }) : 0.0;
+  double pp = 0;
+  if (per_pixel) {
+    const mpr::Renderer slow(plane, glc, PerPixel<Sampler>{sampler});
+    const mpr_bench::Timing tp =
+        mpr_bench::time_repeated(std::max(1, repeats / 4), [&] { slow.render(b.view(), region, {threads}); });
+    pp = tp.median * 1e3;
+    int worst = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        worst = std::max({worst, std::abs(a(x, y).r - b(x, y).r), std::abs(a(x, y).g - b(x, y).g),
+                          std::abs(a(x, y).b - b(x, y).b)});
+    if (worst > 1) {
+      std::fprintf(stderr, "lightfield: %s: batch and per-pixel images differ by %d levels\n", label, worst);
+      std::exit(1);
+    }
+  }
+  std::printf("| %-34s | %d | %8.2f (%.2f-%.2f) | %8.2f | %8.1f | %6.1f |", label, threads, tb.median * 1e3,
+              tb.min * 1e3, tb.max * 1e3, cpu, pp, static_cast<double>(w) * h / tb.median * 1e-6);
+  return {tb.median * 1e3, pp, cpu};
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = mpr_bench::quick_mode(argc, argv);
+  std::string data;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) != "--quick") data = argv[i];
+  if (data.empty()) {
+    const char* env = std::getenv("MPR_DATA_DIR");
+    data = env != nullptr ? env : "";
+  }
+  std::printf("%s\n", mpr_bench::machine_description().c_str());
+  const int repeats = quick ? 1 : 15;
+  const int nx = quick ? 4 : 10, ny = quick ? 3 : 9, cw = quick ? 160 : 640, ch = quick ? 120 : 480;
+  const int size = quick ? 100 : 500;
+  const T spacing = 1, focal = quick ? 150 : 600, depth = 20;
+  const auto frames = synthetic_array(nx, ny, spacing, cw, ch, focal, depth);
+
+  // The virtual camera at the array centre, same focal length, focused on the textured plane.
+  mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+  K(0, 0) = K(1, 1) = focal;
+  K(0, 2) = K(1, 2) = T(0.5) * static_cast<T>(size - 1);
+  const mpr::PinholeCamera<T> view(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), size, size);
+  // The image surface: the plane z = depth seen at the cameras' own scale (one output pixel
+  // per camera pixel). The rays: a cross-slit GLC whose rays cross the camera plane at
+  // s(u, v) = (-3 + 6u, -2 + 4v, 0), sweeping a 6 x 4 area of the array, so the nearest camera
+  // and the cylinder's cameras change across the image.
+  const mpr::PlanarSurface<T> plane = view.image_plane(depth);
+  const auto crossing_glc = [&](const mpr::PlanarSurface<T>& p) {
+    const auto d = [&](T u, T v) { return mpr::Vec3<T>(p.point_at({u, v}) - mpr::Vec3<T>(-3 + 6 * u, -2 + 4 * v, 0)); };
+    return mpr::GlcSelector<T>(p, d(0, 0), d(1, 0), d(0, 1));
+  };
+  const mpr::GlcSelector<T> glc = crossing_glc(plane);
+  const mpr::PlanarSurface<T> tilted = plane.tilted(T(0.25), T(0.15));
+  const mpr::GlcSelector<T> tilted_glc = crossing_glc(tilted);
+
+  const T radius = 2.0f;
+  const mpr::CameraFrameSampler<mpr::NearestCamera, T> nearest(frames);
+  const mpr::CameraFrameSampler<mpr::SyntheticAperture, T> full(frames);
+  const mpr::CameraFrameSampler<mpr::CylinderAperture, T> cylinder(frames, mpr::CylinderAperture{radius});
+  // Cameras per ray of the cylinder aperture, averaged over the output.
+  double in_cylinder = 0;
+  for (int y = 0; y < size; y += 7)
+    for (int x = 0; x < size; x += 7) {
+      const mpr::Vec2<T> uv((static_cast<T>(x) + T(0.5)) / static_cast<T>(size), (static_cast<T>(y) + T(0.5)) / static_cast<T>(size));
+      const mpr::Ray<T> r = glc.ray_at({x, y}, uv, plane.point_at(uv));
+      int count = 0;
+      nearest.index().within(r.origin, r.direction, radius, [&](int, T) { ++count; });
+      in_cylinder += count;
+    }
+  in_cylinder /= std::pow(std::ceil(size / 7.0), 2);
+
+  std::printf("\nreference workload: %dx%d output, %d cameras of %dx%d on a planar grid (8-bit frames), cross-slit GLC, "
+              "focal plane parallel to the camera plane at the cameras' pixel scale unless 'tilted'; cylinder radius %.1f grid steps = %.1f cameras per ray; "
+              "median of %d runs (min-max); thread CPU time for 1 thread; load average at start: %s\n\n",
+              size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats, load_average().c_str());
+  std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s | vs 2004 "
+              "(wall) |\n|---|---|---|---|---|---|---|\n");
+  for (int threads : {1, 2}) {
+    Result r = measure("nearest camera", plane, glc, nearest, size, size, threads, repeats, true);
+    std::printf(" %6.0fx |\n", 1440.0 / r.batch_ms);
+    r = measure("synthetic aperture (all cameras)", plane, glc, full, size, size, threads, repeats, true);
+    std::printf(" %6.0fx |\n", 2500.0 / r.batch_ms);
+    r = measure("synthetic aperture, tilted plane", tilted, tilted_glc, full, size, size, threads, repeats, false);
+    std::printf(" %6.0fx |\n", 2500.0 / r.batch_ms);
+    r = measure("cylinder aperture", plane, glc, cylinder, size, size, threads, repeats, true);
+    std::printf("        |\n");
+  }
+
+  const std::filesystem::path chess = std::filesystem::path(data) / "stanford" / "chess";
+  if (quick || data.empty() || !std::filesystem::is_directory(chess)) {
+    std::printf("\nChess: skipped (%s)\n", quick ? "--quick" : "no data; pass DATA_DIR or set MPR_DATA_DIR");
+    return 0;
+  }
+  const auto lf = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_stanford_light_field<T>(chess));
+  mpr::Mat3<T> Kc = lf->camera(0).K();
+  Kc(0, 2) = T(0.5) * static_cast<T>(lf->camera(0).width() - 1);
+  Kc(1, 2) = T(0.5) * static_cast<T>(lf->camera(0).height() - 1);
+  const mpr::PinholeCamera<T> centre(Kc, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), lf->camera(0).width(),
+                                     lf->camera(0).height());
+  std::printf("\nStanford Chess: %zu views of %dx%d, refocus at the reference plane (z = 1000) and at z = 1150\n\n",
+              lf->size(), centre.width(), centre.height());
+  std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s |\n"
+              "|---|---|---|---|---|---|\n");
+  const mpr::CameraFrameSampler<mpr::SyntheticAperture, T> chess_full(lf);
+  const mpr::CameraFrameSampler<mpr::NearestCamera, T> chess_nearest(lf);
+  const mpr::CameraFrameSampler<mpr::CylinderAperture, T> chess_cylinder(lf, mpr::CylinderAperture{10.0});
+  for (int threads : {1, 2})
+    for (const T z : {T(1000), T(1150)}) {
+      const mpr::PlanarSurface<T> p = centre.image_plane(z);
+      const mpr::GlcSelector<T> g = centre.glc_on(p);
+      const std::string at = " z=" + std::to_string(static_cast<int>(z));
+      measure(("Chess synthetic aperture" + at).c_str(), p, g, chess_full, centre.width(), centre.height(), threads,
+              repeats, z == 1000 && threads == 2);
+      std::printf("\n");
+      measure(("Chess nearest" + at).c_str(), p, g, chess_nearest, centre.width(), centre.height(), threads, repeats,
+              false);
+      std::printf("\n");
+      measure(("Chess cylinder r=10" + at).c_str(), p, g, chess_cylinder, centre.width(), centre.height(), threads,
+              repeats, false);
+      std::printf("\n");
+    }
+  return 0;
+}
