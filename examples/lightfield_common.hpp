@@ -23,7 +23,8 @@ inline std::filesystem::path data_dir(const char* argument) {
 }
 
 /// Loads Stanford Chess (7x7, 1400x800) with the default planar-array options: camera plane
-/// z = 0, positions in file units (about 5 per grid step), reference plane at z = 1000.
+/// z = 0, positions in file units (about 5 per grid step), reference plane at z = 1000
+/// (the board spans about z = 700 to 950).
 inline std::shared_ptr<const mpr::CameraFrameSet<T>> load_chess(const std::filesystem::path& data) {
   const auto start = std::chrono::steady_clock::now();
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(

@@ -1,6 +1,6 @@
 // lightfield_multiperspective: a cross-slit and a pushbroom view through the Stanford Chess
 // light field, built directly from General Linear Camera corner rays (two-plane form: where
-// each corner ray crosses the camera plane z = 0 and the focal plane z = 1000).
+// each corner ray crosses the camera plane z = 0 and the focal plane z = 820).
 //
 // - pinhole.png:    reference, every ray through the array centre.
 // - cross_slit.png: the camera-plane crossing sweeps across the array (x from -15 to +15) with
@@ -32,7 +32,7 @@ int main(int argc, char** argv) try {
   T half = 0;
   for (const auto& c : frames->cameras()) half = std::max(half, std::abs(c.centre().x()));
   half *= T(0.95);
-  const T zf = 1000;
+  const T zf = 820;
   const mpr::PlanarSurface<T> plane = centre.image_plane(zf);
   const int w = centre.width(), h = centre.height();
 

@@ -2,9 +2,9 @@
 // depths with each interpolation policy (nearest camera, full synthetic aperture, cylinder
 // aperture), seen from the centre of the camera array.
 //
-// Writes refocus_montage.png (rows: depths near to far; columns: nearest, synthetic aperture,
+// Writes refocus_montage.png (rows: depths 700, 760, 820, 880, 950, near to far; columns: nearest, synthetic aperture,
 // cylinder; each tile rendered at half resolution in one multi-view render call) and
-// refocus_<policy>_<depth>.png at full resolution for the middle depth.
+// refocus_<policy>_<depth>.png at full resolution for depths 720 and 880.
 //
 // usage: lightfield_refocus [DATA_DIR] [OUTPUT_FOLDER]   (defaults: MPR_DATA_DIR, lightfield-output)
 #include "lightfield_common.hpp"
@@ -29,8 +29,9 @@ int main(int argc, char** argv) try {
   // About 12 cameras of the 5-unit grid lie within 10 units of a central ray.
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> cylinder(frames, mpr::CylinderAperture{10.0});
 
-  // Depths in world units: the reference plane (zero disparity) is at 1000.
-  const std::vector<T> depths{800, 900, 1000, 1150, 1350};
+  // Depths in world units: the reference plane (zero disparity) is at 1000; the board spans
+  // about 700 (front pieces) to 950 (back row).
+  const std::vector<T> depths{700, 760, 820, 880, 950};
   const int tw = w / 2, th = h / 2;
   mpr::Image<mpr::Rgb8> montage(3 * tw, static_cast<int>(depths.size()) * th);
   for (std::size_t i = 0; i < depths.size(); ++i) {
@@ -46,7 +47,7 @@ int main(int argc, char** argv) try {
   mpr::write_png(out / "refocus_montage.png", montage);
   report(out / "refocus_montage.png");
 
-  for (const T depth : {T(900), T(1150)}) {
+  for (const T depth : {T(720), T(880)}) {
     const mpr::PlanarSurface<T> plane = centre.image_plane(depth);
     const mpr::GlcSelector<T> glc = centre.glc_on(plane);
     const mpr::Region region(0, 0, w, h);

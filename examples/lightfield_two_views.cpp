@@ -18,7 +18,7 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(out);
   const auto frames = load_chess(data);
   const mpr::PinholeCamera<T> centre = array_centre_camera(frames->camera(0));
-  const mpr::PlanarSurface<T> focal = centre.image_plane(T(1000));
+  const mpr::PlanarSurface<T> focal = centre.image_plane(T(820));
   const mpr::Renderer chess(focal, centre.glc_on(focal),
                             mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{10.0}));
 

@@ -42,10 +42,16 @@ TEST_CASE("Stanford folder: planar array with zero disparity on the reference pl
   CHECK(frames.name(0).rfind("out_00_00_", 0) == 0);
   CHECK(frames.name(5).rfind("out_01_02_", 0) == 0);
   CHECK(frames.image(4)(0, 0).b == 11);
-  // Centres: z = 0, centred on the mean, spacing scale * 5 = 10; x grows with the column, y
-  // (image down) grows with the row.
-  CHECK(frames.camera(0).centre().isApprox(mpr::Vec3<double>(-10, -5, 0)));
-  CHECK(frames.camera(5).centre().isApprox(mpr::Vec3<double>(10, 5, 0)));
+  // Centres: z = 0, centred on the mean, spacing scale * 5 = 10; x grows with X (the column),
+  // y (image down) with Y, which falls as the row grows.
+  CHECK(frames.camera(0).centre().isApprox(mpr::Vec3<double>(-10, 5, 0)));
+  CHECK(frames.camera(5).centre().isApprox(mpr::Vec3<double>(10, -5, 0)));
+  options.negate_x = true;
+  options.negate_y = true;
+  CHECK(mpr::read_stanford_light_field<double>(dir.path(), options).camera(0).centre().isApprox(
+      mpr::Vec3<double>(10, -5, 0)));
+  options.negate_x = false;
+  options.negate_y = false;
   // A point of the reference plane has the same pixel in every view; a nearer point moves
   // against the camera motion.
   const mpr::Vec3<double> on_plane(13, -7, 500), nearer(13, -7, 250);
@@ -105,8 +111,8 @@ TEST_CASE("real data: Stanford Chess loads as a 7x7 planar array", "[stanford_li
   CHECK(frames.name(48).rfind("out_11_11_", 0) == 0);
   CHECK(frames.image(0).width() == 1400);
   CHECK(frames.image(0).height() == 800);
-  // Grid spacing about 5 units; rows run down (+y), columns right (+x).
+  // Grid spacing about 5 units; columns run right (+x), rows up (-y: Y falls with the row).
   CHECK(frames.camera(1).centre().x() - frames.camera(0).centre().x() == Approx(5.16).margin(1.0));
-  CHECK(frames.camera(7).centre().y() - frames.camera(0).centre().y() == Approx(4.92).margin(1.0));
+  CHECK(frames.camera(7).centre().y() - frames.camera(0).centre().y() == Approx(-4.92).margin(1.0));
   CHECK(std::abs(frames.camera(24).centre().x()) < 1.0f);
 }

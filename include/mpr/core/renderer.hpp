@@ -68,7 +68,8 @@ public:
     return selector_.ray_at(px, uv, surface_.point_at(uv));
   }
 
-  /// Renders pixels [x_begin, x_end) of row `y` into `out` (image coordinates).
+  /// Renders pixels [x_begin, x_end) of row `y` into `out` (image coordinates). A sampler that
+  /// models `BatchRaySampler` gets the rays of up to 256 pixels per call.
   /// Preconditions: the span lies inside both `out` and `region`.
   template <class Px>
     requires StorableAs<Px, color_type>

@@ -34,9 +34,9 @@ struct LfcaOptions {
   /// to the folder of the positions file.
   std::string image_pattern = "{id}.png";
   std::string homography_pattern = "{id}.homography.txt";
-  /// The rectified array's metric model (planar_camera_array.hpp). LFCA positions are stored as
-  /// X (right) and Y (down in the image), so Y is not negated by default.
-  PlanarArrayOptions array = {.negate_x = false, .negate_y = false};
+  /// The rectified array's metric model (planar_camera_array.hpp). LFCA positions are taken as
+  /// X right and Y down in the image (no negation by default).
+  PlanarArrayOptions array = {};
 };
 
 namespace detail {
