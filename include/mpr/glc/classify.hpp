@@ -60,6 +60,10 @@ template <std::floating_point T> struct Line {
 /// double. The defaults were chosen from the measurements in docs/numerics.md.
 template <std::floating_point T> struct ClassifyConfig {
   static constexpr bool is_float = sizeof(T) < sizeof(double);
+  /// The reference length L (world units) of every tolerance below; 0 (default): the camera's
+  /// own `TwoPlane::scale()`. Pass the same L to compare cameras whose generator triangles
+  /// differ in size (a slit at 500 L1 is finite for L1 but at infinity for L2 = L1 / 10).
+  T length = 0;
   /// A slit farther than `far * L` from the image plane is at infinity. Rounding a
   /// pencil-like or twisted camera's generators by eps moves a double root at infinity to about
   /// L / sqrt(eps) (7e7 L in double, 3e3 L in float), so `far` must stay below that.
@@ -141,7 +145,8 @@ template <std::floating_point T>
 [[nodiscard]] Classification<T> classify(const TwoPlane<T>& input, const ClassifyConfig<T>& config = {}) {
   const TwoPlane<double> glc = input.template cast<double>();
   const auto& g = glc.generators();
-  const double L = glc.scale();
+  if (!(config.length >= 0) || !std::isfinite(config.length)) throw argument_error("length", "must be >= 0 and finite");
+  const double L = config.length > 0 ? static_cast<double>(config.length) : glc.scale();
   const double rank_tol = static_cast<double>(config.rank_tolerance);
 
   // Affine independence: rank [r1 - r0; r2 - r0] = 2, measured in comparable units (plane
