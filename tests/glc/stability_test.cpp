@@ -21,18 +21,7 @@ template <class T> struct RandomGlc {
   mpr::GlcSelector<T> selector;
 };
 
-struct Rng {
-  std::mt19937_64 engine;
-  explicit Rng(unsigned long long seed) : engine(seed) {}
-  double uniform(double lo, double hi) {
-    // 53 random bits: the same sequence on every standard library.
-    const double x = static_cast<double>(engine() >> 11) * (1.0 / 9007199254740992.0);
-    return lo + (hi - lo) * x;
-  }
-  template <class T> mpr::Vec3<T> vec(double lo, double hi) {
-    return mpr::Vec3<T>(T(uniform(lo, hi)), T(uniform(lo, hi)), T(uniform(lo, hi)));
-  }
-};
+using glc_test::Rng;
 
 template <class T> RandomGlc<T> random_glc(Rng& rng) {
   for (;;) {

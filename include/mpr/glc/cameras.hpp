@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <concepts>
+#include <type_traits>
 #include <limits>
 
 namespace mpr::glc {
@@ -85,7 +86,7 @@ T check_slit(const PlanarSurface<T>& plane, const Line<T>& slit, const char* nam
 /// Pinhole camera with centre of projection `centre` (off the plane). The rays are the lines
 /// through the centre, oriented into the scene (through the centre when it lies in front).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> perspective(const PlanarSurface<T>& plane, const Vec3<T>& centre) {
+[[nodiscard]] GlcSelector<T> perspective(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& centre) {
   if (!centre.allFinite()) throw argument_error("centre", "not finite");
   const T depth = (centre - plane.centre()).dot(plane.normal());
   const T size = std::max(plane.width_vector().norm(), plane.height_vector().norm());
@@ -96,7 +97,7 @@ template <std::floating_point T>
 
 /// Orthographic camera: every ray has `direction` (oriented into the scene; may be oblique).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> orthographic(const PlanarSurface<T>& plane, const Vec3<T>& direction) {
+[[nodiscard]] GlcSelector<T> orthographic(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction) {
   detail::check_direction(direction, plane.normal(), "direction");
   const Vec3<T> d = detail::forward(direction, plane.normal());
   return GlcSelector<T>(plane, d, d, d);
@@ -106,7 +107,7 @@ template <std::floating_point T>
 /// the width direction and `angle_v` towards the height direction (radians, |angle| < pi/2):
 /// direction = n + tan(angle_u) e1 + tan(angle_v) e2.
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> oblique_orthographic(const PlanarSurface<T>& plane, T angle_u, T angle_v) {
+[[nodiscard]] GlcSelector<T> oblique_orthographic(const PlanarSurface<T>& plane, std::type_identity_t<T> angle_u, std::type_identity_t<T> angle_v) {
   const T limit = T(1.5707963267948966) * (1 - 64 * std::numeric_limits<T>::epsilon());
   if (!(std::abs(angle_u) < limit)) throw argument_error("angle_u", "must be finite with |angle| < pi/2");
   if (!(std::abs(angle_v) < limit)) throw argument_error("angle_v", "must be finite with |angle| < pi/2");
@@ -119,8 +120,8 @@ template <std::floating_point T>
 /// sensor position form a fan in a plane with that normal). `fan_normal` must not be
 /// perpendicular to the slit; by default it is the slit direction (fans across the slit).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> pushbroom(const PlanarSurface<T>& plane, const Line<T>& slit,
-                                       const Vec3<T>& fan_normal) {
+[[nodiscard]] GlcSelector<T> pushbroom(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit,
+                                       const std::type_identity_t<Vec3<T>>& fan_normal) {
   detail::check_slit(plane, slit, "slit");
   const Vec3<T> w = slit.direction.normalized();
   if (!fan_normal.allFinite() || !(fan_normal.norm() > 0)) throw argument_error("fan_normal", "zero or not finite");
@@ -135,14 +136,14 @@ template <std::floating_point T>
 }
 
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> pushbroom(const PlanarSurface<T>& plane, const Line<T>& slit) {
+[[nodiscard]] GlcSelector<T> pushbroom(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit) {
   return pushbroom(plane, slit, slit.direction);
 }
 
 /// Cross-slit camera: every ray meets both slits (parallel to the plane, at different depths,
 /// not parallel to each other) (Zomet et al. 2003; ECCV 2004 sec. 4).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> cross_slit(const PlanarSurface<T>& plane, const Line<T>& slit1, const Line<T>& slit2) {
+[[nodiscard]] GlcSelector<T> cross_slit(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit1, const std::type_identity_t<Line<T>>& slit2) {
   const T z1 = detail::check_slit(plane, slit1, "slit1");
   const T z2 = detail::check_slit(plane, slit2, "slit2");
   const T size = std::max({plane.width_vector().norm(), plane.height_vector().norm(), std::abs(z1), std::abs(z2)});
@@ -162,7 +163,7 @@ template <std::floating_point T>
 /// (1 / world length, non-zero) is the rate: gradient K = -(1/z) I + twist w w_perp^T, where z is
 /// the slit's depth and w its in-plane direction (glc-math.md sec. 5).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> pencil(const PlanarSurface<T>& plane, const Line<T>& slit, T twist) {
+[[nodiscard]] GlcSelector<T> pencil(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit, std::type_identity_t<T> twist) {
   const T z = detail::check_slit(plane, slit, "slit");
   if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero (0: a pinhole)");
   const detail::PlaneFrame<T> fr(plane);
@@ -179,8 +180,8 @@ template <std::floating_point T>
 /// unit of distance across it, starting from `direction` at the plane centre: gradient
 /// K = twist w w_perp^T, nilpotent (ECCV 2004 sec. 5).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> twisted_orthographic(const PlanarSurface<T>& plane, const Vec3<T>& direction,
-                                                  const Vec3<T>& tilt, T twist) {
+[[nodiscard]] GlcSelector<T> twisted_orthographic(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction,
+                                                  const std::type_identity_t<Vec3<T>>& tilt, std::type_identity_t<T> twist) {
   detail::check_direction(direction, plane.normal(), "direction");
   if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero (0: orthographic)");
   const detail::PlaneFrame<T> fr(plane);
@@ -198,7 +199,7 @@ template <std::floating_point T>
 /// (1 / world length) spreads the rays like a pinhole at depth -1 / convergence; `direction` is
 /// the ray at the plane centre.
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> bilinear(const PlanarSurface<T>& plane, const Vec3<T>& direction, T convergence, T twist) {
+[[nodiscard]] GlcSelector<T> bilinear(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction, std::type_identity_t<T> convergence, std::type_identity_t<T> twist) {
   detail::check_direction(direction, plane.normal(), "direction");
   if (!std::isfinite(convergence)) throw argument_error("convergence", "not finite");
   if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero");
@@ -215,7 +216,7 @@ template <std::floating_point T>
 /// with `TwoPlaneSelector`: image u runs along the row, image v turns the ray by `spread` in
 /// slope (v = 0: `direction`).
 template <std::floating_point T>
-[[nodiscard]] TwoPlane<T> epi(const PlanarSurface<T>& plane, T row, const Vec3<T>& direction, T spread) {
+[[nodiscard]] TwoPlane<T> epi(const PlanarSurface<T>& plane, std::type_identity_t<T> row, const std::type_identity_t<Vec3<T>>& direction, std::type_identity_t<T> spread) {
   if (!std::isfinite(row)) throw argument_error("row", "not finite");
   detail::check_direction(direction, plane.normal(), "direction");
   if (!std::isfinite(spread) || spread == 0) throw argument_error("spread", "must be finite and non-zero");

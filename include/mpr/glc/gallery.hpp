@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <concepts>
+#include <type_traits>
 #include <string>
 #include <string_view>
 
@@ -54,7 +55,7 @@ inline constexpr std::array<GalleryEntry, 9> gallery{{
 /// Throws `argument_error` for an unknown id ("id"), a scene behind the plane ("scene_centre")
 /// or a non-positive scale ("scale").
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> gallery_view(char id, const PlanarSurface<T>& plane, const Vec3<T>& scene_centre, T scale) {
+[[nodiscard]] GlcSelector<T> gallery_view(char id, const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& scene_centre, std::type_identity_t<T> scale) {
   if (!scene_centre.allFinite()) throw argument_error("scene_centre", "not finite");
   if (!(scale > 0) || !std::isfinite(scale)) throw argument_error("scale", "must be positive and finite");
   const detail::PlaneFrame<T> fr(plane);

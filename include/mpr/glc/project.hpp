@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <type_traits>
 #include <limits>
 #include <optional>
 
@@ -38,7 +39,7 @@ template <std::floating_point T> struct ProjectConfig {
 /// A point with z < 0 lies behind the image plane: the returned ray's *line* passes through it
 /// (at parameter t = z), not the ray itself. Returns empty for a non-finite point.
 template <std::floating_point T>
-[[nodiscard]] std::optional<Vec2<T>> project(const TwoPlane<T>& glc, const Vec3<T>& point,
+[[nodiscard]] std::optional<Vec2<T>> project(const TwoPlane<T>& glc, const std::type_identity_t<Vec3<T>>& point,
                                              const Vec2<T>& preferred = Vec2<T>(T(1) / 3, T(1) / 3),
                                              const ProjectConfig<T>& config = {}) noexcept {
   if (!point.allFinite()) return std::nullopt;
@@ -91,7 +92,7 @@ template <std::floating_point T>
 /// the camera passes through the point.
 template <std::floating_point T>
 [[nodiscard]] std::optional<Vec2<T>> project(const PlanarSurface<T>& plane, const GlcSelector<T>& selector,
-                                             const Vec3<T>& point, const ProjectConfig<T>& config = {}) {
+                                             const std::type_identity_t<Vec3<T>>& point, const ProjectConfig<T>& config = {}) {
   return project(two_plane(plane, selector), point, Vec2<T>(T(0.5), T(0.5)), config);
 }
 

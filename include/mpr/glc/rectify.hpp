@@ -15,6 +15,7 @@
 
 #include <array>
 #include <concepts>
+#include <type_traits>
 #include <optional>
 #include <string>
 
