@@ -20,8 +20,8 @@ constexpr std::array<Type, 7> kSelectorTypes{Type::pinhole,    Type::orthographi
 
 // Each factory builds a camera of its type, and the classifier recovers its geometry. The worst
 // errors (relative to the plane size ~1 and depths 1..5) are printed for docs/numerics.md.
-TEMPLATE_TEST_CASE("cameras: every factory builds its type and classify recovers the geometry", "[glc][cameras]",
-                   float, double) {
+TEMPLATE_TEST_CASE("cameras: every factory builds its type and classify recovers the geometry", "[glc][cameras]", float,
+                   double) {
   using T = TestType;
   glc_test::Rng rng(2004);
   const double tol = sizeof(T) == 4 ? 1e-3 : 1e-10;
@@ -55,7 +55,8 @@ TEMPLATE_TEST_CASE("cameras: every factory builds its type and classify recovers
     CHECK(worst <= tol);
     report << mpr::glc::to_string(type) << " " << worst << "  ";
   }
-  WARN((sizeof(T) == 4 ? "float" : "double") << " worst geometry error (centre / direction / slit line): " << report.str());
+  WARN((sizeof(T) == 4 ? "float" : "double")
+       << " worst geometry error (centre / direction / slit line): " << report.str());
 }
 
 TEMPLATE_TEST_CASE("cameras: bad parameters are rejected with the parameter's name", "[glc][cameras]", float, double) {
@@ -83,7 +84,8 @@ TEMPLATE_TEST_CASE("cameras: bad parameters are rejected with the parameter's na
   CHECK_NOTHROW(mpr::glc::cross_slit(plane, flat, mpr::glc::Line<T>{V(0, 0, -3), V(0, 1, 0)}));
 }
 
-TEMPLATE_TEST_CASE("cameras: every ray travels into the scene (along the plane normal)", "[glc][cameras]", float, double) {
+TEMPLATE_TEST_CASE("cameras: every ray travels into the scene (along the plane normal)", "[glc][cameras]", float,
+                   double) {
   using T = TestType;
   const auto plane = glc_test::unit_plane<T>();
   // Centre in front of the plane: the rays pass through it at t = its depth.
@@ -95,8 +97,8 @@ TEMPLATE_TEST_CASE("cameras: every ray travels into the scene (along the plane n
   }
 }
 
-TEMPLATE_TEST_CASE("cameras: the EPI camera is one plane of rays, rendered by TwoPlaneSelector", "[glc][cameras]", float,
-                   double) {
+TEMPLATE_TEST_CASE("cameras: the EPI camera is one plane of rays, rendered by TwoPlaneSelector", "[glc][cameras]",
+                   float, double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
   const auto plane = glc_test::unit_plane<T>();

@@ -10,7 +10,8 @@ using mpr::glc::Type;
 
 namespace {
 
-template <class T> void check_coefficients(const mpr::glc::Classification<T>& cl, double a, double b, double c, double disc) {
+template <class T>
+void check_coefficients(const mpr::glc::Classification<T>& cl, double a, double b, double c, double disc) {
   CHECK(cl.characteristic.a == a);
   CHECK(cl.characteristic.b == b);
   CHECK(cl.characteristic.c == c);

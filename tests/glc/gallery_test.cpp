@@ -15,7 +15,8 @@ using mpr::glc::Type;
 namespace {
 
 // The demo's setup: an image plane 10 units wide, 9 units up and 9 back from a board at the origin.
-template <class T> mpr::PlanarSurface<T> demo_plane() {
+template <class T>
+mpr::PlanarSurface<T> demo_plane() {
   using V = mpr::Vec3<T>;
   const V eye(0, 6, 9);
   const V forward = (V(0, 0, 0) - eye).normalized();
@@ -24,7 +25,8 @@ template <class T> mpr::PlanarSurface<T> demo_plane() {
   return mpr::PlanarSurface<T>::centred(eye, T(10) * right, T(10) * down);
 }
 
-template <class Surface, class Selector, class Sampler> bool renders_finite(const Surface& s, const Selector& r, const Sampler& m) {
+template <class Surface, class Selector, class Sampler>
+bool renders_finite(const Surface& s, const Selector& r, const Sampler& m) {
   const mpr::Renderer renderer(s, r, m);
   mpr::Image<mpr::Color> image(48, 48);
   renderer.render(image.view(), mpr::Region(0, 0, 48, 48), mpr::RenderOptions{1});
@@ -102,8 +104,8 @@ TEMPLATE_TEST_CASE("gallery: rendering never produces NaN or Inf, through slits 
   CHECK(mpr::glc::classify(plane, twisting).type == Type::bilinear);
 }
 
-TEMPLATE_TEST_CASE("gallery: rectified views render finite and put the scene square into the image", "[glc][gallery][rectify]",
-                   float, double) {
+TEMPLATE_TEST_CASE("gallery: rectified views render finite and put the scene square into the image",
+                   "[glc][gallery][rectify]", float, double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
   const auto plane = demo_plane<T>();
@@ -120,7 +122,8 @@ TEMPLATE_TEST_CASE("gallery: rectified views render finite and put the scene squ
     const auto rect = mpr::glc::rectify(plane, sel, quad);
     CHECK(renders_finite(rect.surface, rect.selector, board));
     // Output corner k shows square corner k.
-    const std::array<mpr::Vec2<T>, 4> corners{mpr::Vec2<T>(0, 0), mpr::Vec2<T>(1, 0), mpr::Vec2<T>(1, 1), mpr::Vec2<T>(0, 1)};
+    const std::array<mpr::Vec2<T>, 4> corners{mpr::Vec2<T>(0, 0), mpr::Vec2<T>(1, 0), mpr::Vec2<T>(1, 1),
+                                              mpr::Vec2<T>(0, 1)};
     for (std::size_t k = 0; k < 4; ++k) {
       const mpr::Ray<T> r = rect.selector.ray_at({0, 0}, corners[k], rect.surface.point_at(corners[k]));
       CHECK(glc_test::distance_to_line(r, square[k]) <= (sizeof(T) == 4 ? 1e-3 : 1e-9) * 20);

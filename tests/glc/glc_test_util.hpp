@@ -5,14 +5,15 @@
 
 #include <array>
 #include <cmath>
-#include <stdexcept>
 #include <cstdint>
 #include <random>
+#include <stdexcept>
 #include <utility>
 
 namespace glc_test {
 
-template <class T> mpr::PlanarSurface<T> unit_plane() {
+template <class T>
+mpr::PlanarSurface<T> unit_plane() {
   return mpr::PlanarSurface<T>(mpr::Vec3<T>::Zero(), mpr::Vec3<T>::UnitX(), mpr::Vec3<T>::UnitY());
 }
 
@@ -24,7 +25,8 @@ mpr::GlcSelector<T> from_st(const mpr::PlanarSurface<T>& plane, T s0x, T s0y, T 
 }
 
 /// Three world rays from uv points to st points on z = 1.
-template <class T> std::array<mpr::Ray<T>, 3> rays(const std::array<std::array<T, 4>, 3>& uvst) {
+template <class T>
+std::array<mpr::Ray<T>, 3> rays(const std::array<std::array<T, 4>, 3>& uvst) {
   std::array<mpr::Ray<T>, 3> out;
   for (std::size_t k = 0; k < 3; ++k) {
     const auto& r = uvst[k];
@@ -41,22 +43,25 @@ struct Rng {
     const double x = static_cast<double>(engine() >> 11) * (1.0 / 9007199254740992.0);
     return lo + (hi - lo) * x;
   }
-  template <class T> mpr::Vec3<T> vec(double lo, double hi) {
+  template <class T>
+  mpr::Vec3<T> vec(double lo, double hi) {
     return mpr::Vec3<T>(T(uniform(lo, hi)), T(uniform(lo, hi)), T(uniform(lo, hi)));
   }
 };
 
 /// A random camera of `type` built with the factories of cameras.hpp on a random plane of size
 /// about 1, with its construction parameters (slit depths etc.) for error measurements.
-template <class T> struct Camera {
+template <class T>
+struct Camera {
   mpr::PlanarSurface<T> plane;
   mpr::GlcSelector<T> selector;
-  mpr::Vec3<T> centre = mpr::Vec3<T>::Zero();            // pinhole
-  mpr::Vec3<T> direction = mpr::Vec3<T>::Zero();         // orthographic
-  std::array<mpr::glc::Line<T>, 2> slits{};             // pushbroom, cross_slit, pencil
+  mpr::Vec3<T> centre = mpr::Vec3<T>::Zero();    // pinhole
+  mpr::Vec3<T> direction = mpr::Vec3<T>::Zero(); // orthographic
+  std::array<mpr::glc::Line<T>, 2> slits{};      // pushbroom, cross_slit, pencil
 };
 
-template <class T> mpr::PlanarSurface<T> random_plane(Rng& rng) {
+template <class T>
+mpr::PlanarSurface<T> random_plane(Rng& rng) {
   for (;;) {
     const mpr::Vec3<T> o = rng.vec<T>(-1, 1), w = rng.vec<T>(-1, 1), h = rng.vec<T>(-1, 1);
     if (w.cross(h).norm() > T(0.3) * w.norm() * h.norm() && w.norm() > T(0.3) && h.norm() > T(0.3))
@@ -64,7 +69,8 @@ template <class T> mpr::PlanarSurface<T> random_plane(Rng& rng) {
   }
 }
 
-template <class T> Camera<T> random_camera(mpr::glc::Type type, Rng& rng) {
+template <class T>
+Camera<T> random_camera(mpr::glc::Type type, Rng& rng) {
   using mpr::glc::Type;
   using V = mpr::Vec3<T>;
   const mpr::PlanarSurface<T> plane = random_plane<T>(rng);
@@ -103,16 +109,20 @@ template <class T> Camera<T> random_camera(mpr::glc::Type type, Rng& rng) {
     return {plane, mpr::glc::pencil(plane, s, T(rng.uniform(0.3, 1)) / std::abs(z)), V::Zero(), V::Zero(), {s, {}}};
   }
   case Type::twisted_orthographic:
-    return {plane, mpr::glc::twisted_orthographic(plane, V(n + T(0.5) * in_plane()), in_plane(), T(rng.uniform(0.3, 1)))};
+    return {plane,
+            mpr::glc::twisted_orthographic(plane, V(n + T(0.5) * in_plane()), in_plane(), T(rng.uniform(0.3, 1)))};
   case Type::bilinear:
-    return {plane, mpr::glc::bilinear(plane, V(n + T(0.5) * in_plane()), T(rng.uniform(-1, 1)), T(rng.uniform(0.3, 1)))};
-  case Type::epi: break;
+    return {plane,
+            mpr::glc::bilinear(plane, V(n + T(0.5) * in_plane()), T(rng.uniform(-1, 1)), T(rng.uniform(0.3, 1)))};
+  case Type::epi:
+    break;
   }
   throw std::logic_error("random_camera: no GlcSelector for an EPI");
 }
 
 /// Distance from `x` to the line of `ray`.
-template <class T> double distance_to_line(const mpr::Ray<T>& ray, const mpr::Vec3<T>& x) {
+template <class T>
+double distance_to_line(const mpr::Ray<T>& ray, const mpr::Vec3<T>& x) {
   const mpr::Vec3<double> d = ray.direction.template cast<double>();
   const mpr::Vec3<double> p = (x - ray.origin).template cast<double>();
   return p.cross(d).norm() / d.norm();
@@ -136,12 +146,15 @@ double roundtrip_error(const mpr::PlanarSurface<T>& plane, const mpr::GlcSelecto
 }
 
 /// Distance between two lines (point + direction).
-template <class T> double line_distance(const mpr::glc::Line<T>& a, const mpr::glc::Line<T>& b) {
-  const mpr::Vec3<double> da = a.direction.template cast<double>().normalized(), db = b.direction.template cast<double>().normalized();
+template <class T>
+double line_distance(const mpr::glc::Line<T>& a, const mpr::glc::Line<T>& b) {
+  const mpr::Vec3<double> da = a.direction.template cast<double>().normalized(),
+                          db = b.direction.template cast<double>().normalized();
   const mpr::Vec3<double> w = (b.point - a.point).template cast<double>();
   const mpr::Vec3<double> n = da.cross(db);
-  if (n.norm() < 1e-2) return std::max(w.cross(da).norm(), 0.0) + (1 - std::abs(da.dot(db))); // parallel: distance + angle
-  return 1e9; // not parallel: not the same line
+  if (n.norm() < 1e-2)
+    return std::max(w.cross(da).norm(), 0.0) + (1 - std::abs(da.dot(db))); // parallel: distance + angle
+  return 1e9;                                                              // not parallel: not the same line
 }
 
 } // namespace glc_test

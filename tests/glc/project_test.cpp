@@ -13,9 +13,8 @@
 using mpr::glc::Type;
 
 namespace {
-constexpr std::array<Type, 7> kTypes{Type::pinhole,    Type::orthographic, Type::pushbroom,
-                                     Type::cross_slit, Type::pencil,       Type::twisted_orthographic,
-                                     Type::bilinear};
+constexpr std::array<Type, 7> kTypes{Type::pinhole, Type::orthographic,         Type::pushbroom, Type::cross_slit,
+                                     Type::pencil,  Type::twisted_orthographic, Type::bilinear};
 }
 
 // Round trip: project, then ray_at at the returned uv, then the distance from the point to that
@@ -84,7 +83,8 @@ TEMPLATE_TEST_CASE("project: round trip near slits", "[glc][project]", float, do
   CHECK(within);
 }
 
-TEMPLATE_TEST_CASE("project: points on and off a slit, at a pinhole centre, not finite", "[glc][project]", float, double) {
+TEMPLATE_TEST_CASE("project: points on and off a slit, at a pinhole centre, not finite", "[glc][project]", float,
+                   double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
   const auto plane = glc_test::unit_plane<T>();

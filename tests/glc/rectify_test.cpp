@@ -7,12 +7,13 @@
 
 #include <catch2/catch.hpp>
 
-TEMPLATE_TEST_CASE("rectify: the rectified selector evaluates the GLC at the warped uv", "[glc][rectify]", float, double) {
+TEMPLATE_TEST_CASE("rectify: the rectified selector evaluates the GLC at the warped uv", "[glc][rectify]", float,
+                   double) {
   using T = TestType;
   using V2 = mpr::Vec2<T>;
   STATIC_REQUIRE(mpr::RaySelector<mpr::glc::RectifiedSelector<T>>);
-  STATIC_REQUIRE((mpr::ComposablePolicies<mpr::HomographySurface<T>, mpr::glc::RectifiedSelector<T>,
-                                          mpr::CheckerboardPlane<T>>));
+  STATIC_REQUIRE(
+      (mpr::ComposablePolicies<mpr::HomographySurface<T>, mpr::glc::RectifiedSelector<T>, mpr::CheckerboardPlane<T>>));
   const auto plane = glc_test::unit_plane<T>();
   const auto sel = mpr::glc::oblique_orthographic(plane, T(0.6), T(0.2));
   const auto r = mpr::glc::rectify(plane, sel, {V2(-0.5, 0.1), V2(0.4, 0.0), V2(0.5, 0.9), V2(-0.4, 1.0)});

@@ -16,14 +16,16 @@ using mpr::glc::Type;
 
 namespace {
 
-template <class T> struct RandomGlc {
+template <class T>
+struct RandomGlc {
   mpr::PlanarSurface<T> plane;
   mpr::GlcSelector<T> selector;
 };
 
 using glc_test::Rng;
 
-template <class T> RandomGlc<T> random_glc(Rng& rng) {
+template <class T>
+RandomGlc<T> random_glc(Rng& rng) {
   for (;;) {
     const mpr::Vec3<T> o = rng.vec<T>(-1, 1), w = rng.vec<T>(-1, 1), h = rng.vec<T>(-1, 1);
     if (!(w.cross(h).norm() > T(0.3) * w.norm() * h.norm()) || w.norm() < T(0.3) || h.norm() < T(0.3)) continue;
@@ -50,13 +52,16 @@ RandomGlc<T> rechoose(const RandomGlc<T>& g, const mpr::Vec2<T>& a, const mpr::V
                                      g.selector.direction_at(c))};
 }
 
-template <class T> RandomGlc<T> transformed(const RandomGlc<T>& g, T scale, const mpr::Vec3<T>& offset) {
-  const mpr::PlanarSurface<T> plane(mpr::Vec3<T>(scale * g.plane.origin() + offset), mpr::Vec3<T>(scale * g.plane.width_vector()),
+template <class T>
+RandomGlc<T> transformed(const RandomGlc<T>& g, T scale, const mpr::Vec3<T>& offset) {
+  const mpr::PlanarSurface<T> plane(mpr::Vec3<T>(scale * g.plane.origin() + offset),
+                                    mpr::Vec3<T>(scale * g.plane.width_vector()),
                                     mpr::Vec3<T>(scale * g.plane.height_vector()));
   return {plane, mpr::GlcSelector<T>(plane, g.selector.d00(), g.selector.d10(), g.selector.d01())};
 }
 
-template <class T> std::string describe(const RandomGlc<T>& g) {
+template <class T>
+std::string describe(const RandomGlc<T>& g) {
   std::ostringstream s;
   s.precision(17);
   s << "origin " << g.plane.origin().transpose() << " w " << g.plane.width_vector().transpose() << " h "
@@ -107,8 +112,9 @@ TEMPLATE_TEST_CASE("stability: 20,000 random GLCs keep their type under re-chose
     const auto moved_plane = mpr::glc::classify(shifted.plane, shifted.selector, same_length);
     if (moved_plane.type != base.type) {
       const double far = double(same_length.far) * double(same_length.length);
-      const bool near_far = !base.roots.complex && (std::abs(std::abs(base.roots.second) - far) <= std::abs(double(h)) * 1.01 ||
-                                                    std::abs(std::abs(base.roots.first) - far) <= std::abs(double(h)) * 1.01);
+      const bool near_far =
+          !base.roots.complex && (std::abs(std::abs(base.roots.second) - far) <= std::abs(double(h)) * 1.01 ||
+                                  std::abs(std::abs(base.roots.first) - far) <= std::abs(double(h)) * 1.01);
       if (near_far) {
         ++crossed_far;
       } else {
@@ -143,8 +149,9 @@ TEMPLATE_TEST_CASE("stability: 20,000 random GLCs keep their type under re-chose
       if (first_failure.empty()) first_failure = "scaled: " + describe(g);
     } else if (base.type == Type::cross_slit) {
       for (int k = 0; k < 2; ++k)
-        worst_depth_scale = std::max(worst_depth_scale, std::abs(double(big.depths[k]) / double(s) - double(base.depths[k])) /
-                                                            std::max(1.0, std::abs(double(base.depths[k]))));
+        worst_depth_scale =
+            std::max(worst_depth_scale, std::abs(double(big.depths[k]) / double(s) - double(base.depths[k])) /
+                                            std::max(1.0, std::abs(double(base.depths[k]))));
     }
   }
   INFO(first_failure);
@@ -157,7 +164,8 @@ TEMPLATE_TEST_CASE("stability: 20,000 random GLCs keep their type under re-chose
   CHECK(histogram[Type::bilinear] > 3500);
   std::ostringstream s;
   for (const auto& [type, count] : histogram) s << mpr::glc::to_string(type) << " " << count << "  ";
-  WARN((sizeof(T) == 4 ? "float" : "double") << " random types: " << s.str() << "\n moved to a parallel plane: " << crossed_far
+  WARN((sizeof(T) == 4 ? "float" : "double")
+       << " random types: " << s.str() << "\n moved to a parallel plane: " << crossed_far
        << " slits crossed `far`; worst relative depth error after "
        << "re-choosing generators " << worst_depth_shift << ", after scaling " << worst_depth_scale
        << ", slit point after translation (relative to offset) " << worst_slit_translation);
@@ -190,8 +198,8 @@ TEMPLATE_TEST_CASE("stability: a perturbed pinhole", "[glc][stability]", float, 
   CHECK(not_pinhole == n);
 }
 
-TEMPLATE_TEST_CASE("stability: pencils and twisted orthographic cameras built from exact parameters", "[glc][stability]",
-                   float, double) {
+TEMPLATE_TEST_CASE("stability: pencils and twisted orthographic cameras built from exact parameters",
+                   "[glc][stability]", float, double) {
   using T = TestType;
   Rng rng(11);
   int pencils = 0, twisted = 0;
@@ -209,19 +217,22 @@ TEMPLATE_TEST_CASE("stability: pencils and twisted orthographic cameras built fr
     const auto& r = cl.roots;
     const double split = r.complex ? 2 * r.imag : std::abs(r.first - r.second);
     worst_split = std::max(worst_split, split / std::abs(double(depth)));
-    worst_depth = std::max(worst_depth, std::abs(double(cl.depths[0]) - double((point - plane.centre()).dot(plane.normal()))) /
-                                            std::abs(double(depth)));
+    worst_depth =
+        std::max(worst_depth, std::abs(double(cl.depths[0]) - double((point - plane.centre()).dot(plane.normal()))) /
+                                  std::abs(double(depth)));
     const mpr::Vec3<T> direction = rng.vec<T>(-0.5, 0.5) + plane.normal();
-    const auto tw = mpr::glc::classify(plane, mpr::glc::twisted_orthographic(plane, direction, along, T(rng.uniform(0.2, 1))));
+    const auto tw =
+        mpr::glc::classify(plane, mpr::glc::twisted_orthographic(plane, direction, along, T(rng.uniform(0.2, 1))));
     twisted += tw.type == Type::twisted_orthographic;
   }
   WARN((sizeof(T) == 4 ? "float" : "double") << " pencils: worst double-root split " << worst_split
-       << " relative, worst slit depth error " << worst_depth << " relative");
+                                             << " relative, worst slit depth error " << worst_depth << " relative");
   CHECK(pencils == n);
   CHECK(twisted == n);
 }
 
-TEMPLATE_TEST_CASE("stability: a pushbroom whose second slit is at 1e12 is a pushbroom", "[glc][stability]", float, double) {
+TEMPLATE_TEST_CASE("stability: a pushbroom whose second slit is at 1e12 is a pushbroom", "[glc][stability]", float,
+                   double) {
   using T = TestType;
   const auto plane = glc_test::unit_plane<T>();
   // Gradient K = diag(-1/2, -1/far): slits at depths 2 and `far`.

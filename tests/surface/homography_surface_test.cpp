@@ -7,12 +7,14 @@
 #include <limits>
 
 namespace {
-template <class T> mpr::PlanarSurface<T> plane() {
+template <class T>
+mpr::PlanarSurface<T> plane() {
   return mpr::PlanarSurface<T>(mpr::Vec3<T>(1, 2, 3), mpr::Vec3<T>(4, 0, 0), mpr::Vec3<T>(0, 2, 0));
 }
 } // namespace
 
-TEMPLATE_TEST_CASE("HomographySurface is an image surface, and not a selector", "[surface][homography]", float, double) {
+TEMPLATE_TEST_CASE("HomographySurface is an image surface, and not a selector", "[surface][homography]", float,
+                   double) {
   STATIC_REQUIRE(mpr::ImageSurface<mpr::HomographySurface<TestType>>);
   STATIC_REQUIRE_FALSE(mpr::RaySelector<mpr::HomographySurface<TestType>>);
   STATIC_REQUIRE(std::is_same_v<typename mpr::HomographySurface<TestType>::scalar_type, TestType>);
@@ -49,8 +51,10 @@ TEMPLATE_TEST_CASE("homographies that are degenerate or reach infinity are rejec
                    double) {
   using T = TestType;
   using V2 = mpr::Vec2<T>;
-  CHECK_THROWS_WITH(mpr::homography_from_unit_square<T>({V2(0, 0), V2(1, 0), V2(2, 0), V2(0, 1)}), Catch::Contains("quad"));
-  CHECK_THROWS_WITH(mpr::homography_from_unit_square<T>({V2(0, 0), V2(1, 1), V2(1, 0), V2(0, 1)}), Catch::Contains("quad"));
+  CHECK_THROWS_WITH(mpr::homography_from_unit_square<T>({V2(0, 0), V2(1, 0), V2(2, 0), V2(0, 1)}),
+                    Catch::Contains("quad"));
+  CHECK_THROWS_WITH(mpr::homography_from_unit_square<T>({V2(0, 0), V2(1, 1), V2(1, 0), V2(0, 1)}),
+                    Catch::Contains("quad"));
   CHECK_THROWS_WITH(mpr::homography_from_unit_square<T>({V2(0, 0), V2(1, 0), V2(T(NAN), 1), V2(0, 1)}),
                     Catch::Contains("not finite"));
   mpr::Mat3<T> singular = mpr::Mat3<T>::Identity();

@@ -22,14 +22,15 @@
 #include <array>
 #include <cmath>
 #include <concepts>
-#include <type_traits>
 #include <limits>
+#include <type_traits>
 
 namespace mpr::glc {
 
 namespace detail {
 
-template <std::floating_point T> struct PlaneFrame {
+template <std::floating_point T>
+struct PlaneFrame {
   Vec3<T> c, e1, e2, n;
   explicit PlaneFrame(const PlanarSurface<T>& plane)
       : c(plane.centre()), e1(plane.width_vector().normalized()), e2(plane.normal().cross(e1)), n(plane.normal()) {}
@@ -39,7 +40,8 @@ template <std::floating_point T> struct PlaneFrame {
   [[nodiscard]] Vec2<T> slope(const Vec3<T>& d) const { return Vec2<T>(d.dot(e1), d.dot(e2)) / d.dot(n); }
 };
 
-template <std::floating_point T, class F> [[nodiscard]] GlcSelector<T> from_directions(const PlanarSurface<T>& plane, F&& f) {
+template <std::floating_point T, class F>
+[[nodiscard]] GlcSelector<T> from_directions(const PlanarSurface<T>& plane, F&& f) {
   return GlcSelector<T>(plane, f(plane.point_at({T(0), T(0)})), f(plane.point_at({T(1), T(0)})),
                         f(plane.point_at({T(0), T(1)})));
 }
@@ -55,7 +57,8 @@ template <std::floating_point T>
   });
 }
 
-template <std::floating_point T> [[nodiscard]] Vec3<T> forward(const Vec3<T>& d, const Vec3<T>& n) {
+template <std::floating_point T>
+[[nodiscard]] Vec3<T> forward(const Vec3<T>& d, const Vec3<T>& n) {
   return d.dot(n) < 0 ? Vec3<T>(-d) : d;
 }
 
@@ -92,12 +95,14 @@ template <std::floating_point T>
   const T size = std::max(plane.width_vector().norm(), plane.height_vector().norm());
   if (!(std::abs(depth) > 64 * std::numeric_limits<T>::epsilon() * size))
     throw argument_error("centre", "lies in the image plane");
-  return detail::from_directions(plane, [&](const Vec3<T>& p) { return detail::forward(Vec3<T>(p - centre), plane.normal()); });
+  return detail::from_directions(
+      plane, [&](const Vec3<T>& p) { return detail::forward(Vec3<T>(p - centre), plane.normal()); });
 }
 
 /// Orthographic camera: every ray has `direction` (oriented into the scene; may be oblique).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> orthographic(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction) {
+[[nodiscard]] GlcSelector<T> orthographic(const PlanarSurface<T>& plane,
+                                          const std::type_identity_t<Vec3<T>>& direction) {
   detail::check_direction(direction, plane.normal(), "direction");
   const Vec3<T> d = detail::forward(direction, plane.normal());
   return GlcSelector<T>(plane, d, d, d);
@@ -107,7 +112,8 @@ template <std::floating_point T>
 /// the width direction and `angle_v` towards the height direction (radians, |angle| < pi/2):
 /// direction = n + tan(angle_u) e1 + tan(angle_v) e2.
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> oblique_orthographic(const PlanarSurface<T>& plane, std::type_identity_t<T> angle_u, std::type_identity_t<T> angle_v) {
+[[nodiscard]] GlcSelector<T> oblique_orthographic(const PlanarSurface<T>& plane, std::type_identity_t<T> angle_u,
+                                                  std::type_identity_t<T> angle_v) {
   const T limit = T(1.5707963267948966) * (1 - 64 * std::numeric_limits<T>::epsilon());
   if (!(std::abs(angle_u) < limit)) throw argument_error("angle_u", "must be finite with |angle| < pi/2");
   if (!(std::abs(angle_v) < limit)) throw argument_error("angle_v", "must be finite with |angle| < pi/2");
@@ -143,7 +149,8 @@ template <std::floating_point T>
 /// Cross-slit camera: every ray meets both slits (parallel to the plane, at different depths,
 /// not parallel to each other) (Zomet et al. 2003; ECCV 2004 sec. 4).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> cross_slit(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit1, const std::type_identity_t<Line<T>>& slit2) {
+[[nodiscard]] GlcSelector<T> cross_slit(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit1,
+                                        const std::type_identity_t<Line<T>>& slit2) {
   const T z1 = detail::check_slit(plane, slit1, "slit1");
   const T z2 = detail::check_slit(plane, slit2, "slit2");
   const T size = std::max({plane.width_vector().norm(), plane.height_vector().norm(), std::abs(z1), std::abs(z2)});
@@ -163,7 +170,8 @@ template <std::floating_point T>
 /// (1 / world length, non-zero) is the rate: gradient K = -(1/z) I + twist w w_perp^T, where z is
 /// the slit's depth and w its in-plane direction (glc-math.md sec. 5).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> pencil(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit, std::type_identity_t<T> twist) {
+[[nodiscard]] GlcSelector<T> pencil(const PlanarSurface<T>& plane, const std::type_identity_t<Line<T>>& slit,
+                                    std::type_identity_t<T> twist) {
   const T z = detail::check_slit(plane, slit, "slit");
   if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero (0: a pinhole)");
   const detail::PlaneFrame<T> fr(plane);
@@ -180,13 +188,16 @@ template <std::floating_point T>
 /// unit of distance across it, starting from `direction` at the plane centre: gradient
 /// K = twist w w_perp^T, nilpotent (ECCV 2004 sec. 5).
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> twisted_orthographic(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction,
-                                                  const std::type_identity_t<Vec3<T>>& tilt, std::type_identity_t<T> twist) {
+[[nodiscard]] GlcSelector<T>
+twisted_orthographic(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction,
+                     const std::type_identity_t<Vec3<T>>& tilt, std::type_identity_t<T> twist) {
   detail::check_direction(direction, plane.normal(), "direction");
-  if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero (0: orthographic)");
+  if (!std::isfinite(twist) || twist == 0)
+    throw argument_error("twist", "must be finite and non-zero (0: orthographic)");
   const detail::PlaneFrame<T> fr(plane);
   const Vec2<T> w2(tilt.dot(fr.e1), tilt.dot(fr.e2));
-  if (!tilt.allFinite() || !(w2.norm() > T(1e-3) * tilt.norm())) throw argument_error("tilt", "zero, not finite or along the normal");
+  if (!tilt.allFinite() || !(w2.norm() > T(1e-3) * tilt.norm()))
+    throw argument_error("tilt", "zero, not finite or along the normal");
   const Vec2<T> w = w2.normalized();
   const Vec2<T> w_perp(-w.y(), w.x());
   const Eigen::Matrix<T, 2, 2> K = twist * w * w_perp.transpose();
@@ -199,7 +210,8 @@ template <std::floating_point T>
 /// (1 / world length) spreads the rays like a pinhole at depth -1 / convergence; `direction` is
 /// the ray at the plane centre.
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> bilinear(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction, std::type_identity_t<T> convergence, std::type_identity_t<T> twist) {
+[[nodiscard]] GlcSelector<T> bilinear(const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& direction,
+                                      std::type_identity_t<T> convergence, std::type_identity_t<T> twist) {
   detail::check_direction(direction, plane.normal(), "direction");
   if (!std::isfinite(convergence)) throw argument_error("convergence", "not finite");
   if (!std::isfinite(twist) || twist == 0) throw argument_error("twist", "must be finite and non-zero");
@@ -216,7 +228,8 @@ template <std::floating_point T>
 /// with `TwoPlaneSelector`: image u runs along the row, image v turns the ray by `spread` in
 /// slope (v = 0: `direction`).
 template <std::floating_point T>
-[[nodiscard]] TwoPlane<T> epi(const PlanarSurface<T>& plane, std::type_identity_t<T> row, const std::type_identity_t<Vec3<T>>& direction, std::type_identity_t<T> spread) {
+[[nodiscard]] TwoPlane<T> epi(const PlanarSurface<T>& plane, std::type_identity_t<T> row,
+                              const std::type_identity_t<Vec3<T>>& direction, std::type_identity_t<T> spread) {
   if (!std::isfinite(row)) throw argument_error("row", "not finite");
   detail::check_direction(direction, plane.normal(), "direction");
   if (!std::isfinite(spread) || spread == 0) throw argument_error("spread", "must be finite and non-zero");
@@ -229,11 +242,14 @@ template <std::floating_point T>
 
 /// A ray selector for any two-plane GLC (including an EPI): image uv are the weights (a, b) of
 /// `TwoPlane::ray`; it ignores the surface point (use any surface of the same scalar type).
-template <std::floating_point T> class TwoPlaneSelector {
+template <std::floating_point T>
+class TwoPlaneSelector {
 public:
   using scalar_type = T;
   explicit TwoPlaneSelector(const TwoPlane<T>& glc) : glc_(glc) {}
-  [[nodiscard]] Ray<T> ray_at(Pixel, const Vec2<T>& uv, const Vec3<T>&) const noexcept { return glc_.ray(uv.x(), uv.y()); }
+  [[nodiscard]] Ray<T> ray_at(Pixel, const Vec2<T>& uv, const Vec3<T>&) const noexcept {
+    return glc_.ray(uv.x(), uv.y());
+  }
   [[nodiscard]] const TwoPlane<T>& glc() const noexcept { return glc_; }
 
 private:

@@ -16,7 +16,8 @@ namespace mpr::glc {
 /// the triangle in which the three generators cross the plane at depth z. D(z) = 0 exactly at
 /// the depths where the generators meet one line (a slit) or one point (a pinhole centre).
 /// Only the ratios A : B : C mean anything (re-choosing generators scales all three).
-template <std::floating_point T> struct Characteristic {
+template <std::floating_point T>
+struct Characteristic {
   T a = 0;
   T b = 0;
   T c = 0;
@@ -57,7 +58,8 @@ namespace detail {
 /// The discriminant uses the direction-gradient form C^2 [(K11 - K22)^2 + 4 K12 K21],
 /// K = [f2 f3][e2 e3]^-1, when the image triangle is well shaped (no cancellation between B^2 and
 /// 4AC: it is exactly 0 for a pinhole written with K = kI), and `discriminant()` otherwise.
-template <std::floating_point T> [[nodiscard]] Characteristic<double> characteristic(const TwoPlane<T>& glc) noexcept {
+template <std::floating_point T>
+[[nodiscard]] Characteristic<double> characteristic(const TwoPlane<T>& glc) noexcept {
   const auto& g = glc.generators();
   const double e2x = double(g[1].u) - double(g[0].u), e2y = double(g[1].v) - double(g[0].v);
   const double e3x = double(g[2].u) - double(g[0].u), e3y = double(g[2].v) - double(g[0].v);

@@ -34,20 +34,29 @@ enum class Type {
 /// The enumerator's name, e.g. "cross_slit".
 [[nodiscard]] constexpr std::string_view to_string(Type t) noexcept {
   switch (t) {
-  case Type::pinhole: return "pinhole";
-  case Type::orthographic: return "orthographic";
-  case Type::pushbroom: return "pushbroom";
-  case Type::cross_slit: return "cross_slit";
-  case Type::pencil: return "pencil";
-  case Type::twisted_orthographic: return "twisted_orthographic";
-  case Type::bilinear: return "bilinear";
-  case Type::epi: return "epi";
+  case Type::pinhole:
+    return "pinhole";
+  case Type::orthographic:
+    return "orthographic";
+  case Type::pushbroom:
+    return "pushbroom";
+  case Type::cross_slit:
+    return "cross_slit";
+  case Type::pencil:
+    return "pencil";
+  case Type::twisted_orthographic:
+    return "twisted_orthographic";
+  case Type::bilinear:
+    return "bilinear";
+  case Type::epi:
+    return "epi";
   }
   return "unknown";
 }
 
 /// A line `point + s * direction` in world coordinates; `direction` has unit length.
-template <std::floating_point T> struct Line {
+template <std::floating_point T>
+struct Line {
   Vec3<T> point = Vec3<T>::Zero();
   Vec3<T> direction = Vec3<T>::Zero();
 };
@@ -58,7 +67,8 @@ template <std::floating_point T> struct Line {
 /// scene is scaled or translated. Defaults depend on the scalar type of the input: a GLC whose
 /// generators were rounded to float carries float-sized errors even though `classify` computes in
 /// double. The defaults were chosen from the measurements in docs/numerics.md.
-template <std::floating_point T> struct ClassifyConfig {
+template <std::floating_point T>
+struct ClassifyConfig {
   static constexpr bool is_float = sizeof(T) < sizeof(double);
   /// The reference length L (world units) of every tolerance below; 0 (default): the camera's
   /// own `TwoPlane::scale()`. Pass the same L to compare cameras whose generator triangles
@@ -86,7 +96,8 @@ template <std::floating_point T> struct ClassifyConfig {
 
 /// The result of `classify`. Depths are world lengths from the image plane along the
 /// `TwoPlane::normal()` (the side the rays travel to; negative: behind the ray origins).
-template <std::floating_point T> struct Classification {
+template <std::floating_point T>
+struct Classification {
   Type type = Type::epi;
   /// Number of finite slits: 2 (cross_slit), 1 (pushbroom, pencil), 0 otherwise.
   int slit_count = 0;
@@ -196,8 +207,8 @@ template <std::floating_point T>
                                     plane_len(g[2].sigma - g[1].sigma, g[2].tau - g[1].tau)});
     if (spread <= static_cast<double>(config.angular_tolerance)) {
       out.type = Type::orthographic;
-      const Vec3<double> d = glc.direction((g[0].sigma + g[1].sigma + g[2].sigma) / 3.0,
-                                           (g[0].tau + g[1].tau + g[2].tau) / 3.0);
+      const Vec3<double> d =
+          glc.direction((g[0].sigma + g[1].sigma + g[2].sigma) / 3.0, (g[0].tau + g[1].tau + g[2].tau) / 3.0);
       out.direction = d.normalized().template cast<T>();
     } else {
       out.type = Type::twisted_orthographic;

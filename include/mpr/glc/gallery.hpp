@@ -12,9 +12,9 @@
 #include <array>
 #include <cmath>
 #include <concepts>
-#include <type_traits>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace mpr::glc {
 
@@ -55,7 +55,9 @@ inline constexpr std::array<GalleryEntry, 9> gallery{{
 /// Throws `argument_error` for an unknown id ("id"), a scene behind the plane ("scene_centre")
 /// or a non-positive scale ("scale").
 template <std::floating_point T>
-[[nodiscard]] GlcSelector<T> gallery_view(char id, const PlanarSurface<T>& plane, const std::type_identity_t<Vec3<T>>& scene_centre, std::type_identity_t<T> scale) {
+[[nodiscard]] GlcSelector<T> gallery_view(char id, const PlanarSurface<T>& plane,
+                                          const std::type_identity_t<Vec3<T>>& scene_centre,
+                                          std::type_identity_t<T> scale) {
   if (!scene_centre.allFinite()) throw argument_error("scene_centre", "not finite");
   if (!(scale > 0) || !std::isfinite(scale)) throw argument_error("scale", "must be positive and finite");
   const detail::PlaneFrame<T> fr(plane);
@@ -68,23 +70,39 @@ template <std::floating_point T>
   const Vec3<T> eye = fr.c - e * axis;
   const T twist = 1 / (2 * e);
   switch (id) {
-  case 'A': case 'a': return perspective(plane, eye);
-  case 'B': case 'b': return orthographic(plane, axis);
-  case 'C': case 'c': return orthographic(plane, Vec3<T>(axis + T(0.6) * fr.e1 + T(0.3) * fr.e2));
-  case 'D': case 'd': {
+  case 'A':
+  case 'a':
+    return perspective(plane, eye);
+  case 'B':
+  case 'b':
+    return orthographic(plane, axis);
+  case 'C':
+  case 'c':
+    return orthographic(plane, Vec3<T>(axis + T(0.6) * fr.e1 + T(0.3) * fr.e2));
+  case 'D':
+  case 'd': {
     const Vec3<T> a = axis.normalized();
     return pushbroom(plane, Line<T>{eye, fr.e1}, Vec3<T>(fr.e1 - fr.e1.dot(a) * a));
   }
-  case 'E': case 'e':
-  case 'F': case 'f': {
+  case 'E':
+  case 'e':
+  case 'F':
+  case 'f': {
     const Vec3<T> dir = (id == 'E' || id == 'e') ? axis : Vec3<T>(axis + T(0.57735026918962576) * fr.e2);
     const T shear = T(0.5) * std::max(scale, width) / (height * zs);
     return twisted_orthographic(plane, dir, fr.e1, shear);
   }
-  case 'G': case 'g': return cross_slit(plane, Line<T>{eye, fr.e2}, Line<T>{Vec3<T>(fr.c - 4 * e * axis), fr.e1});
-  case 'H': case 'h': return pencil(plane, Line<T>{eye, fr.e1}, twist);
-  case 'I': case 'i': return bilinear(plane, axis, 1 / e, twist);
-  default: throw argument_error("id", std::string("unknown gallery view '") + id + "' (use A..I)");
+  case 'G':
+  case 'g':
+    return cross_slit(plane, Line<T>{eye, fr.e2}, Line<T>{Vec3<T>(fr.c - 4 * e * axis), fr.e1});
+  case 'H':
+  case 'h':
+    return pencil(plane, Line<T>{eye, fr.e1}, twist);
+  case 'I':
+  case 'i':
+    return bilinear(plane, axis, 1 / e, twist);
+  default:
+    throw argument_error("id", std::string("unknown gallery view '") + id + "' (use A..I)");
   }
 }
 

@@ -10,14 +10,15 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
-#include <type_traits>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 namespace mpr::glc {
 
 /// Settings of `project`.
-template <std::floating_point T> struct ProjectConfig {
+template <std::floating_point T>
+struct ProjectConfig {
   /// The point's depth counts as a slit depth when |D(z)| <= `singular * eps(double) * |m1||m2|`
   /// (the 2x2 system's determinant against the size of its columns).
   double singular = 64;
@@ -92,7 +93,8 @@ template <std::floating_point T>
 /// the camera passes through the point.
 template <std::floating_point T>
 [[nodiscard]] std::optional<Vec2<T>> project(const PlanarSurface<T>& plane, const GlcSelector<T>& selector,
-                                             const std::type_identity_t<Vec3<T>>& point, const ProjectConfig<T>& config = {}) {
+                                             const std::type_identity_t<Vec3<T>>& point,
+                                             const ProjectConfig<T>& config = {}) {
   return project(two_plane(plane, selector), point, Vec2<T>(T(0.5), T(0.5)), config);
 }
 

@@ -15,16 +15,17 @@
 
 #include <array>
 #include <concepts>
-#include <type_traits>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 namespace mpr::glc {
 
 /// A `GlcSelector` read through a homography of uv: `ray_at(px, uv, point)` is the GLC ray at
 /// plane uv `H(uv)`. Pair it with the `HomographySurface` of the same H (then `point` is that
 /// ray's start); `rectify` does.
-template <std::floating_point T> class RectifiedSelector {
+template <std::floating_point T>
+class RectifiedSelector {
 public:
   using scalar_type = T;
   /// Throws like `HomographySurface` for a bad homography.
@@ -43,7 +44,8 @@ private:
 };
 
 /// A rectified GLC view: render it as `Renderer(r.surface, r.selector, sampler)`.
-template <std::floating_point T> struct Rectified {
+template <std::floating_point T>
+struct Rectified {
   HomographySurface<T> surface;
   RectifiedSelector<T> selector;
 };

@@ -25,7 +25,8 @@ namespace mpr::glc {
 /// frame normal, i.e. the ray's direction is `sigma * width_vector + tau * height_vector + normal`
 /// (dimension: uv units per world length). The st plane of the papers is at depth 1:
 /// s = u + sigma, t = v + tau.
-template <std::floating_point T> struct Generator {
+template <std::floating_point T>
+struct Generator {
   T sigma = 0;
   T tau = 0;
   T u = 0;
@@ -41,7 +42,8 @@ template <std::floating_point T> struct Generator {
 /// `origin + u W + v H + z n`; depths are world lengths along n, so a ray of `ray()` reaches depth
 /// z at parameter t = z. The GLC is the set of affine combinations
 /// `a * g1 + b * g2 + (1 - a - b) * g0` of the generators (componentwise in (sigma, tau, u, v)).
-template <std::floating_point T> class TwoPlane {
+template <std::floating_point T>
+class TwoPlane {
 public:
   using scalar_type = T;
 
@@ -51,7 +53,8 @@ public:
            const std::array<Generator<T>, 3>& generators)
       : origin_(origin), width_(width_vector), height_(height_vector), generators_(generators) {
     if (!origin.allFinite()) throw argument_error("origin", "not finite");
-    if (!width_vector.allFinite() || !(width_vector.norm() > 0)) throw argument_error("width_vector", "zero or not finite");
+    if (!width_vector.allFinite() || !(width_vector.norm() > 0))
+      throw argument_error("width_vector", "zero or not finite");
     if (!height_vector.allFinite() || !(height_vector.norm() > 0))
       throw argument_error("height_vector", "zero or not finite");
     if (side != 1 && side != -1) throw argument_error("side", "must be +1 or -1");
@@ -74,7 +77,9 @@ public:
   /// Unit normal pointing to the side the rays travel to (depth grows along it).
   [[nodiscard]] const Vec3<T>& normal() const noexcept { return normal_; }
   [[nodiscard]] const std::array<Generator<T>, 3>& generators() const noexcept { return generators_; }
-  [[nodiscard]] const Generator<T>& operator[](int k) const noexcept { return generators_[static_cast<std::size_t>(k)]; }
+  [[nodiscard]] const Generator<T>& operator[](int k) const noexcept {
+    return generators_[static_cast<std::size_t>(k)];
+  }
 
   /// World vector of a plane-coordinate offset (du, dv) (no origin added).
   [[nodiscard]] Vec3<T> in_plane(T du, T dv) const noexcept { return du * width_ + dv * height_; }
@@ -115,7 +120,8 @@ public:
   }
 
   /// The same camera in another scalar type.
-  template <std::floating_point U> [[nodiscard]] TwoPlane<U> cast() const {
+  template <std::floating_point U>
+  [[nodiscard]] TwoPlane<U> cast() const {
     std::array<Generator<U>, 3> g;
     for (std::size_t k = 0; k < 3; ++k)
       g[k] = {static_cast<U>(generators_[k].sigma), static_cast<U>(generators_[k].tau),

@@ -21,7 +21,8 @@ namespace mpr {
 /// (0,1) -> quad[3] (Heckbert, "Fundamentals of Texture Mapping and Image Warping", 1989,
 /// sec. 2.2.3). Throws `argument_error("quad", ...)` for non-finite corners or a quadrilateral
 /// that is not strictly convex (three corners collinear, a fold or a self-intersection).
-template <std::floating_point T> [[nodiscard]] Mat3<T> homography_from_unit_square(const std::array<Vec2<T>, 4>& quad) {
+template <std::floating_point T>
+[[nodiscard]] Mat3<T> homography_from_unit_square(const std::array<Vec2<T>, 4>& quad) {
   for (const Vec2<T>& q : quad)
     if (!q.allFinite()) throw argument_error("quad", "corner not finite");
   // Strict convexity: every consecutive corner triple turns the same way, by a margin.
@@ -51,7 +52,8 @@ template <std::floating_point T> [[nodiscard]] Mat3<T> homography_from_unit_squa
 /// `point_at(uv) = plane.point_at(warp(uv))`, `warp(uv) = (H (u, v, 1))` dehomogenised.
 /// Satisfies `mpr::ImageSurface`. A GLC selector must be evaluated at `warp(uv)` too (see
 /// `mpr::glc::rectify`), since a homography of the image is not affine.
-template <std::floating_point T> class HomographySurface {
+template <std::floating_point T>
+class HomographySurface {
 public:
   using scalar_type = T;
 
