@@ -4,6 +4,7 @@
 //
 // usage: renderer_loop [--quick]
 #include "bench_common.hpp"
+#include "renderer_loop_virtual.hpp"
 
 #include <mpr/mpr.hpp>
 
@@ -12,54 +13,7 @@
 
 namespace {
 
-/// A trivial sampler: the colour is the absolute ray direction (cheap, but depends on every ray).
-template <class T> struct DirectionColor {
-  using scalar_type = T;
-  [[nodiscard]] mpr::Color sample(const mpr::Ray<T>& ray) const noexcept {
-    return mpr::Color(static_cast<float>(ray.direction.x()), static_cast<float>(ray.direction.y()),
-                      static_cast<float>(ray.direction.z()))
-        .abs();
-  }
-};
-
-// The 2004-style design: abstract base classes, one virtual call per role per pixel.
-template <class T> struct VirtualRegion {
-  virtual ~VirtualRegion() = default;
-  virtual mpr::Vec2<T> pixel_to_uv(mpr::Pixel px) const = 0;
-};
-template <class T> struct VirtualSurface {
-  virtual ~VirtualSurface() = default;
-  virtual mpr::Vec3<T> point_at(const mpr::Vec2<T>& uv) const = 0;
-};
-template <class T> struct VirtualSelector {
-  virtual ~VirtualSelector() = default;
-  virtual mpr::Ray<T> ray_at(mpr::Pixel px, const mpr::Vec2<T>& uv, const mpr::Vec3<T>& point) const = 0;
-};
-template <class T> struct VirtualSampler {
-  virtual ~VirtualSampler() = default;
-  virtual mpr::Color sample(const mpr::Ray<T>& ray) const = 0;
-};
-
-template <class T> struct RegionImpl final : VirtualRegion<T> {
-  mpr::Region region;
-  explicit RegionImpl(mpr::Region r) : region(r) {}
-  mpr::Vec2<T> pixel_to_uv(mpr::Pixel px) const override { return region.pixel_to_uv<T>(px); }
-};
-template <class T> struct SurfaceImpl final : VirtualSurface<T> {
-  mpr::PlanarSurface<T> plane;
-  explicit SurfaceImpl(mpr::PlanarSurface<T> p) : plane(p) {}
-  mpr::Vec3<T> point_at(const mpr::Vec2<T>& uv) const override { return plane.point_at(uv); }
-};
-template <class T> struct SelectorImpl final : VirtualSelector<T> {
-  mpr::GlcSelector<T> glc;
-  explicit SelectorImpl(mpr::GlcSelector<T> g) : glc(g) {}
-  mpr::Ray<T> ray_at(mpr::Pixel px, const mpr::Vec2<T>& uv, const mpr::Vec3<T>& point) const override {
-    return glc.ray_at(px, uv, point);
-  }
-};
-template <class T> struct SamplerImpl final : VirtualSampler<T> {
-  mpr::Color sample(const mpr::Ray<T>& ray) const override { return DirectionColor<T>{}.sample(ray); }
-};
+using namespace mpr_bench;
 
 template <class T>
 void virtual_render(mpr::ImageView<mpr::Color> out, const VirtualRegion<T>& region, const VirtualSurface<T>& surface,
@@ -83,11 +37,7 @@ template <class T> void run(const char* scalar, int size, int repeats) {
   const mpr::Region region(0, 0, size, size);
   const mpr::Renderer renderer(plane, glc, DirectionColor<T>{});
 
-  // Heap objects behind base pointers, as a 2004-style program would hold them.
-  const std::unique_ptr<VirtualRegion<T>> v_region = std::make_unique<RegionImpl<T>>(region);
-  const std::unique_ptr<VirtualSurface<T>> v_surface = std::make_unique<SurfaceImpl<T>>(plane);
-  const std::unique_ptr<VirtualSelector<T>> v_selector = std::make_unique<SelectorImpl<T>>(glc);
-  const std::unique_ptr<VirtualSampler<T>> v_sampler = std::make_unique<SamplerImpl<T>>();
+  const VirtualPolicies<T> policies = make_virtual_policies<T>(region, plane, glc);
 
   mpr::Image<mpr::Color> a(size, size), b(size, size);
   const double rays = double(size) * size;
@@ -96,7 +46,7 @@ template <class T> void run(const char* scalar, int size, int repeats) {
       renderer.render(a.view(), region, mpr::RenderOptions{threads});
     });
     const mpr_bench::Timing v = mpr_bench::time_repeated(repeats, [&] {
-      virtual_render<T>(b.view(), *v_region, *v_surface, *v_selector, *v_sampler, threads);
+      virtual_render<T>(b.view(), *policies.region, *policies.surface, *policies.selector, *policies.sampler, threads);
     });
     if (!(a == b)) {
       std::fprintf(stderr, "renderer_loop: static and virtual images differ\n");

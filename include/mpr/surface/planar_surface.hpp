@@ -32,9 +32,10 @@ public:
     const T wn = width_vector.norm(), hn = height_vector.norm();
     if (!(wn > 0)) throw argument_error("width_vector", "zero length");
     if (!(hn > 0)) throw argument_error("height_vector", "zero length");
-    const Vec3<T> cross = width_vector.cross(height_vector);
-    // Scale-free test: |w x h| = |w||h| sin(angle). Below a few ulps the plane has no normal.
-    if (!(cross.norm() > 16 * std::numeric_limits<T>::epsilon() * wn * hn))
+    // Scale-free test on the unit edge directions (no underflow for tiny planes): |sin(angle)|
+    // below a few ulps leaves the plane without a normal.
+    const Vec3<T> cross = Vec3<T>(width_vector / wn).cross(Vec3<T>(height_vector / hn));
+    if (!(cross.norm() > 16 * std::numeric_limits<T>::epsilon()))
       throw argument_error("height_vector", "parallel to width_vector: the plane is degenerate");
     normal_ = cross.normalized();
   }

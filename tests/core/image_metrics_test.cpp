@@ -1,0 +1,51 @@
+#include <mpr/core/image_metrics.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+TEST_CASE("compare_images: RMSE, PSNR and percentiles", "[metrics]") {
+  mpr::Image<mpr::Rgb8> a(10, 10, mpr::Rgb8{100, 100, 100});
+  mpr::Image<mpr::Rgb8> b = a;
+  const mpr::ImageError same = mpr::compare_images(a.view(), b.view());
+  CHECK(same.rmse == 0);
+  CHECK(std::isinf(same.psnr));
+  CHECK(same.pixels == 100);
+
+  // One pixel off by 30 in every channel: per-pixel error 30, RMSE = sqrt(900/100) = 3.
+  b(4, 7) = {130, 70, 130};
+  const mpr::ImageError one = mpr::compare_images(a.view(), b.view());
+  CHECK(one.rmse == Approx(3.0));
+  CHECK(one.psnr == Approx(20 * std::log10(255.0 / 3.0)));
+  CHECK(one.max == Approx(30.0));
+  CHECK(one.p99 == Approx(0.0)); // 99 of 100 pixels are exact
+
+  // Two bad pixels: the 99th percentile is now the smaller of them.
+  b(0, 0) = {110, 110, 110};
+  CHECK(mpr::compare_images(a.view(), b.view()).p99 == Approx(10.0));
+
+  // A mask limits the comparison.
+  mpr::Image<std::uint8_t> mask(10, 10, 1);
+  mask(4, 7) = 0;
+  mask(0, 0) = 0;
+  CHECK(mpr::compare_images(a.view(), b.view(), mpr::ImageView<const std::uint8_t>(mask.view())).rmse == 0);
+  CHECK_THROWS_WITH(mpr::compare_images(a.view(), mpr::Image<mpr::Rgb8>(9, 10).view()), Catch::Contains("sizes differ"));
+  const mpr::Image<std::uint8_t> none(10, 10, 0);
+  CHECK_THROWS_WITH(mpr::compare_images(a.view(), b.view(), mpr::ImageView<const std::uint8_t>(none.view())),
+                    Catch::Contains("mask"));
+}
+
+TEST_CASE("ssim is 1 for identical images and drops with noise", "[metrics]") {
+  mpr::Image<mpr::Rgb8> a(32, 32), b(32, 32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const auto v = static_cast<std::uint8_t>((x * 8 + y * 3) % 256);
+      a(x, y) = {v, v, v};
+      const auto w = static_cast<std::uint8_t>(std::clamp(v + ((x * 7 + y * 13) % 9 - 4) * 6, 0, 255));
+      b(x, y) = {w, w, w};
+    }
+  CHECK(mpr::ssim(a.view(), a.view()) == Approx(1.0));
+  const double noisy = mpr::ssim(a.view(), b.view());
+  CHECK(noisy < 0.99);
+  CHECK(noisy > 0.3);
+}

@@ -1,0 +1,139 @@
+#include "glc_test_util.hpp"
+
+#include <mpr/glc/classify.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <limits>
+
+using mpr::glc::Type;
+
+namespace {
+
+template <class T>
+void check_coefficients(const mpr::glc::Classification<T>& cl, double a, double b, double c, double disc) {
+  CHECK(cl.characteristic.a == a);
+  CHECK(cl.characteristic.b == b);
+  CHECK(cl.characteristic.c == c);
+  CHECK(cl.characteristic.discriminant == disc);
+}
+
+} // namespace
+
+// Every exact canonical example of glc-math.md sec. 5: all dyadic, so A, B, C, the discriminant,
+// the depths and the slit geometry are exact in float and double and compared with ==.
+TEMPLATE_TEST_CASE("classify: exact canonical examples", "[glc][classify]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  const auto plane = glc_test::unit_plane<T>();
+  const auto run = [&](T s0x, T s0y, T s1x, T s1y, T s2x, T s2y) {
+    return mpr::glc::classify(plane, glc_test::from_st<T>(plane, s0x, s0y, s1x, s1y, s2x, s2y));
+  };
+
+  SECTION("pinhole") {
+    const auto cl = run(0, 0, 0.5, 0, 0, 0.5);
+    CHECK(cl.type == Type::pinhole);
+    check_coefficients(cl, 0.25, -1, 1, 0);
+    CHECK(cl.depths[0] == T(2));
+    CHECK(cl.centre == V(0, 0, 2));
+  }
+  SECTION("orthographic") {
+    const auto cl = run(0.5, 0.25, 1.5, 0.25, 0.5, 1.25);
+    CHECK(cl.type == Type::orthographic);
+    check_coefficients(cl, 0, 0, 1, 0);
+    CHECK((cl.direction - V(0.5, 0.25, 1).normalized()).norm() <= 4 * std::numeric_limits<T>::epsilon());
+  }
+  SECTION("pushbroom") {
+    const auto cl = run(0, 0, 1, 0, 0, 0.5);
+    CHECK(cl.type == Type::pushbroom);
+    check_coefficients(cl, 0, -0.5, 1, 0.25);
+    CHECK(cl.slit_count == 1);
+    CHECK(cl.depths[0] == T(2));
+    CHECK(cl.slits[0].point.y() == T(0));
+    CHECK(cl.slits[0].point.z() == T(2));
+    CHECK(cl.slits[0].direction.cwiseAbs() == V(1, 0, 0));
+  }
+  SECTION("cross-slit") {
+    const auto cl = run(0, 0, 0.5, 0, 0, 0.75);
+    CHECK(cl.type == Type::cross_slit);
+    check_coefficients(cl, 0.125, -0.75, 1, 0.0625);
+    CHECK(cl.slit_count == 2);
+    CHECK(cl.depths[0] == T(2));
+    CHECK(cl.depths[1] == T(4));
+    CHECK(cl.slits[0].point.x() == T(0));
+    CHECK(cl.slits[0].point.z() == T(2));
+    CHECK(cl.slits[0].direction.cwiseAbs() == V(0, 1, 0));
+    CHECK(cl.slits[1].point.y() == T(0));
+    CHECK(cl.slits[1].point.z() == T(4));
+    CHECK(cl.slits[1].direction.cwiseAbs() == V(1, 0, 0));
+  }
+  SECTION("pencil") {
+    const auto cl = run(0, 0, 0.5, 0, 0.5, 0.5);
+    CHECK(cl.type == Type::pencil);
+    check_coefficients(cl, 0.25, -1, 1, 0);
+    CHECK(cl.depths[0] == T(2));
+    CHECK(cl.slits[0].point.y() == T(0));
+    CHECK(cl.slits[0].point.z() == T(2));
+    CHECK(cl.slits[0].direction.cwiseAbs() == V(1, 0, 0));
+  }
+  SECTION("twisted orthographic") {
+    const auto cl = run(0, 0, 1, 0, 0.5, 1);
+    CHECK(cl.type == Type::twisted_orthographic);
+    check_coefficients(cl, 0, 0, 1, 0);
+  }
+  SECTION("bilinear") {
+    const auto cl = run(0, 0, 1, 0.5, -0.5, 1);
+    CHECK(cl.type == Type::bilinear);
+    check_coefficients(cl, 0.25, 0, 1, -1);
+    CHECK(cl.roots.complex);
+    CHECK(cl.roots.real == 0);
+    CHECK(cl.roots.imag == 2);
+  }
+  SECTION("EPI (plane x + z = 1), through three world rays") {
+    const auto tp = mpr::glc::two_plane(plane, glc_test::rays<T>({{{1, 0, 0, 0}, {1, 1, 0, 3}, {1, 2, 0, -1}}}));
+    const auto cl = mpr::glc::classify(tp);
+    CHECK(cl.type == Type::epi);
+    check_coefficients(cl, 0, 0, 0, 0);
+  }
+  SECTION("affinely dependent generators are an error, not an EPI") {
+    const auto tp = mpr::glc::two_plane(plane, glc_test::rays<T>({{{0, 0, 0, 0}, {2, 0, 1, 1}, {1, 0, 0.5, 0.5}}}));
+    CHECK_THROWS_AS(mpr::glc::classify(tp), mpr::argument_error);
+    CHECK_THROWS_WITH(mpr::glc::classify(tp), Catch::Contains("generators") && Catch::Contains("affinely dependent"));
+    // Three copies of one ray, too.
+    const auto same = mpr::glc::two_plane(plane, glc_test::rays<T>({{{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}}}));
+    CHECK_THROWS_AS(mpr::glc::classify(same), mpr::argument_error);
+  }
+  SECTION("a public 'twisted orthographic' preset is really a pushbroom") {
+    const auto tp = mpr::glc::two_plane(plane, glc_test::rays<T>({{{0, 0, 0, 0}, {0, 0.5, 0.5, 0}, {0.5, 0, 0, 0.5}}}));
+    const auto cl = mpr::glc::classify(tp);
+    CHECK(cl.type == Type::pushbroom);
+    check_coefficients(cl, 0, 0.5, -0.25, 0.25);
+    CHECK(cl.depths[0] == T(0.5));
+  }
+}
+
+TEMPLATE_TEST_CASE("classify: rays on the other side of the plane", "[glc][classify]", float, double) {
+  using T = TestType;
+  // The pinhole example mirrored: the rays travel to -z; depths are measured along the rays.
+  const auto plane = glc_test::unit_plane<T>();
+  const mpr::GlcSelector<T> sel(plane, mpr::Vec3<T>(0, 0, -1), mpr::Vec3<T>(-0.5, 0, -1), mpr::Vec3<T>(0, -0.5, -1));
+  const auto cl = mpr::glc::classify(plane, sel);
+  CHECK(cl.type == Type::pinhole);
+  CHECK(cl.depths[0] == T(2));
+  CHECK(cl.centre == mpr::Vec3<T>(0, 0, -2));
+}
+
+TEMPLATE_TEST_CASE("classify: a selector built for another plane is rejected", "[glc][classify]", float, double) {
+  using T = TestType;
+  const auto plane = glc_test::unit_plane<T>();
+  const mpr::PlanarSurface<T> other(mpr::Vec3<T>::Zero(), mpr::Vec3<T>::UnitX(), mpr::Vec3<T>::UnitZ());
+  const auto sel = mpr::glc::orthographic(other, mpr::Vec3<T>(0, 1, 0));
+  CHECK_THROWS_WITH(mpr::glc::classify(plane, sel), Catch::Contains("selector"));
+}
+
+TEST_CASE("classify: to_string names every type", "[glc][classify]") {
+  STATIC_REQUIRE(mpr::glc::to_string(Type::cross_slit) == "cross_slit");
+  STATIC_REQUIRE(mpr::glc::to_string(Type::twisted_orthographic) == "twisted_orthographic");
+  CHECK(mpr::glc::to_string(Type::epi) == "epi");
+  CHECK(mpr::glc::to_string(Type::pinhole) == "pinhole");
+}

@@ -1,0 +1,53 @@
+#include <mpr/io/image_io.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace {
+std::filesystem::path temp_path(const char* name) {
+  return std::filesystem::temp_directory_path() / (std::string("mpr_image_io_") + name);
+}
+} // namespace
+
+TEST_CASE("PNG round trip preserves 8-bit pixels, strided views included", "[io]") {
+  mpr::Image<mpr::Rgb8> image(37, 11);
+  for (int y = 0; y < 11; ++y)
+    for (int x = 0; x < 37; ++x)
+      image(x, y) = {static_cast<std::uint8_t>(7 * x), static_cast<std::uint8_t>(23 * y), static_cast<std::uint8_t>(x ^ y)};
+  const auto path = temp_path("roundtrip.png");
+  mpr::write_png(path, image);
+  CHECK(mpr::read_rgb8(path) == image);
+
+  const auto sub_path = temp_path("sub.png");
+  mpr::write_png(sub_path, mpr::ImageView<const mpr::Rgb8>(image.view().subview(5, 2, 10, 6)));
+  const mpr::Image<mpr::Rgb8> sub = mpr::read_rgb8(sub_path);
+  REQUIRE(sub.width() == 10);
+  REQUIRE(sub.height() == 6);
+  CHECK(sub(3, 4) == image(8, 6));
+
+  // Linear round trip: decoding then encoding gives back the same codes.
+  const mpr::Image<mpr::Color> linear = mpr::read_linear(path);
+  const auto linear_path = temp_path("linear.png");
+  mpr::write_png(linear_path, linear);
+  CHECK(mpr::read_rgb8(linear_path) == image);
+}
+
+TEST_CASE("image I/O errors name the file and the reason", "[io]") {
+  const auto missing = temp_path("does_not_exist.png");
+  std::filesystem::remove(missing);
+  try {
+    (void)mpr::read_rgb8(missing);
+    FAIL("no exception");
+  } catch (const mpr::io_error& e) {
+    CHECK(e.path() == missing.string());
+    CHECK_THAT(e.what(), Catch::Contains("does_not_exist.png") && Catch::Contains("cannot open"));
+  }
+  const auto garbage = temp_path("garbage.png");
+  std::ofstream(garbage) << "this is not an image";
+  CHECK_THROWS_WITH(mpr::read_rgb8(garbage), Catch::Contains("garbage.png") && Catch::Contains("cannot decode"));
+  const mpr::Image<mpr::Rgb8> tiny(2, 2);
+  CHECK_THROWS_WITH(mpr::write_png(temp_path("no_such_folder/x.png"), tiny), Catch::Contains("cannot write"));
+  CHECK_THROWS_AS(mpr::write_png(temp_path("empty.png"), mpr::Image<mpr::Rgb8>()), mpr::io_error);
+}
