@@ -10,6 +10,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/scene/texture.hpp>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
