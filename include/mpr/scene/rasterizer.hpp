@@ -9,7 +9,9 @@
 /// pixels around the image, so that fixed-point coordinates cannot overflow); projection to
 /// pixel coordinates snapped to 1/256 pixel; coverage by exact 64-bit integer edge functions at
 /// pixel centres with the top-left fill rule (a pixel centre on an edge shared by two triangles
-/// is covered by exactly one of them); perspective-correct barycentric interpolation; a z-buffer
+/// is covered by exactly one of them); perspective-correct depth and barycentrics, evaluated
+/// exactly from the triangle's camera-space plane at each pixel centre (so clipping and snapping
+/// never perturb them); a z-buffer
 /// on camera depth (ties keep the earlier triangle). The image is cut into square tiles that are
 /// rasterized in parallel; each tile processes its triangles in scene order, so the result does
 /// not depend on the thread count. Visible pixels are shaded once, after visibility is resolved,
@@ -60,15 +62,23 @@ constexpr double kGuard = 4096.0;
 
 template <class T> struct ClipVertex {
   T X, Y, W; // homogeneous pixel coordinates
-  T b1, b2;  // barycentrics in the original triangle
 };
 
-template <class T> struct ScreenTriangle {
+/// The plane of a triangle in camera space, for exact per-pixel depth and barycentrics: with
+/// r = K^-1 (x, y, 1) the ray of pixel (x, y) (camera z = 1), the hit is c = z r where
+/// 1 / z = (n . r) / d = (alpha x + beta y + gamma) / d, and b1 = (c - c0) . g1, b2 = (c - c0) . g2.
+/// Computed from the original triangle in double precision, so neither clipping nor vertex
+/// snapping changes depth or interpolated attributes.
+struct PlaneEquation {
+  double alpha, beta, gamma, d;
+  std::array<double, 3> c0, g1, g2;
+};
+
+struct ScreenTriangle {
   std::array<std::int64_t, 3> x, y; // fixed point, 1/256 pixel
-  std::array<T, 3> inv_w;
-  std::array<T, 3> b1, b2;
-  std::int64_t area; // > 0
-  int x0, y0, x1, y1; // inclusive pixel bounding box, clipped to the image
+  std::int64_t area;                 // > 0
+  int x0, y0, x1, y1;                // inclusive pixel bounding box, clipped to the image
+  std::uint32_t plane;               // index into the plane equations
   std::uint32_t triangle;
   bool front;
 };
@@ -85,8 +95,7 @@ int clip_polygon(const ClipVertex<T>* in, int n, ClipVertex<T>* out, T a, T b, T
     if (fp >= 0) out[m++] = p;
     if ((fp >= 0) != (fq >= 0)) {
       const T s = fp / (fp - fq);
-      out[m++] = {p.X + s * (q.X - p.X), p.Y + s * (q.Y - p.Y), p.W + s * (q.W - p.W), p.b1 + s * (q.b1 - p.b1),
-                  p.b2 + s * (q.b2 - p.b2)};
+      out[m++] = {p.X + s * (q.X - p.X), p.Y + s * (q.Y - p.Y), p.W + s * (q.W - p.W)};
     }
   }
   return m;
@@ -115,6 +124,7 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
   if (options.tile < 8 || options.tile > 256) throw argument_error("tile", "must be between 8 and 256 pixels");
 
   using detail::ClipVertex;
+  using detail::PlaneEquation;
   using detail::ScreenTriangle;
   const Mat3<T>& K = camera.K();
   const Mat3<T>& R = camera.R();
@@ -125,8 +135,11 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
   const T gx1 = static_cast<T>(width) + guard, gy1 = static_cast<T>(height) + guard;
 
   // 1. Set-up: transform, clip, project, snap; in scene order.
-  std::vector<ScreenTriangle<T>> screen;
+  std::vector<ScreenTriangle> screen;
+  std::vector<PlaneEquation> planes;
   screen.reserve(scene.size());
+  planes.reserve(scene.size());
+  const Eigen::Matrix3d K_inverse = K.template cast<double>().inverse();
   const auto& triangles = scene.triangles();
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const Triangle<T>& tri = triangles[i];
@@ -137,7 +150,7 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       const Vec3<T> c = R * tri.p[j] + t;
       const T X = K(0, 0) * c.x() + K(0, 1) * c.y() + K(0, 2) * c.z();
       const T Y = K(1, 1) * c.y() + K(1, 2) * c.z();
-      poly[0][j] = {X, Y, c.z(), j == 1 ? T(1) : T(0), j == 2 ? T(1) : T(0)};
+      poly[0][j] = {X, Y, c.z()};
       if (c.z() >= near) all_near_out = false;
       const bool in = c.z() >= near && X >= -guard * c.z() && X <= gx1 * c.z() && Y >= -guard * c.z() && Y <= gy1 * c.z();
       all_inside = all_inside && in;
@@ -154,6 +167,20 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       if (n < 3) continue;
     }
     const bool front = (tri.p[0] - centre).dot(tri.normal) < 0;
+    {
+      const Eigen::Vector3d c0 = (R * tri.p[0] + t).template cast<double>();
+      const Eigen::Vector3d e1 = (R * tri.p[1] + t).template cast<double>() - c0;
+      const Eigen::Vector3d e2 = (R * tri.p[2] + t).template cast<double>() - c0;
+      const Eigen::Vector3d n = e1.cross(e2);
+      const double nn = n.squaredNorm();
+      const double d = n.dot(c0);
+      if (!(nn > 0) || d == 0 || !std::isfinite(d)) continue; // seen edge-on: covers no area
+      const Eigen::Vector3d abc = K_inverse.transpose() * n; // n . (K^-1 (x, y, 1))
+      const Eigen::Vector3d g1 = e2.cross(n) / nn, g2 = n.cross(e1) / nn;
+      planes.push_back({abc.x(), abc.y(), abc.z(), d, {c0.x(), c0.y(), c0.z()}, {g1.x(), g1.y(), g1.z()},
+                        {g2.x(), g2.y(), g2.z()}});
+    }
+    const std::uint32_t plane_index = static_cast<std::uint32_t>(planes.size() - 1);
     // Project and snap every polygon vertex, then fan-triangulate.
     std::array<std::int64_t, 9> fx{}, fy{};
     for (int j = 0; j < n; ++j) {
@@ -170,16 +197,12 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
         std::swap(idx[1], idx[2]);
         area = -area;
       }
-      ScreenTriangle<T> s;
+      ScreenTriangle s;
       std::int64_t minx = std::numeric_limits<std::int64_t>::max(), maxx = std::numeric_limits<std::int64_t>::min();
       std::int64_t miny = minx, maxy = maxx;
       for (int j = 0; j < 3; ++j) {
-        const ClipVertex<T>& v = poly[cur][idx[j]];
         s.x[j] = fx[idx[j]];
         s.y[j] = fy[idx[j]];
-        s.inv_w[j] = T(1) / v.W;
-        s.b1[j] = v.b1;
-        s.b2[j] = v.b2;
         minx = std::min(minx, s.x[j]);
         maxx = std::max(maxx, s.x[j]);
         miny = std::min(miny, s.y[j]);
@@ -194,6 +217,7 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       s.y1 = static_cast<int>(std::min<std::int64_t>(py1, height - 1));
       if (s.x0 > s.x1 || s.y0 > s.y1) continue;
       s.area = area;
+      s.plane = plane_index;
       s.triangle = static_cast<std::uint32_t>(i);
       s.front = front;
       screen.push_back(s);
@@ -205,7 +229,7 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
   const int tiles_x = (width + ts - 1) / ts, tiles_y = (height + ts - 1) / ts;
   std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
   for (std::size_t k = 0; k < screen.size(); ++k) {
-    const ScreenTriangle<T>& s = screen[k];
+    const ScreenTriangle& s = screen[k];
     for (int ty = s.y0 / ts; ty <= s.y1 / ts; ++ty)
       for (int tx = s.x0 / ts; tx <= s.x1 / ts; ++tx)
         bins[static_cast<std::size_t>(ty) * tiles_x + tx].push_back(static_cast<std::uint32_t>(k));
@@ -236,7 +260,7 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
     }
     std::fill(win, win + tw * th, kNone);
     for (std::uint32_t k : bins[static_cast<std::size_t>(tile)]) {
-      const ScreenTriangle<T>& s = screen[k];
+      const ScreenTriangle& s = screen[k];
       const int x0 = std::max(s.x0, tx0), x1 = std::min(s.x1, tx0 + tw - 1);
       const int y0 = std::max(s.y0, ty0), y1 = std::min(s.y1, ty0 + th - 1);
       // Edge j is opposite vertex j: from vertex a = j+1 to b = j+2; E > 0 inside.
@@ -251,17 +275,15 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
         // left edge has the interior to its right (dy < 0). Pixels exactly on other edges are out.
         bias[j] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
       }
-      const double inv_area = 1.0 / static_cast<double>(s.area);
+      const PlaneEquation& pe = planes[s.plane];
       for (int y = y0; y <= y1; ++y) {
+        const double row_term = pe.beta * y + pe.gamma;
         std::int64_t e0 = row_start[0], e1 = row_start[1], e2 = row_start[2];
         float* drow = depth.row(y);
         std::uint32_t* wrow = win + (y - ty0) * tw - tx0;
         for (int x = x0; x <= x1; ++x, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
           if ((e0 + bias[0]) < 0 || (e1 + bias[1]) < 0 || (e2 + bias[2]) < 0) continue;
-          const T q0 = static_cast<T>(static_cast<double>(e0) * inv_area) * s.inv_w[0];
-          const T q1 = static_cast<T>(static_cast<double>(e1) * inv_area) * s.inv_w[1];
-          const T q2 = static_cast<T>(static_cast<double>(e2) * inv_area) * s.inv_w[2];
-          const float z = static_cast<float>(T(1) / (q0 + q1 + q2));
+          const float z = static_cast<float>(pe.d / (pe.alpha * x + row_term));
           if (z < drow[x]) {
             drow[x] = z;
             wrow[x] = k;
@@ -281,19 +303,14 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
           crow[x] = background;
           continue;
         }
-        const ScreenTriangle<T>& s = screen[wrow[x]];
-        const std::int64_t px = static_cast<std::int64_t>(tx0 + x) * detail::kSubpixel;
-        const std::int64_t py = static_cast<std::int64_t>(ty0 + y) * detail::kSubpixel;
-        T q[3];
-        const double inv_area = 1.0 / static_cast<double>(s.area);
-        for (int j = 0; j < 3; ++j) {
-          const int a = (j + 1) % 3, b = (j + 2) % 3;
-          const std::int64_t e = (s.x[b] - s.x[a]) * (py - s.y[a]) - (s.y[b] - s.y[a]) * (px - s.x[a]);
-          q[j] = static_cast<T>(static_cast<double>(e) * inv_area) * s.inv_w[j];
-        }
-        const T norm = T(1) / (q[0] + q[1] + q[2]);
-        const T b1 = (q[0] * s.b1[0] + q[1] * s.b1[1] + q[2] * s.b1[2]) * norm;
-        const T b2 = (q[0] * s.b2[0] + q[1] * s.b2[1] + q[2] * s.b2[2]) * norm;
+        const ScreenTriangle& s = screen[wrow[x]];
+        const PlaneEquation& pe = planes[s.plane];
+        const double px = tx0 + x, py = ty0 + y;
+        const double z = pe.d / (pe.alpha * px + pe.beta * py + pe.gamma);
+        const Eigen::Vector3d c = z * (K_inverse * Eigen::Vector3d(px, py, 1.0));
+        const double cx = c.x() - pe.c0[0], cy = c.y() - pe.c0[1], cz = c.z() - pe.c0[2];
+        const T b1 = static_cast<T>(cx * pe.g1[0] + cy * pe.g1[1] + cz * pe.g1[2]);
+        const T b2 = static_cast<T>(cx * pe.g2[0] + cy * pe.g2[1] + cz * pe.g2[2]);
         crow[x] = scene.shade(s.triangle, b1, b2, s.front);
       }
     }
