@@ -75,8 +75,13 @@ TEMPLATE_TEST_CASE("shape builders make closed, outward-facing meshes", "[scene]
     mpr::scene::Scene<T> s;
     s.add(q);
     for (const auto& t : s.triangles()) CHECK(t.normal.y() == Approx(1));
-    CHECK(q.uvs[2].x() == T(4));
-    CHECK(q.uvs[2].y() == T(6));
+    CHECK(q.uvs[3].x() == T(4)); // the corner origin + u + v
+    CHECK(q.uvs[3].y() == T(6));
+    const auto cells = mpr::scene::quad<T>(V(0, 0, 0), V(3, 0, 0), V(0, 2, 0), mpr::Color(1, 1, 1), T(1), T(1), 3, 2);
+    CHECK(cells.triangles.size() == 12);
+    CHECK(cells.positions.size() == 12); // shared grid vertices
+    CHECK_THROWS_AS(mpr::scene::quad<T>(V(0, 0, 0), V(3, 0, 0), V(0, 2, 0), mpr::Color(1, 1, 1), T(1), T(1), 0, 2),
+                    mpr::argument_error);
   }
   SECTION("bad arguments") {
     const mpr::Color c(1, 1, 1);

@@ -85,57 +85,89 @@ public:
     if (d[kz] < 0) std::swap(kx, ky);
     const T sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = T(1) / d[kz];
 
-    std::array<T, 3> inv;
-    std::array<int, 3> near_hi; // 1 when the near slab is `hi`
+    // Per-ray slab set-up: t = p * inv - o * inv for each axis; the near plane of each axis
+    // follows the sign of the direction.
+    Ray3 r;
     for (int a = 0; a < 3; ++a) {
       const T da = std::abs(d[a]) < T(1e-30) ? std::copysign(T(1e-30), d[a]) : d[a];
-      inv[a] = T(1) / da;
-      near_hi[a] = inv[a] < 0 ? 1 : 0;
+      r.inv[a] = T(1) / da;
+      r.offset[a] = -o[a] * r.inv[a];
+      r.near_hi[a] = r.inv[a] < 0;
     }
-    // Robust box test (Ize, "Robust BVH ray traversal", JCGT 2013): widen t_far by 1 + 2 gamma(3).
-    constexpr T eps = std::numeric_limits<T>::epsilon() / 2;
-    constexpr T widen = T(1) + 2 * (3 * eps / (1 - 3 * eps));
+    const auto enter = [&](const Node& node) noexcept { return box_entry(node, r, hit.t); };
+    if (!(enter(nodes_[0]) < hit.t)) return hit;
 
-    std::uint32_t stack[128];
+    struct Entry {
+      std::uint32_t node;
+      T t;
+    };
+    Entry stack[128];
     int top = 0;
     std::uint32_t current = 0;
     for (;;) {
       const Node& node = nodes_[current];
-      T t_near = 0, t_far = hit.t;
-      bool inside = true;
-      for (int a = 0; a < 3 && inside; ++a) {
-        const T lo_a = near_hi[a] ? node.hi[a] : node.lo[a];
-        const T hi_a = near_hi[a] ? node.lo[a] : node.hi[a];
-        const T t0 = (lo_a - o[a]) * inv[a];
-        const T t1 = (hi_a - o[a]) * inv[a] * widen;
-        t_near = t0 > t_near ? t0 : t_near;
-        t_far = t1 < t_far ? t1 : t_far;
-        inside = t_near <= t_far;
-      }
-      if (inside) {
-        if (node.count > 0) {
-          for (std::uint32_t i = node.index, end = node.index + node.count; i < end; ++i)
-            intersect(i, o, kx, ky, kz, sx, sy, sz, hit);
-        } else {
-          // Visit the child nearer along the split axis first.
-          const std::uint32_t first = current + 1, second = node.index;
-          if (d[node.axis] < 0) {
-            stack[top++] = first;
-            current = second;
+      if (node.count > 0) {
+        for (std::uint32_t i = node.index, end = node.index + node.count; i < end; ++i)
+          intersect(i, o, kx, ky, kz, sx, sy, sz, hit);
+      } else {
+        // Test both children; descend into the nearer, keep the farther for later.
+        const std::uint32_t a = current + 1, b = node.index;
+        const T ta = enter(nodes_[a]), tb = enter(nodes_[b]);
+        const bool hit_a = ta < hit.t, hit_b = tb < hit.t;
+        if (hit_a && hit_b) {
+          if (ta <= tb) {
+            stack[top++] = {b, tb};
+            current = a;
           } else {
-            stack[top++] = second;
-            current = first;
+            stack[top++] = {a, ta};
+            current = b;
           }
           continue;
         }
+        if (hit_a || hit_b) {
+          current = hit_a ? a : b;
+          continue;
+        }
       }
-      if (top == 0) break;
-      current = stack[--top];
+      // Pop the next subtree that can still hold a closer hit.
+      bool found = false;
+      while (top > 0) {
+        const Entry e = stack[--top];
+        if (e.t < hit.t) {
+          current = e.node;
+          found = true;
+          break;
+        }
+      }
+      if (!found) break;
     }
     return hit;
   }
 
 private:
+  struct Ray3 {
+    std::array<T, 3> inv, offset;
+    std::array<bool, 3> near_hi;
+  };
+
+  /// The entry parameter of the ray into the node's box, or +inf when it misses the box or
+  /// enters at or beyond `t_max`. Robust box test (Ize, "Robust BVH ray traversal", JCGT 2013):
+  /// the exit parameter is widened by 1 + 2 gamma(3).
+  static T box_entry(const Node& node, const Ray3& r, T t_max) noexcept {
+    constexpr T eps = std::numeric_limits<T>::epsilon() / 2;
+    constexpr T widen = T(1) + 2 * (3 * eps / (1 - 3 * eps));
+    T t_near = 0, t_far = t_max;
+    for (int a = 0; a < 3; ++a) {
+      const T lo = r.near_hi[a] ? node.hi[a] : node.lo[a];
+      const T hi = r.near_hi[a] ? node.lo[a] : node.hi[a];
+      const T t0 = lo * r.inv[a] + r.offset[a];
+      const T t1 = (hi * r.inv[a] + r.offset[a]) * widen;
+      t_near = t0 > t_near ? t0 : t_near;
+      t_far = t1 < t_far ? t1 : t_far;
+    }
+    return t_near <= t_far ? t_near : std::numeric_limits<T>::infinity();
+  }
+
   struct Packed {
     std::array<Vec3<T>, 3> p;
   };

@@ -36,20 +36,34 @@ void append_quad(Mesh<T>& m, const Vec3<T>& origin, const Vec3<T>& u, const Vec3
 }
 } // namespace detail
 
-/// The parallelogram `origin + a u + b v`, a, b in [0, 1], normal `u x v`, two triangles. Texture
-/// coordinates run from (0, 0) at `origin` to (`repeat_u`, `repeat_v`) at the opposite corner, so
-/// a texture repeats `repeat_u` times along `u`.
+/// The parallelogram `origin + a u + b v`, a, b in [0, 1], normal `u x v`, cut into
+/// `divisions_u` x `divisions_v` cells of two triangles each (cells keep bounding boxes small, which
+/// a BVH needs: one huge floor triangle would overlap every box above it). Texture coordinates run
+/// from (0, 0) at `origin` to (`repeat_u`, `repeat_v`) at the opposite corner, so a texture
+/// repeats `repeat_u` times along `u`. Vertices are shared between cells (a watertight grid).
 template <std::floating_point T>
 [[nodiscard]] Mesh<T> quad(const Vec3<T>& origin, const Vec3<T>& u, const Vec3<T>& v, const Color& color,
-                           T repeat_u = 1, T repeat_v = 1) {
+                           T repeat_u = 1, T repeat_v = 1, int divisions_u = 1, int divisions_v = 1) {
   detail::require_finite(origin, "origin");
   detail::require_finite(u, "u");
   detail::require_finite(v, "v");
   if (!(u.cross(v).norm() > 0)) throw argument_error("v", "zero or parallel to u: the quad is degenerate");
   if (!std::isfinite(repeat_u) || !std::isfinite(repeat_v)) throw argument_error("repeat", "not finite");
+  if (divisions_u < 1 || divisions_v < 1 || divisions_u > 4096 || divisions_v > 4096)
+    throw argument_error("divisions", "must be between 1 and 4096");
   Mesh<T> m;
   m.color = color;
-  detail::append_quad(m, origin, u, v, repeat_u, repeat_v);
+  for (int j = 0; j <= divisions_v; ++j)
+    for (int i = 0; i <= divisions_u; ++i) {
+      const T a = static_cast<T>(i) / static_cast<T>(divisions_u), b = static_cast<T>(j) / static_cast<T>(divisions_v);
+      detail::push(m, Vec3<T>(origin + a * u + b * v), Vec2<T>(a * repeat_u, b * repeat_v));
+    }
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (divisions_u + 1) + i); };
+  for (int j = 0; j < divisions_v; ++j)
+    for (int i = 0; i < divisions_u; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
   return m;
 }
 
