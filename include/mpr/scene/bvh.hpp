@@ -47,8 +47,8 @@ public:
   using scalar_type = T;
 
   struct Node {
-    std::array<T, 3> lo;
-    std::array<T, 3> hi;
+    /// The box: lo x, y, z, then hi x, y, z.
+    std::array<T, 6> bounds;
     /// Leaf: first triangle in `order`; interior: index of the second child (the first is next).
     std::uint32_t index;
     /// Leaf: number of triangles (> 0); interior: 0.
@@ -92,7 +92,8 @@ public:
       const T da = std::abs(d[a]) < T(1e-30) ? std::copysign(T(1e-30), d[a]) : d[a];
       r.inv[a] = T(1) / da;
       r.offset[a] = -o[a] * r.inv[a];
-      r.near_hi[a] = r.inv[a] < 0;
+      r.near[a] = r.inv[a] < 0 ? a + 3 : a;
+      r.far[a] = r.inv[a] < 0 ? a : a + 3;
     }
     const auto enter = [&](const Node& node) noexcept { return box_entry(node, r, hit.t); };
     if (!(enter(nodes_[0]) < hit.t)) return hit;
@@ -147,7 +148,8 @@ public:
 private:
   struct Ray3 {
     std::array<T, 3> inv, offset;
-    std::array<bool, 3> near_hi;
+    /// Index in `Node::bounds` of the near and far slab of each axis.
+    std::array<int, 3> near, far;
   };
 
   /// The entry parameter of the ray into the node's box, or +inf when it misses the box or
@@ -156,15 +158,12 @@ private:
   static T box_entry(const Node& node, const Ray3& r, T t_max) noexcept {
     constexpr T eps = std::numeric_limits<T>::epsilon() / 2;
     constexpr T widen = T(1) + 2 * (3 * eps / (1 - 3 * eps));
-    T t_near = 0, t_far = t_max;
-    for (int a = 0; a < 3; ++a) {
-      const T lo = r.near_hi[a] ? node.hi[a] : node.lo[a];
-      const T hi = r.near_hi[a] ? node.lo[a] : node.hi[a];
-      const T t0 = lo * r.inv[a] + r.offset[a];
-      const T t1 = (hi * r.inv[a] + r.offset[a]) * widen;
-      t_near = t0 > t_near ? t0 : t_near;
-      t_far = t1 < t_far ? t1 : t_far;
-    }
+    const T* b = node.bounds.data();
+    const T n0 = b[r.near[0]] * r.inv[0] + r.offset[0], f0 = (b[r.far[0]] * r.inv[0] + r.offset[0]) * widen;
+    const T n1 = b[r.near[1]] * r.inv[1] + r.offset[1], f1 = (b[r.far[1]] * r.inv[1] + r.offset[1]) * widen;
+    const T n2 = b[r.near[2]] * r.inv[2] + r.offset[2], f2 = (b[r.far[2]] * r.inv[2] + r.offset[2]) * widen;
+    const T t_near = std::max(std::max(n0, n1), std::max(n2, T(0)));
+    const T t_far = std::min(std::min(f0, f1), std::min(f2, t_max));
     return t_near <= t_far ? t_near : std::numeric_limits<T>::infinity();
   }
 
@@ -226,6 +225,8 @@ private:
     }
   };
 
+  static std::array<T, 6> pack(const Bounds& b) { return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]}; }
+
   void build(const Scene<T>& scene, const BvhConfig& config) {
     const auto& tris = scene.triangles();
     const std::size_t n = tris.size();
@@ -268,7 +269,7 @@ private:
     }
     const std::uint32_t count = end - begin;
     const auto make_leaf = [&] {
-      nodes_[self] = Node{bounds.lo, bounds.hi, begin, static_cast<std::uint16_t>(count), 0};
+      nodes_[self] = Node{pack(bounds), begin, static_cast<std::uint16_t>(count), 0};
       return self;
     };
     if (count == 1) return make_leaf();
@@ -338,7 +339,7 @@ private:
     }
     build_node(begin, mid, depth + 1);
     const std::uint32_t second = build_node(mid, end, depth + 1);
-    nodes_[self] = Node{bounds.lo, bounds.hi, second, 0, static_cast<std::uint16_t>(axis)};
+    nodes_[self] = Node{pack(bounds), second, 0, static_cast<std::uint16_t>(axis)};
     return self;
   }
 
