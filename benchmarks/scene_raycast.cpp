@@ -18,10 +18,10 @@ using V = mpr::Vec3<T>;
 
 /// The gallery's plane and frame (examples/gallery.cpp): 8 x 6 m, looking into the room.
 struct Setup {
-  V centre{0, 2.4f, 3.0f};
+  V centre{0, 3.1f, 3.0f};
   V forward, right, down;
   Setup() {
-    forward = (V(0, 1.2f, -8) - centre).normalized();
+    forward = (V(0, 1.6f, -8) - centre).normalized();
     right = forward.cross(V::UnitY()).normalized();
     down = forward.cross(right);
   }

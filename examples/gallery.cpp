@@ -110,9 +110,9 @@ int main(int argc, char** argv) try {
   std::printf("classroom: %zu triangles, BVH built in %.1f ms\n", scene->size(),
               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 
-  // One image plane, 8 x 6 m, 3 m in front of the room's open end, looking slightly down.
-  const Vec3 centre(0, 2.4f, 3.0f);
-  const Vec3 forward = (Vec3(0, 1.2f, -8) - centre).normalized();
+  // One image plane, 8 x 6 m, its lower edge just above the floor, looking slightly down.
+  const Vec3 centre(0, 3.1f, 3.0f);
+  const Vec3 forward = (Vec3(0, 1.6f, -8) - centre).normalized();
   const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
   const Vec3 down = forward.cross(right);
   const Frame frame{centre, right, down, forward};

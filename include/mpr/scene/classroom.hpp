@@ -3,7 +3,7 @@
 /// `mpr::scenes::classroom()`: the built-in demo scene, a deterministic classroom rich in straight
 /// lines and known shapes, so that multi-perspective distortions are easy to read.
 ///
-/// World frame: metres, y up, the floor is y = 0, the room spans x in [-7, 7] and z in [-14, 6];
+/// World frame: metres, y up, the floor is y = 0, the room spans x in [-7, 7] and z in [-14, 12];
 /// the blackboard is on the back wall z = -14 and the students face -z. Contents:
 /// - a floor with 1 m checkered tiles (texture), a back wall with a 1 m grid (texture) and the left
 ///   wall plain; the right side and the ceiling are open (background shows);
@@ -81,16 +81,16 @@ template <std::floating_point T = float> [[nodiscard]] scene::Scene<T> classroom
   const int grid_tex =
       s.add_texture(scene::Texture(scene::grid_image(32, 2, Color(0.85f, 0.82f, 0.62f), Color(0.10f, 0.18f, 0.55f))));
 
-  // Floor: 14 x 20 m (it runs 8 m past the open end, under the viewers), 1 m tiles (the
+  // Floor: 14 x 26 m (it runs on under the viewers), 1 m tiles (the
   // 2 x 2-texel checker repeats every 2 m).
-  scene::Mesh<T> floor = quad<T>(V(-7, 0, 6), V(14, 0, 0), V(0, 0, -20), Color(1, 1, 1), T(7), T(10));
+  scene::Mesh<T> floor = quad<T>(V(-7, 0, 12), V(14, 0, 0), V(0, 0, -26), Color(1, 1, 1), T(7), T(13));
   floor.texture = floor_tex;
   s.add(floor, "floor");
   // Back wall with a 1 m grid, 5 m high; plain left wall.
   scene::Mesh<T> back = quad<T>(V(-7, 0, -14), V(14, 0, 0), V(0, 5, 0), Color(1, 1, 1), T(14), T(5));
   back.texture = grid_tex;
   s.add(back, "back wall");
-  s.add(quad<T>(V(-7, 0, 6), V(0, 0, -20), V(0, 5, 0), Color(0.55f, 0.62f, 0.50f)), "left wall");
+  s.add(quad<T>(V(-7, 0, 12), V(0, 0, -26), V(0, 5, 0), Color(0.55f, 0.62f, 0.50f)), "left wall");
 
   // Blackboard with "GLC" in white blocks.
   s.add(box<T>(V(-3.6, 1.1, -14), V(3.6, 3.7, -13.92), Color(0.03f, 0.16f, 0.08f)), "blackboard");
