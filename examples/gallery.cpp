@@ -123,12 +123,14 @@ int main(int argc, char** argv) try {
   for (const auto& v : kViews) renderers.emplace_back(plane, gallery_glc(v.first, plane, frame), sampler);
 
   const mpr::RenderOptions options{threads};
+  mpr::Image<mpr::Rgb8> view_a;
   for (std::size_t k = 0; k < kViews.size(); ++k) {
     mpr::Image<mpr::Rgb8> image(width, height);
     renderers[k].render(image.view(), mpr::Region(0, 0, width, height), options);
     const auto path = out / (std::string(1, kViews[k].first) + "_" + kViews[k].second + ".png");
     mpr::write_png(path, image);
     std::printf("wrote %s\n", path.string().c_str());
+    if (k == 0) view_a = image;
   }
 
   // The contact sheet: all nine views in one multi-view render call (row-major A..I).
@@ -162,6 +164,11 @@ int main(int argc, char** argv) try {
   const mpr::scene::RasterImage raster = mpr::scene::rasterize(*scene, camera, raster_options);
   mpr::write_png(out / "A_perspective_rasterized.png", raster.color);
   std::printf("wrote %s\n", (out / "A_perspective_rasterized.png").string().c_str());
+  long identical = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) identical += mpr::to_rgb8(raster.color(x, y)) == view_a(x, y) ? 1 : 0;
+  std::printf("view A, rasterized vs ray cast: %ld of %d pixels identical (%.3f%%)\n", identical, width * height,
+              100.0 * static_cast<double>(identical) / (width * height));
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "mpr-gallery: %s\n", e.what());
