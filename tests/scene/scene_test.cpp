@@ -137,8 +137,8 @@ TEMPLATE_TEST_CASE("degenerate triangles are skipped and counted", "[scene][bad_
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1e-30, 0, 0}};
   m.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 0, 2}, {1, 1, 1}, {0, 4, 2}};
   mpr::scene::Scene<T> s;
-  // {0,4,2} has area 5e-31: tiny but not degenerate relative to its edge lengths? It is: its
-  // longest edge is 1 and the relative area ~ 1e-30 is far below rounding.
+  // Skipped: collinear {0,1,3}, repeated indices {0,0,2} and {1,1,1}, and the sliver {0,4,2}
+  // whose area relative to its squared edge length (~1e-30) is far below rounding.
   CHECK(s.add(m) == 1);
   CHECK(s.degenerate_skipped() == 4);
   CHECK(s.textured_triangles() == 0);
