@@ -32,10 +32,12 @@ template <class T> mpr::scene::Mesh<T> pixel_triangle(T x0, T y0, T x1, T y1, T 
 TEMPLATE_TEST_CASE("top-left fill rule: shared edges and vertices are covered exactly once", "[scene][raster]", float,
                    double) {
   using T = TestType;
-  const int w = 24, h = 24;
+  // A 4 x 4 grid of cells, vertices on pixel centres, both diagonals mixed: every edge passes
+  // through pixel centres. Small cells use the per-pixel edge test, large ones (>= 16 pixels
+  // wide) the exact per-row span solver; both must give the same rule.
+  const int cell = GENERATE(4, 19);
+  const int w = 4 * cell + 8, h = w;
   const auto camera = simple_camera<T>(8, w, h);
-  // A 4 x 4 grid of cells from pixel 2 to 20, vertices on pixel centres, both diagonals mixed,
-  // plus a fan around the centre vertex: every edge passes through pixel centres.
   mpr::Image<int> count(w, h, 0);
   int triangles = 0;
   const auto add = [&](T x0, T y0, T x1, T y1, T x2, T y2) {
@@ -49,7 +51,7 @@ TEMPLATE_TEST_CASE("top-left fill rule: shared edges and vertices are covered ex
   };
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
-      const T x0 = T(2 + 4.5 * i), y0 = T(2 + 4.5 * j), x1 = x0 + T(4.5), y1 = y0 + T(4.5);
+      const T x0 = T(2 + cell * i), y0 = T(2 + cell * j), x1 = x0 + T(cell), y1 = y0 + T(cell);
       if ((i + j) % 2) {
         add(x0, y0, x1, y0, x1, y1);
         add(x0, y0, x1, y1, x0, y1); // clockwise on screen: orientation must not matter
@@ -58,18 +60,20 @@ TEMPLATE_TEST_CASE("top-left fill rule: shared edges and vertices are covered ex
         add(x1, y0, x1, y1, x0, y1);
       }
     }
+  const int last = 2 + 4 * cell;
   int once = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       REQUIRE(count(x, y) <= 1); // no double coverage
-      const bool inside = x > 2 && x < 20 && y > 2 && y < 20;
-      if (inside) {
-        CHECK(count(x, y) == 1); // no cracks
+      if (x >= 2 && x < last && y >= 2 && y < last) {
+        CHECK(count(x, y) == 1); // no cracks; the top and left borders are in, bottom/right out
         ++once;
+      } else {
+        CHECK(count(x, y) == 0);
       }
     }
   CHECK(triangles == 32);
-  CHECK(once == 17 * 17);
+  CHECK(once == (4 * cell) * (4 * cell));
 }
 
 TEMPLATE_TEST_CASE("the z-buffer keeps the nearest surface whatever the order", "[scene][raster]", float, double) {

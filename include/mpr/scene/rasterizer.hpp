@@ -12,7 +12,7 @@
 /// is covered by exactly one of them); perspective-correct depth and barycentrics, evaluated
 /// exactly from the triangle's camera-space plane at each pixel centre (so clipping and snapping
 /// never perturb them); a z-buffer
-/// on camera depth (ties keep the earlier triangle). The image is cut into square tiles that are
+/// on inverse camera depth (ties keep the earlier triangle). The image is cut into square tiles that are
 /// rasterized in parallel; each tile processes its triangles in scene order, so the result does
 /// not depend on the thread count. Visible pixels are shaded once, after visibility is resolved,
 /// with `Scene::shade` -- the same function the ray caster uses.
@@ -71,6 +71,8 @@ template <class T> struct ClipVertex {
 /// snapping changes depth or interpolated attributes.
 struct PlaneEquation {
   double alpha, beta, gamma, d;
+  /// 1 / z = inv_alpha x + inv_beta y + inv_gamma (the z-test compares 1 / z: no division).
+  double inv_alpha, inv_beta, inv_gamma;
   std::array<double, 3> c0, g1, g2;
 };
 
@@ -177,16 +179,19 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       if (!(nn > 0) || d == 0 || !std::isfinite(d)) continue; // seen edge-on: covers no area
       const Eigen::Vector3d abc = K_inverse.transpose() * n; // n . (K^-1 (x, y, 1))
       const Eigen::Vector3d g1 = e2.cross(n) / nn, g2 = n.cross(e1) / nn;
-      planes.push_back({abc.x(), abc.y(), abc.z(), d, {c0.x(), c0.y(), c0.z()}, {g1.x(), g1.y(), g1.z()},
-                        {g2.x(), g2.y(), g2.z()}});
+      planes.push_back({abc.x(), abc.y(), abc.z(), d, abc.x() / d, abc.y() / d, abc.z() / d,
+                        {c0.x(), c0.y(), c0.z()}, {g1.x(), g1.y(), g1.z()}, {g2.x(), g2.y(), g2.z()}});
     }
     const std::uint32_t plane_index = static_cast<std::uint32_t>(planes.size() - 1);
     // Project and snap every polygon vertex, then fan-triangulate.
     std::array<std::int64_t, 9> fx{}, fy{};
     for (int j = 0; j < n; ++j) {
       const ClipVertex<T>& v = poly[cur][j];
-      fx[j] = std::llround(static_cast<double>(v.X / v.W) * static_cast<double>(detail::kSubpixel));
-      fy[j] = std::llround(static_cast<double>(v.Y / v.W) * static_cast<double>(detail::kSubpixel));
+      // Inside the guard band, so the values fit easily; round half away from zero.
+      const double sx = static_cast<double>(v.X / v.W) * static_cast<double>(detail::kSubpixel);
+      const double sy = static_cast<double>(v.Y / v.W) * static_cast<double>(detail::kSubpixel);
+      fx[j] = static_cast<std::int64_t>(sx + (sx >= 0 ? 0.5 : -0.5));
+      fy[j] = static_cast<std::int64_t>(sy + (sy >= 0 ? 0.5 : -0.5));
     }
     for (int k = 1; k + 1 < n; ++k) {
       int idx[3] = {0, k, k + 1};
@@ -237,28 +242,29 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
 
   // 3. Tiles in parallel: visibility, then shading of the visible pixels.
   const Color background = scene.background();
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   mpr::detail::parallel_rows(0, tiles_x * tiles_y, options.threads, [&](int tile) noexcept {
     const int tx0 = (tile % tiles_x) * ts, ty0 = (tile / tiles_x) * ts;
     const int tw = std::min(ts, width - tx0), th = std::min(ts, height - ty0);
-    for (int y = 0; y < th; ++y) {
-      float* d = depth.row(ty0 + y) + tx0;
-      std::fill(d, d + tw, std::numeric_limits<float>::infinity());
-    }
-    // Per-pixel winner: screen triangle and original barycentrics (thread-local tile storage).
-    std::uint32_t winner[256 * 256 / 16]; // enough for tiles up to 64 x 64
+    // Per-pixel winner (screen triangle) and its 1 / z, in tile-local storage: on the stack for
+    // tiles up to 64 x 64, else allocated once per tile (never per pixel).
+    constexpr int kStackPixels = 64 * 64;
+    std::uint32_t winner[kStackPixels];
+    float nearness[kStackPixels];
     std::vector<std::uint32_t> big_winner;
+    std::vector<float> big_nearness;
     std::uint32_t* win = winner;
-    if (tw * th > static_cast<int>(sizeof(winner) / sizeof(winner[0]))) {
-      // Large tiles: heap storage (allocated once per tile, never per pixel).
+    float* near_buf = nearness;
+    if (tw * th > kStackPixels) {
       try {
         big_winner.resize(static_cast<std::size_t>(tw) * th);
+        big_nearness.resize(static_cast<std::size_t>(tw) * th);
       } catch (...) {
         return;
       }
       win = big_winner.data();
+      near_buf = big_nearness.data();
     }
-    std::fill(win, win + tw * th, kNone);
+    std::fill(near_buf, near_buf + tw * th, 0.0f); // 1 / z = 0: infinitely far
     for (std::uint32_t k : bins[static_cast<std::size_t>(tile)]) {
       const ScreenTriangle& s = screen[k];
       const int x0 = std::max(s.x0, tx0), x1 = std::min(s.x1, tx0 + tw - 1);
@@ -276,17 +282,40 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
         bias[j] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
       }
       const PlaneEquation& pe = planes[s.plane];
+      // Wide triangles: solve each row's covered span exactly from the integer edge functions
+      // (no stepping over empty pixels of the bounding box); narrow ones: test pixel by pixel.
+      const bool spans = x1 - x0 >= 16;
       for (int y = y0; y <= y1; ++y) {
-        const double row_term = pe.beta * y + pe.gamma;
-        std::int64_t e0 = row_start[0], e1 = row_start[1], e2 = row_start[2];
-        float* drow = depth.row(y);
+        const double row_term = pe.inv_beta * y + pe.inv_gamma;
+        float* nrow = near_buf + (y - ty0) * tw - tx0;
         std::uint32_t* wrow = win + (y - ty0) * tw - tx0;
-        for (int x = x0; x <= x1; ++x, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
-          if ((e0 + bias[0]) < 0 || (e1 + bias[1]) < 0 || (e2 + bias[2]) < 0) continue;
-          const float z = static_cast<float>(pe.d / (pe.alpha * x + row_term));
-          if (z < drow[x]) {
-            drow[x] = z;
-            wrow[x] = k;
+        if (spans) {
+          std::int64_t lo = x0, hi = x1;
+          for (int j = 0; j < 3; ++j) {
+            const std::int64_t e = row_start[j] + bias[j], sx = step_x[j]; // inside: e + (x - x0) sx >= 0
+            if (sx > 0)
+              lo = std::max(lo, x0 - detail::floor_div(e, sx)); // x - x0 >= ceil(-e / sx)
+            else if (sx < 0)
+              hi = std::min(hi, x0 + detail::floor_div(e, -sx));
+            else if (e < 0)
+              hi = lo - 1;
+          }
+          for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
+            const float inv_z = static_cast<float>(pe.inv_alpha * x + row_term);
+            if (inv_z > nrow[x]) {
+              nrow[x] = inv_z;
+              wrow[x] = k;
+            }
+          }
+        } else {
+          std::int64_t e0 = row_start[0], e1 = row_start[1], e2 = row_start[2];
+          for (int x = x0; x <= x1; ++x, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
+            if ((e0 + bias[0]) < 0 || (e1 + bias[1]) < 0 || (e2 + bias[2]) < 0) continue;
+            const float inv_z = static_cast<float>(pe.inv_alpha * x + row_term);
+            if (inv_z > nrow[x]) {
+              nrow[x] = inv_z;
+              wrow[x] = k;
+            }
           }
         }
         row_start[0] += step_y[0];
@@ -297,16 +326,20 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
     // Shading: recompute the winner's perspective-correct barycentrics at each visible pixel.
     for (int y = 0; y < th; ++y) {
       Color* crow = color.row(ty0 + y) + tx0;
+      float* drow = depth.row(ty0 + y) + tx0;
       const std::uint32_t* wrow = win + y * tw;
+      const float* nrow = near_buf + y * tw;
       for (int x = 0; x < tw; ++x) {
-        if (wrow[x] == kNone) {
+        if (!(nrow[x] > 0.0f)) {
           crow[x] = background;
+          drow[x] = std::numeric_limits<float>::infinity();
           continue;
         }
         const ScreenTriangle& s = screen[wrow[x]];
         const PlaneEquation& pe = planes[s.plane];
         const double px = tx0 + x, py = ty0 + y;
         const double z = pe.d / (pe.alpha * px + pe.beta * py + pe.gamma);
+        drow[x] = static_cast<float>(z);
         const Eigen::Vector3d c = z * (K_inverse * Eigen::Vector3d(px, py, 1.0));
         const double cx = c.x() - pe.c0[0], cy = c.y() - pe.c0[1], cz = c.z() - pe.c0[2];
         const T b1 = static_cast<T>(cx * pe.g1[0] + cy * pe.g1[1] + cz * pe.g1[2]);
