@@ -84,6 +84,7 @@ public:
     int ky = kx + 1 == 3 ? 0 : kx + 1;
     if (d[kz] < 0) std::swap(kx, ky);
     const T sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = T(1) / d[kz];
+    const T ox = o[kx], oy = o[ky], oz = o[kz]; // locals: hit updates cannot alias them
 
     // Per-ray slab set-up: t = p * inv - o * inv for each axis; the near plane of each axis
     // follows the sign of the direction.
@@ -109,7 +110,7 @@ public:
       const Node& node = nodes_[current];
       if (node.count > 0) {
         for (std::uint32_t i = node.index, end = node.index + node.count; i < end; ++i)
-          intersect(i, o, kx, ky, kz, sx, sy, sz, hit);
+          intersect(i, ox, oy, oz, kx, ky, kz, sx, sy, sz, hit);
       } else {
         // Test both children; descend into the nearer, keep the farther for later.
         const std::uint32_t a = current + 1, b = node.index;
@@ -172,12 +173,12 @@ private:
   };
 
   /// Woop, Benthin & Wald 2013, fig. 2 and 3 (with the double-precision fallback for edge hits).
-  void intersect(std::uint32_t i, const T* o, int kx, int ky, int kz, T sx, T sy, T sz,
+  void intersect(std::uint32_t i, T ox, T oy, T oz, int kx, int ky, int kz, T sx, T sy, T sz,
                  Hit<T>& hit) const noexcept {
     const Packed& tri = packed_[i];
-    const T ax = tri.p[0][kx] - o[kx], ay = tri.p[0][ky] - o[ky], az = tri.p[0][kz] - o[kz];
-    const T bx = tri.p[1][kx] - o[kx], by = tri.p[1][ky] - o[ky], bz = tri.p[1][kz] - o[kz];
-    const T cx = tri.p[2][kx] - o[kx], cy = tri.p[2][ky] - o[ky], cz = tri.p[2][kz] - o[kz];
+    const T ax = tri.p[0][kx] - ox, ay = tri.p[0][ky] - oy, az = tri.p[0][kz] - oz;
+    const T bx = tri.p[1][kx] - ox, by = tri.p[1][ky] - oy, bz = tri.p[1][kz] - oz;
+    const T cx = tri.p[2][kx] - ox, cy = tri.p[2][ky] - oy, cz = tri.p[2][kz] - oz;
     const T Ax = ax - sx * az, Ay = ay - sy * az;
     const T Bx = bx - sx * bz, By = by - sy * bz;
     const T Cx = cx - sx * cz, Cy = cy - sy * cz;
