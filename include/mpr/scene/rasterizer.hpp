@@ -160,8 +160,8 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
     if (all_near_out) continue;
     int cur = 0;
     if (!all_inside) {
-      const T planes[5][4] = {{0, 0, 1, -near}, {1, 0, guard, 0}, {-1, 0, gx1, 0}, {0, 1, guard, 0}, {0, -1, gy1, 0}};
-      for (const auto& pl : planes) {
+      const T clip_planes[5][4] = {{0, 0, 1, -near}, {1, 0, guard, 0}, {-1, 0, gx1, 0}, {0, 1, guard, 0}, {0, -1, gy1, 0}};
+      for (const auto& pl : clip_planes) {
         n = detail::clip_polygon(poly[cur], n, poly[1 - cur], pl[0], pl[1], pl[2], pl[3]);
         cur = 1 - cur;
         if (n < 3) break;
