@@ -1,0 +1,121 @@
+#include <mpr/scene/scene.hpp>
+
+#include <catch2/catch.hpp>
+
+#if defined(MPR_HAVE_TINYOBJLOADER)
+#include <mpr/io/image_io.hpp>
+#include <mpr/scene/obj_loader.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace {
+
+/// A fresh folder for this test run's files.
+std::filesystem::path temp_folder() {
+  const auto dir = std::filesystem::temp_directory_path() / ("mpr_obj_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path write(const std::string& name, const std::string& text) {
+  const auto path = temp_folder() / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// Expects `add_obj` to throw an io_error at `line` whose message contains `fragment`.
+void expect_error(const std::string& text, std::size_t line, const std::string& fragment) {
+  const auto path = write("bad.obj", text);
+  mpr::scene::Scene<float> scene;
+  try {
+    mpr::scene::add_obj(scene, path);
+    FAIL("no error for:\n" << text);
+  } catch (const mpr::io_error& e) {
+    INFO(e.what());
+    CHECK(e.line() == line);
+    CHECK(e.path() == path.string());
+    CHECK(std::string(e.what()).find(fragment) != std::string::npos);
+    CHECK(std::string(e.what()).find(path.string() + ":" + std::to_string(line)) != std::string::npos);
+  }
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("add_obj loads a quad with vertex colours", "[scene][obj]", float, double) {
+  const auto path = write("quad.obj", "# a unit quad\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\nv 0 1 0 1 1 1\n"
+                                      "f 1 2 3 4\n");
+  mpr::scene::Scene<TestType> scene;
+  REQUIRE(mpr::scene::add_obj(scene, path, {.color = mpr::Color(0.5f, 0.5f, 0.5f), .scale = 2.0}) == 2);
+  REQUIRE(scene.size() == 2);
+  const auto& t = scene.triangles()[0];
+  CHECK(t.p[1].x() == TestType(2)); // scaled
+  CHECK((t.color[0] == mpr::Color(1, 0, 0)).all());
+  CHECK(!t.uniform_color);
+  CHECK(t.normal.z() == Approx(1));
+}
+
+TEST_CASE("add_obj applies MTL colours and diffuse textures", "[scene][obj]") {
+  const auto dir = temp_folder();
+  mpr::Image<mpr::Rgb8> texels(2, 2, mpr::Rgb8{255, 0, 0});
+  mpr::write_png(dir / "red.png", texels);
+  write("mat.mtl", "newmtl green\nKd 0 1 0\nnewmtl textured\nKd 1 1 1\nmap_Kd red.png\n"
+                   "newmtl missing\nKd 1 1 1\nmap_Kd nowhere.png\n");
+  const auto ok = write("mat.obj", "mtllib mat.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                   "usemtl green\nf 1 2 3\nusemtl textured\nf 1/1 2/2 3/3\n");
+  mpr::scene::Scene<float> scene;
+  REQUIRE(mpr::scene::add_obj(scene, ok) == 2);
+  int textured = 0, green = 0;
+  for (const auto& t : scene.triangles()) {
+    if (t.texture >= 0) ++textured;
+    if ((t.color[0] == mpr::Color(0, 1, 0)).all()) ++green;
+  }
+  CHECK(textured == 1);
+  CHECK(green == 1);
+  CHECK(scene.textures().size() == 1);
+
+  const auto missing = write("missing.obj", "mtllib mat.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                            "usemtl missing\nf 1/1 2/2 3/3\n");
+  mpr::scene::Scene<float> other;
+  try {
+    mpr::scene::add_obj(other, missing);
+    FAIL("a missing texture was accepted");
+  } catch (const mpr::io_error& e) {
+    CHECK(std::string(e.what()).find("nowhere.png") != std::string::npos);
+    CHECK(std::string(e.what()).find("missing") != std::string::npos);
+  }
+}
+
+TEST_CASE("add_obj names the file and line of malformed input", "[scene][obj][bad_input]") {
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n", 3, "not a finite number");
+  expect_error("v 0 0 0\nv 1 0\n", 2, "malformed vertex");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n", 3, "not a finite number");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n", 5, "not a vertex defined so far");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", 4, "face vertex index");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", 4, "fewer than 3");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n", 4, "texture index");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", 4, "normal index");
+  expect_error("mtllib none.mtl\nv 0 0 0\n", 1, "not found");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2/3/4 2 3\n", 4, "malformed face reference");
+}
+
+TEST_CASE("add_obj rejects missing files and files without faces", "[scene][obj][bad_input]") {
+  mpr::scene::Scene<float> scene;
+  CHECK_THROWS_AS(mpr::scene::add_obj(scene, temp_folder() / "does_not_exist.obj"), mpr::io_error);
+  const auto empty = write("empty.obj", "# nothing\nv 0 0 0\n");
+  CHECK_THROWS_WITH(mpr::scene::add_obj(scene, empty), Catch::Contains("no faces"));
+  const auto degenerate = write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n");
+  CHECK(mpr::scene::add_obj(scene, degenerate) == 1);
+  CHECK(scene.degenerate_skipped() == 1);
+  CHECK_THROWS_AS(mpr::scene::add_obj(scene, degenerate, {.scale = -1}), mpr::argument_error);
+}
+
+#else
+
+TEST_CASE("add_obj (tinyobjloader not found)", "[scene][obj]") {
+  WARN("skipped: tinyobjloader was not found when configuring, so <mpr/scene/obj_loader.hpp> is not tested");
+}
+
+#endif

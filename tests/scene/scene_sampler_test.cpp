@@ -1,0 +1,118 @@
+#include <mpr/mpr.hpp>
+#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/scene.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <type_traits>
+
+namespace {
+
+template <class T> mpr::PinholeCamera<T> classroom_camera(int w, int h) {
+  return mpr::PinholeCamera<T>::look_at(mpr::Vec3<T>(0.3, 2.2, 3.5), mpr::Vec3<T>(0, 1.3, -8), mpr::Vec3<T>(0, 1, 0),
+                                        T(1.0), w, h);
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("rasterizer and ray caster agree on a pinhole view of the classroom", "[scene][agreement]", float,
+                   double) {
+  using T = TestType;
+  const int w = 160, h = 120;
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto camera = classroom_camera<T>(w, h);
+  const mpr::scene::RasterImage raster = mpr::scene::rasterize(*scene, camera, {.threads = 2});
+
+  const T plane_depth = T(0.5);
+  const mpr::PlanarSurface<T> plane = camera.image_plane(plane_depth);
+  const mpr::GlcSelector<T> glc = camera.glc_on(plane);
+  const mpr::Region region(0, 0, w, h);
+  const mpr::Renderer color_renderer(plane, glc, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(scene));
+  const mpr::Renderer depth_renderer(plane, glc,
+                                     mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>(scene));
+  mpr::Image<mpr::Rgb8> cast(w, h);
+  mpr::Image<float> cast_depth(w, h);
+  color_renderer.render(cast.view(), region, {2});
+  depth_renderer.render(cast_depth.view(), region, {2});
+
+  int same = 0, depth_ok = 0, both_hit = 0, coverage_mismatch = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (mpr::to_rgb8(raster.color(x, y)) == cast(x, y)) ++same;
+      const float zr = raster.depth(x, y);
+      const float tc = cast_depth(x, y);
+      if (std::isinf(zr) != std::isinf(tc)) {
+        ++coverage_mismatch;
+        continue;
+      }
+      if (std::isinf(zr)) continue;
+      ++both_hit;
+      const double zc = static_cast<double>(tc) + static_cast<double>(plane_depth);
+      if (std::abs(zc - zr) <= 1e-4 * zr) ++depth_ok;
+    }
+  const double total = double(w) * h;
+  INFO("identical pixels " << same << " / " << total << ", depth within 1e-4: " << depth_ok << " / " << both_hit
+                           << ", coverage mismatches " << coverage_mismatch);
+  std::printf("agreement (%s): %d / %.0f identical pixels, depth within 1e-4 at %d / %d, coverage mismatches %d\n",
+              sizeof(T) == 4 ? "float" : "double", same, total, depth_ok, both_hit, coverage_mismatch);
+  CHECK(same >= 0.995 * total);
+  CHECK(both_hit > 0.5 * total);
+  // Depth: pixels where both hit the same surface; edges may hit different surfaces.
+  CHECK(depth_ok >= 0.995 * both_hit);
+  CHECK(coverage_mismatch <= 0.005 * total);
+}
+
+TEST_CASE("stateless policies take no bytes; samplers declare what they compute", "[scene][compile]") {
+  using SceneF = mpr::scene::Scene<float>;
+  using Color = mpr::SceneSampler<SceneF, mpr::RayCast>;
+  using Depth = mpr::SceneSampler<SceneF, mpr::RayCast, mpr::HitDepth>;
+  STATIC_REQUIRE(std::is_empty_v<mpr::RayCast>);
+  STATIC_REQUIRE(std::is_empty_v<mpr::ShadedColor>);
+  STATIC_REQUIRE(std::is_empty_v<mpr::HitDepth>);
+  // The sampler is one shared pointer to the immutable scene + BVH: the tags add nothing.
+  STATIC_REQUIRE(sizeof(Color) == sizeof(std::shared_ptr<const int>));
+  STATIC_REQUIRE(sizeof(Depth) == sizeof(std::shared_ptr<const int>));
+  STATIC_REQUIRE(mpr::RaySampler<Color>);
+  STATIC_REQUIRE(mpr::RaySampler<Depth>);
+  STATIC_REQUIRE(mpr::RaySampler<mpr::SceneSampler<mpr::scene::Scene<double>, mpr::RayCast>>);
+  STATIC_REQUIRE(std::is_same_v<mpr::sampler_color_t<Color>, mpr::Color>);
+  STATIC_REQUIRE(std::is_same_v<mpr::sampler_color_t<Depth>, float>); // depth only: no colour
+  STATIC_REQUIRE(std::is_same_v<typename Color::scalar_type, float>);
+  // Negative cases: a scene or a BVH alone is not a sampler; the depth sampler cannot fill an
+  // 8-bit colour image (float stores as float only), the colour sampler can.
+  STATIC_REQUIRE_FALSE(mpr::RaySampler<SceneF>);
+  STATIC_REQUIRE_FALSE(mpr::RaySampler<mpr::scene::Bvh<float>>);
+  STATIC_REQUIRE_FALSE(mpr::StorableAs<mpr::Rgb8, float>);
+  STATIC_REQUIRE(mpr::StorableAs<mpr::Rgb8, mpr::Color>);
+  // Renderer composition: float sampler with a double selector does not compose.
+  STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>, Color>);
+  STATIC_REQUIRE(mpr::ComposablePolicies<mpr::PlanarSurface<float>, mpr::GlcSelector<float>, Color>);
+}
+
+TEST_CASE("untextured triangles never touch a texture; depth sampling never shades", "[scene][compile]") {
+  using V = mpr::Vec3<float>;
+  // A texture full of NaN: any lookup would poison the colour.
+  mpr::Image<mpr::Color> poison(4, 4, mpr::Color(std::nanf(""), std::nanf(""), std::nanf("")));
+  auto scene = std::make_shared<mpr::scene::Scene<float>>();
+  const int tex = scene->add_texture(mpr::scene::Texture(poison));
+  scene->add(mpr::scene::quad<float>(V(-1, -1, 2), V(1, 0, 0), V(0, 2, 0), mpr::Color(0.5f, 0.5f, 0.5f)), "plain");
+  auto textured = mpr::scene::quad<float>(V(0, -1, 2), V(1, 0, 0), V(0, 2, 0), mpr::Color(1, 1, 1));
+  textured.texture = tex;
+  scene->add(textured, "poisoned");
+  CHECK(scene->textured_triangles() == 2);
+  const std::shared_ptr<const mpr::scene::Scene<float>> shared = scene;
+  const mpr::SceneSampler<mpr::scene::Scene<float>, mpr::RayCast> color(shared);
+  const mpr::SceneSampler<mpr::scene::Scene<float>, mpr::RayCast, mpr::HitDepth> depth(shared);
+  const mpr::Ray<float> plain{V(-0.5f, 0, 0), V(0, 0, 1)}, poisoned{V(0.5f, 0, 0), V(0, 0, 2)};
+  CHECK(color.sample(plain).allFinite());     // no texture work for the untextured quad
+  CHECK(!color.sample(poisoned).allFinite()); // (the poison is real)
+  CHECK(depth.sample(poisoned) == 1.0f);      // depth: t = 2 / |direction.z| = 1, no shading
+  CHECK(depth.sample(plain) == 2.0f);
+  CHECK(std::isinf(depth.sample({V(5, 5, 0), V(0, 0, 1)})));
+  CHECK((color.sample({V(5, 5, 0), V(0, 0, 1)}) == scene->background()).all());
+  using Sampler = mpr::SceneSampler<mpr::scene::Scene<float>, mpr::RayCast>;
+  CHECK_THROWS_AS(Sampler(std::shared_ptr<const mpr::scene::Scene<float>>()), mpr::argument_error);
+}
