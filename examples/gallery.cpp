@@ -6,6 +6,7 @@
 // (identical to view A up to edge pixels).
 //
 // usage: mpr-gallery [--width N] [--threads N] [OUTPUT_FOLDER]   (defaults: 480, all, mpr-gallery-output)
+#include <mpr/glc.hpp>
 #include <mpr/mpr.hpp>
 #include <mpr/sampler/pinhole_camera.hpp>
 #include <mpr/scene.hpp>
@@ -24,51 +25,6 @@ namespace {
 
 using T = float;
 using Vec3 = mpr::Vec3<T>;
-
-/// The frame of the shared image plane: centre, unit right / down / forward (into the scene).
-struct Frame {
-  Vec3 centre, right, down, forward;
-};
-
-// ---------------------------------------------------------------------------------------------
-// GLC CORNER DIRECTIONS, constructed directly (to be replaced by mpr::glc::gallery_view(id, plane,
-// scene_centre, scale) from include/mpr/glc/ when that module is merged).
-//
-// Every GLC on the plane is d(x, y) = forward + (M (x, y) + c) in the (right, down) basis, with
-// (x, y) the offset from the plane centre in world units: the rays meet the line/point where
-// det(I + lambda M) = 0 (ECCV 2004, sec. 3, the characteristic equation). The nine types:
-//   A perspective         M = I / f                 (all rays through one point)
-//   B orthographic        M = 0, c = 0
-//   C oblique orthogr.    M = 0, c != 0             (parallel rays, not perpendicular to the plane)
-//   D pushbroom           M = diag(0, 1/f)          (parallel in x, through a horizontal slit)
-//   E twisted orthogr.    M = [[0, k], [0, 0]]      (nilpotent: no slit, all rays parallel to a plane)
-//   F  ... looking down   as E with c pointing down
-//   G cross-slit          M = diag(1/fx, 1/fy)      (two slits)
-//   H pencil              M = [[1/f, k], [0, 1/f]]  (double root, one slit)
-//   I bilinear            M = [[a, -k], [k, a]]     (complex roots: no slit)
-mpr::GlcSelector<T> gallery_glc(char id, const mpr::PlanarSurface<T>& plane, const Frame& f) {
-  T m00 = 0, m01 = 0, m10 = 0, m11 = 0, cx = 0, cy = 0;
-  const T focal = 5;
-  switch (id) {
-  case 'A': m00 = m11 = 1 / focal; break;
-  case 'B': break;
-  case 'C': cx = T(0.35); cy = T(0.12); break;
-  case 'D': m11 = 1 / focal; break;
-  case 'E': m01 = T(0.16); break;
-  case 'F': m01 = T(0.16); cy = T(0.45); break;
-  case 'G': m00 = T(1) / 3; m11 = T(1) / 14; break;
-  case 'H': m00 = m11 = 1 / focal; m01 = T(0.12); break;
-  case 'I': m00 = m11 = T(0.12); m01 = T(-0.12); m10 = T(0.12); break;
-  default: throw mpr::argument_error("view id", std::string(1, id));
-  }
-  const auto direction = [&](T u, T v) {
-    const Vec3 offset = plane.point_at({u, v}) - f.centre;
-    const T x = offset.dot(f.right), y = offset.dot(f.down);
-    return Vec3(f.forward + (m00 * x + m01 * y + cx) * f.right + (m10 * x + m11 * y + cy) * f.down);
-  };
-  return {plane, direction(0, 0), direction(1, 0), direction(0, 1)};
-}
-// ---------------------------------------------------------------------------------------------
 
 constexpr std::array<std::pair<char, const char*>, 9> kViews = {{{'A', "perspective"},
                                                                  {'B', "orthographic"},
@@ -115,12 +71,14 @@ int main(int argc, char** argv) try {
   const Vec3 forward = (Vec3(0, 1.6f, -8) - centre).normalized();
   const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
   const Vec3 down = forward.cross(right);
-  const Frame frame{centre, right, down, forward};
   const auto plane = mpr::PlanarSurface<T>::centred(centre, T(8) * right, T(6) * down);
+  // The gallery cameras of the GLC module, aimed at the middle of the room and framing ~14 m.
+  const Vec3 scene_centre(0, 1.6f, -8);
+  const T scene_scale = 14;
 
   using R = mpr::Renderer<mpr::PlanarSurface<T>, mpr::GlcSelector<T>, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>>;
   std::vector<R> renderers;
-  for (const auto& v : kViews) renderers.emplace_back(plane, gallery_glc(v.first, plane, frame), sampler);
+  for (const auto& v : kViews) renderers.emplace_back(plane, mpr::glc::gallery_view(v.first, plane, scene_centre, scene_scale), sampler);
 
   const mpr::RenderOptions options{threads};
   mpr::Image<mpr::Rgb8> view_a;
@@ -146,16 +104,41 @@ int main(int argc, char** argv) try {
   mpr::write_png(out / "contact_sheet.png", sheet);
   std::printf("wrote %s\n", (out / "contact_sheet.png").string().c_str());
 
-  // View A again, rasterized: the pinhole camera at A's centre of projection whose pixels map
-  // exactly onto the plane's region.
-  const Vec3 eye = centre - T(5) * forward; // A's focal length is 5 (see gallery_glc)
+  // Rectified views (Yu & McMillan, ICCV 2005): each view resampled through the homography of
+  // the image plane that makes the back wall's central 8.8 x 6.6 m rectangle fill the output, so
+  // the skewed views (oblique, twisted, bilinear) look natural again. One contact sheet.
+  const std::array<Vec3, 4> wall = {Vec3(-4.4f, 5.4f, -14), Vec3(4.4f, 5.4f, -14), Vec3(4.4f, -1.2f, -14),
+                                    Vec3(-4.4f, -1.2f, -14)};
+  mpr::Image<mpr::Rgb8> rectified_sheet(3 * width, 3 * height, mpr::Rgb8{255, 255, 255});
+  for (std::size_t k = 0; k < kViews.size(); ++k) {
+    const mpr::GlcSelector<T>& glc = renderers[k].selector();
+    try {
+      const mpr::glc::Rectified<T> r = mpr::glc::rectify(plane, glc, mpr::glc::target_region(plane, glc, wall));
+      const mpr::Renderer rectified(r.surface, r.selector, sampler);
+      rectified.render(rectified_sheet.view(), region(static_cast<int>(k)), options);
+    } catch (const mpr::error& e) {
+      std::printf("view %c: no rectified variant (%s)\n", kViews[k].first, e.what());
+    }
+  }
+  for (int y = 0; y < rectified_sheet.height(); ++y)
+    for (int x = 0; x < rectified_sheet.width(); ++x)
+      if (x % width == 0 || y % height == 0) rectified_sheet(x, y) = mpr::Rgb8{255, 255, 255};
+  mpr::write_png(out / "contact_sheet_rectified.png", rectified_sheet);
+  std::printf("wrote %s\n", (out / "contact_sheet_rectified.png").string().c_str());
+
+  // View A again, rasterized: the pinhole camera at A's centre of projection (from the GLC
+  // classifier) whose pixels map exactly onto the plane's region.
+  const mpr::glc::Classification<T> a = mpr::glc::classify(plane, renderers[0].selector());
+  if (a.type != mpr::glc::Type::pinhole) throw mpr::error("gallery view A is not a pinhole");
+  const Vec3 eye = a.centre;
+  const T focal = (centre - eye).dot(forward); // distance from the eye to the plane
   mpr::Mat3<T> Rm;
   Rm.row(0) = right.transpose();
   Rm.row(1) = down.transpose();
   Rm.row(2) = forward.transpose();
   mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
-  K(0, 0) = T(5) * static_cast<T>(width) / T(8);
-  K(1, 1) = T(5) * static_cast<T>(height) / T(6);
+  K(0, 0) = focal * static_cast<T>(width) / T(8);
+  K(1, 1) = focal * static_cast<T>(height) / T(6);
   K(0, 2) = T(0.5) * static_cast<T>(width) - T(0.5);
   K(1, 2) = T(0.5) * static_cast<T>(height) - T(0.5);
   const mpr::PinholeCamera<T> camera(K, Rm, Vec3(-(Rm * eye)), width, height);
