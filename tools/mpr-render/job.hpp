@@ -1,0 +1,297 @@
+#pragma once
+// mpr-render's job description: every option of the command line (documented in `options()`),
+// parsed into a `Job` by `make_job`. Rendering lives in render_job.hpp.
+
+#include "animation.hpp"
+#include "cli_args.hpp"
+
+#include <mpr/core/error.hpp>
+#include <mpr/core/vec.hpp>
+
+#include <array>
+#include <cmath>
+#include <tuple>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mpr_cli {
+
+enum class SamplerKind { scene, obj, par, stanford, lfca };
+enum class Interpolation { nearest, synthetic, cylinder };
+
+/// Everything one invocation of mpr-render does. Lengths are world units of the sampler's data
+/// (classroom: metres), angles in degrees.
+struct Job {
+  // Output.
+  int width = 480, height = 360; ///< size of ONE view (tile); the image is cols*width x rows*height
+  bool size_given = false;       ///< light fields default to the reference camera's size
+  int cols = 1, rows = 1;
+  std::vector<std::string> views{"default"}; ///< view specs, row-major, one per tile
+  std::filesystem::path output = "mpr-render.png";
+  int threads = 0;
+  bool use_double = false;
+  bool print_camera = false;
+  bool video = true; ///< also write an MP4 of an animation when ffmpeg is on PATH
+  int frames = 0;    ///< 0: a single image; N >= 1: an animation of N frames
+  // Sampler.
+  SamplerKind sampler = SamplerKind::scene;
+  std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
+  double obj_scale = 1;
+  Interpolation interpolation = Interpolation::synthetic;
+  Track radius{10};                   ///< cylinder aperture radius
+  std::optional<Track> focal_depth;   ///< light fields: depth of the focal (image) plane
+  double reference_depth = 1000;      ///< Stanford / LFCA: depth of the rectified reference plane
+  double position_scale = 1;          ///< Stanford / LFCA: world units per stored position unit
+  std::optional<int> camera;          ///< light fields: the reference camera (index)
+  // Surface.
+  std::optional<mpr::Vec3<double>> plane_centre, look_at;
+  std::optional<std::pair<double, double>> plane_size;
+  mpr::Vec3<double> up{0, 1, 0};
+  Track tilt_x{0}, tilt_y{0}; ///< degrees, about the plane's width / height direction
+  std::optional<std::array<mpr::Vec3<double>, 4>> rectify; ///< scene quad that fills the output
+  // Selector helpers.
+  std::optional<mpr::Vec3<double>> scene_centre;
+  std::optional<double> scene_scale;
+  std::optional<std::string> morph_to; ///< second view spec of a morph
+  Track morph = Track::parse("0:1", "--morph"); ///< morph weight (0: the view, 1: morph_to)
+};
+
+/// Every option of mpr-render, with help text and an example.
+inline const std::vector<OptionSpec>& options() {
+  static const std::vector<OptionSpec> specs = {
+      {"help", "", "Print this help and exit.", "mpr-render --help"},
+      {"output", "FILE.png", "Output PNG (default mpr-render.png). With --frames N: FILE_0001.png ... FILE_NNNN.png.",
+       "--output out/cross.png"},
+      {"size", "WxH", "Size of one view in pixels (default 480x360).", "--size 640x480"},
+      {"layout", "CxR", "Tile C x R views side by side in one image (default 1x1); list them with --views.",
+       "--layout 3x3 --views A,B,C,D,E,F,G,H,I"},
+      {"view", "VIEW", "The camera (selector) of a single view; see VIEW below (default: 'default').", "--view G"},
+      {"views", "V1,V2,...", "One VIEW per tile of --layout, row-major (',' separates views; use ';' inside).",
+       "--views A,G,pinhole:0;1.6;10"},
+      {"threads", "N", "Worker threads, 0 = all (default 0). Images are identical for any N.", "--threads 2"},
+      {"double", "", "Render in double precision (default float).", "--double"},
+      {"print-camera", "", "Print each view's GLC type, slits and centre (mpr::glc::classify) to stdout.",
+       "--view G --print-camera"},
+      {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",
+       "--scene classroom"},
+      {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj bunny.obj"},
+      {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).", "--obj-scale 0.01"},
+      {"par", "FILE_par.txt", "Sampler: a light field from a Middlebury-style _par.txt calibration.",
+       "--par data/templeSR/templeSR_par.txt"},
+      {"stanford", "FOLDER", "Sampler: a Stanford light-field archive folder of out_RR_CC_Y_X.png images.",
+       "--stanford data/stanford/chess"},
+      {"lfca", "POSITIONS.txt", "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
+       "--lfca rig/positions.txt"},
+      {"interp", "nearest|synthetic|cylinder",
+       "Light-field interpolation: nearest camera, full synthetic aperture, or cylinder aperture of --radius "
+       "(default synthetic).",
+       "--interp cylinder --radius 10"},
+      {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.", "--radius 5:40"},
+      {"focal-depth", "D|A:B|T=V,...",
+       "Light fields: depth of the focal (image) plane in front of the reference camera (default: the reference "
+       "plane); animatable.",
+       "--focal-depth 700:950"},
+      {"reference-depth", "D", "Stanford/LFCA: depth of the rectified reference plane (default 1000).",
+       "--reference-depth 1000"},
+      {"position-scale", "S", "Stanford/LFCA: world units per stored camera-position unit (default 1).",
+       "--position-scale 1"},
+      {"camera", "K", "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
+                      "the middle camera for _par.txt).",
+       "--camera 3"},
+      {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).", "--plane-centre 0,3.1,3"},
+      {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).", "--look-at 0,1.6,-8"},
+      {"plane-size", "W,H", "Extent of the image plane in world units.", "--plane-size 8,6"},
+      {"up", "X,Y,Z", "Up direction of the image plane (default 0,1,0).", "--up 0,1,0"},
+      {"tilt-x", "DEG|A:B|T=V,...", "Tilt the image plane about its horizontal axis, degrees; animatable.",
+       "--tilt-x 0:30"},
+      {"tilt-y", "DEG|A:B|T=V,...", "Tilt the image plane about its vertical axis, degrees; animatable.",
+       "--tilt-y -20:20"},
+      {"rectify", "P1;P2;P3;P4",
+       "Rectifying homography: the world quadrilateral (top-left, top-right, bottom-right, bottom-left; each "
+       "X,Y,Z) that fills each view (mpr::glc::rectify).",
+       "--rectify -4.4,5.4,-14;4.4,5.4,-14;4.4,-1.2,-14;-4.4,-1.2,-14"},
+      {"scene-centre", "X,Y,Z", "Where the gallery views aim (default: the middle of the scene).",
+       "--scene-centre 0,1.6,-8"},
+      {"scene-scale", "S", "Size of the scene the gallery views frame, world units (default: the scene's).",
+       "--scene-scale 14"},
+      {"frames", "N", "Render an animation of N frames (numbered PNGs; an MP4 too when ffmpeg is on PATH).",
+       "--frames 24 --tilt-x 0:30"},
+      {"morph-to", "VIEW", "Animation: morph from the view to this VIEW by interpolating corner directions.",
+       "--view A --morph-to G --frames 24"},
+      {"morph", "A:B|T=V,...", "Morph weight over the animation (default 0:1).", "--morph 0=0,0.5=1,1=0"},
+      {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--no-video"},
+  };
+  return specs;
+}
+
+/// The text after the options in --help.
+inline const char* view_help() {
+  return R"(VIEW (a camera, i.e. a GLC ray selector on the image plane):
+  default            scene: gallery view A; light field: the reference camera's pinhole
+  A..I or a name     gallery view (mpr::glc::gallery_view): A perspective, B orthographic, C oblique,
+                     D pushbroom, E twisted, F twisted_down, G cross_slit, H pencil, I bilinear
+  pinhole:C          pinhole with centre C                          e.g. pinhole:0,1.6,10
+  orthographic:D     parallel rays along D                          e.g. orthographic:0,-0.1,-1
+  oblique:AU,AV      rays tilted AU, AV degrees from the normal     e.g. oblique:30,10
+  pushbroom:P:D      slit through P along D                         e.g. pushbroom:0,1.6,10:1,0,0
+  cross_slit:P1:D1:P2:D2  two slits                                 e.g. cross_slit:0,1.6,8:0,1,0:0,1.6,12:1,0,0
+  pencil:P:D:K       slit through P along D, twist K (1/length)     e.g. pencil:0,1.6,10:1,0,0:0.05
+  twisted:D:W:K      twisted orthographic: direction D, tilt W, twist K
+  bilinear:D:C:K     bilinear: direction D, convergence C, twist K  e.g. bilinear:0,0,-1:-0.05:0.05
+  corners:D00:D10:D01  explicit ray directions at the top-left, top-right and bottom-left corners
+In --views, separate the numbers of a vector with ';' instead of ',' (e.g. pinhole:0;1.6;10).
+ANIMATABLE values are a number, FROM:TO (linear over the frames) or keyframes T=V,T=V,... with
+times from 0 to 1.
+
+Examples:
+  mpr-render --view G --print-camera --output cross_slit.png
+  mpr-render --layout 3x3 --views A,B,C,D,E,F,G,H,I --size 320x240 --output gallery.png
+  mpr-render --stanford /data/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
+  mpr-render --stanford /data/stanford/chess --focal-depth 820 --tilt-x -30:30 --frames 24 --output tilt.png
+)";
+}
+
+/// An animatable value: a plain number is constant, otherwise Track::parse.
+inline Track parse_track(const std::string& text, const std::string& option) {
+  if (text.find(':') == std::string::npos && text.find('=') == std::string::npos)
+    return Track(parse_number(text, option));
+  return Track::parse(text, option);
+}
+
+/// Builds the Job from a parsed command line; throws argument_error naming the option.
+inline Job make_job(const ParsedArgs& args) {
+  Job job;
+  if (const auto v = args.get("output")) {
+    if (v->empty()) throw mpr::argument_error("--output", "empty file name");
+    job.output = *v;
+  }
+  if (const auto v = args.get("size")) {
+    std::tie(job.width, job.height) = parse_size(*v, "--size");
+    job.size_given = true;
+  }
+  if (const auto v = args.get("layout")) {
+    std::tie(job.cols, job.rows) = parse_size(*v, "--layout");
+    if (job.cols * job.rows > 64) throw mpr::argument_error("--layout", "at most 64 views");
+  }
+  if (args.has("view") && args.has("views")) throw mpr::argument_error("--view", "give --view or --views, not both");
+  if (const auto v = args.get("view")) job.views = {*v};
+  if (const auto v = args.get("views")) {
+    job.views = split(*v, ',');
+    for (std::string& s : job.views)
+      for (char& c : s)
+        if (c == ';') c = ',';
+  }
+  if (static_cast<int>(job.views.size()) == 1 && job.cols * job.rows > 1)
+    job.views.assign(static_cast<std::size_t>(job.cols * job.rows), job.views[0]);
+  if (static_cast<int>(job.views.size()) != job.cols * job.rows)
+    throw mpr::argument_error("--views", std::to_string(job.views.size()) + " views for a " + std::to_string(job.cols) +
+                                             "x" + std::to_string(job.rows) + " layout");
+  if (const auto v = args.get("threads")) job.threads = parse_int(*v, "--threads", 0, 1024);
+  job.use_double = args.has("double");
+  job.print_camera = args.has("print-camera");
+  job.video = !args.has("no-video");
+  if (const auto v = args.get("frames")) job.frames = parse_int(*v, "--frames", 1, 100000);
+
+  int samplers = 0;
+  if (const auto v = args.get("scene")) {
+    if (*v != "classroom") throw mpr::argument_error("--scene", "'" + *v + "' is not a built-in scene (classroom)");
+    ++samplers;
+  }
+  const auto input = [&](const char* name, SamplerKind kind) {
+    if (const auto v = args.get(name)) {
+      job.sampler = kind;
+      job.input = *v;
+      ++samplers;
+      std::error_code ec;
+      if (!std::filesystem::exists(job.input, ec))
+        throw mpr::io_error(job.input.string(), kind == SamplerKind::stanford ? "no such folder" : "no such file");
+    }
+  };
+  input("obj", SamplerKind::obj);
+  input("par", SamplerKind::par);
+  input("stanford", SamplerKind::stanford);
+  input("lfca", SamplerKind::lfca);
+  if (samplers > 1) throw mpr::argument_error("--scene/--obj/--par/--stanford/--lfca", "choose one sampler");
+  const bool light_field = job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford ||
+                           job.sampler == SamplerKind::lfca;
+  const auto lf_only = [&](const char* name) {
+    if (args.has(name) && !light_field)
+      throw mpr::argument_error(std::string("--") + name, "applies to light fields (--par, --stanford, --lfca) only");
+  };
+  for (const char* name : {"interp", "radius", "focal-depth", "reference-depth", "position-scale", "camera"})
+    lf_only(name);
+  if (args.has("obj-scale") && job.sampler != SamplerKind::obj)
+    throw mpr::argument_error("--obj-scale", "applies to --obj only");
+  if (const auto v = args.get("obj-scale")) {
+    job.obj_scale = parse_number(*v, "--obj-scale");
+    if (!(job.obj_scale > 0)) throw mpr::argument_error("--obj-scale", "must be positive");
+  }
+  if (const auto v = args.get("interp")) {
+    if (*v == "nearest") job.interpolation = Interpolation::nearest;
+    else if (*v == "synthetic") job.interpolation = Interpolation::synthetic;
+    else if (*v == "cylinder") job.interpolation = Interpolation::cylinder;
+    else throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic or cylinder");
+  }
+  if (const auto v = args.get("radius")) {
+    if (job.interpolation != Interpolation::cylinder)
+      throw mpr::argument_error("--radius", "needs --interp cylinder");
+    job.radius = parse_track(*v, "--radius");
+    for (const Track::Key& k : job.radius.keys())
+      if (!(k.value > 0)) throw mpr::argument_error("--radius", "must be positive");
+  }
+  if (const auto v = args.get("focal-depth")) {
+    job.focal_depth = parse_track(*v, "--focal-depth");
+    for (const Track::Key& k : job.focal_depth->keys())
+      if (!(k.value > 0)) throw mpr::argument_error("--focal-depth", "must be positive (in front of the camera)");
+  }
+  if (const auto v = args.get("reference-depth")) {
+    job.reference_depth = parse_number(*v, "--reference-depth");
+    if (!(job.reference_depth > 0)) throw mpr::argument_error("--reference-depth", "must be positive");
+  }
+  if (const auto v = args.get("position-scale")) {
+    job.position_scale = parse_number(*v, "--position-scale");
+    if (!(job.position_scale > 0)) throw mpr::argument_error("--position-scale", "must be positive");
+  }
+  if (const auto v = args.get("camera")) job.camera = parse_int(*v, "--camera", 0, 1000000);
+
+  if (const auto v = args.get("plane-centre")) job.plane_centre = parse_vec3(*v, "--plane-centre");
+  if (const auto v = args.get("look-at")) job.look_at = parse_vec3(*v, "--look-at");
+  if (const auto v = args.get("up")) job.up = parse_vec3(*v, "--up");
+  if (const auto v = args.get("plane-size")) {
+    const std::vector<std::string> wh = split(*v, ',');
+    if (wh.size() != 2) throw mpr::argument_error("--plane-size", "'" + *v + "' is not W,H");
+    job.plane_size = {parse_number(wh[0], "--plane-size"), parse_number(wh[1], "--plane-size")};
+    if (!(job.plane_size->first > 0) || !(job.plane_size->second > 0))
+      throw mpr::argument_error("--plane-size", "must be positive");
+  }
+  if ((job.plane_centre || job.look_at || job.plane_size) && !(job.plane_centre && job.look_at && job.plane_size))
+    throw mpr::argument_error("--plane-centre", "give --plane-centre, --look-at and --plane-size together");
+  if (light_field && job.plane_centre) throw mpr::argument_error("--plane-centre", "light fields use --focal-depth and --camera");
+  if (const auto v = args.get("tilt-x")) job.tilt_x = parse_track(*v, "--tilt-x");
+  if (const auto v = args.get("tilt-y")) job.tilt_y = parse_track(*v, "--tilt-y");
+  for (const Track* t : {&job.tilt_x, &job.tilt_y})
+    for (const Track::Key& k : t->keys())
+      if (!(std::abs(k.value) < 89)) throw mpr::argument_error("--tilt", "tilt angles must lie within (-89, 89) degrees");
+  if (const auto v = args.get("rectify")) {
+    const std::vector<std::string> corners = split(*v, ';');
+    if (corners.size() != 4) throw mpr::argument_error("--rectify", "needs four X,Y,Z corners separated by ';'");
+    std::array<mpr::Vec3<double>, 4> quad;
+    for (std::size_t k = 0; k < 4; ++k) quad[k] = parse_vec3(corners[k], "--rectify");
+    job.rectify = quad;
+  }
+  if (const auto v = args.get("scene-centre")) job.scene_centre = parse_vec3(*v, "--scene-centre");
+  if (const auto v = args.get("scene-scale")) {
+    job.scene_scale = parse_number(*v, "--scene-scale");
+    if (!(*job.scene_scale > 0)) throw mpr::argument_error("--scene-scale", "must be positive");
+  }
+  if (const auto v = args.get("morph-to")) job.morph_to = *v;
+  if (const auto v = args.get("morph")) {
+    if (!job.morph_to) throw mpr::argument_error("--morph", "needs --morph-to");
+    job.morph = parse_track(*v, "--morph");
+  }
+  return job;
+}
+
+} // namespace mpr_cli
