@@ -51,6 +51,7 @@ struct Job {
   mpr::Vec3<double> up{0, 1, 0};
   Track tilt_x{0}, tilt_y{0}; ///< degrees, about the plane's width / height direction
   std::optional<std::array<mpr::Vec3<double>, 4>> rectify; ///< scene quad that fills the output
+  bool rectify_to_plane = false; ///< `--rectify plane`: the untilted plane's corners fill the output
   // Selector helpers.
   std::optional<mpr::Vec3<double>> scene_centre;
   std::optional<double> scene_scale;
@@ -110,7 +111,8 @@ inline const std::vector<OptionSpec>& options() {
        "--tilt-y -20:20"},
       {"rectify", "P1;P2;P3;P4",
        "Rectifying homography: the world quadrilateral (top-left, top-right, bottom-right, bottom-left; each "
-       "X,Y,Z) that fills each view (mpr::glc::rectify).",
+       "X,Y,Z) that fills each view (mpr::glc::rectify). 'plane': the untilted image plane's corners, so a "
+       "tilted focal plane keeps the untilted framing.",
        "--rectify -4.4,5.4,-14;4.4,5.4,-14;4.4,-1.2,-14;-4.4,-1.2,-14"},
       {"scene-centre", "X,Y,Z", "Where the gallery views aim (default: the middle of the scene).",
        "--scene-centre 0,1.6,-8"},
@@ -274,7 +276,9 @@ inline Job make_job(const ParsedArgs& args) {
   for (const Track* t : {&job.tilt_x, &job.tilt_y})
     for (const Track::Key& k : t->keys())
       if (!(std::abs(k.value) < 89)) throw mpr::argument_error("--tilt", "tilt angles must lie within (-89, 89) degrees");
-  if (const auto v = args.get("rectify")) {
+  if (const auto v = args.get("rectify"); v && *v == "plane") {
+    job.rectify_to_plane = true;
+  } else if (v) {
     const std::vector<std::string> corners = split(*v, ';');
     if (corners.size() != 4) throw mpr::argument_error("--rectify", "needs four X,Y,Z corners separated by ';'");
     std::array<mpr::Vec3<double>, 4> quad;

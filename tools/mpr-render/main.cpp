@@ -82,6 +82,11 @@ int main(int argc, char** argv) try {
   }
   return 0;
 } catch (const std::exception& e) {
-  std::fprintf(stderr, "mpr-render: %s\n", e.what());
+  // One line: "mpr-render: invalid --size: ...", "mpr-render: /path: no such folder".
+  std::string what = e.what();
+  if (what.rfind("mpr: ", 0) == 0) what.erase(0, 5);
+  for (char& c : what)
+    if (c == '\n') c = ' ';
+  std::fprintf(stderr, "mpr-render: %s\n", what.c_str());
   return 1;
 }

@@ -205,6 +205,14 @@ template <std::floating_point T> mpr::PlanarSurface<T> frame_plane(const mpr::Pl
 
 namespace detail {
 
+/// An error's text without the "mpr: invalid " prefix, to nest it in another message.
+inline std::string nested(const std::exception& e) {
+  std::string what = e.what();
+  for (const char* prefix : {"mpr: invalid ", "mpr: "})
+    if (what.rfind(prefix, 0) == 0) return what.substr(std::char_traits<char>::length(prefix));
+  return what;
+}
+
 inline std::string normalized_name(std::string s) {
   for (char& c : s) c = (c == ' ' || c == '-' || c == ',') ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   std::string out;
@@ -309,8 +317,8 @@ mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& op
       return mpr::GlcSelector<T>(plane, vec(1), vec(2), vec(3));
     }
   } catch (const mpr::argument_error& e) {
-    if (std::string(e.what()).rfind(option, 0) == 0) throw;
-    throw mpr::argument_error(option, "'" + spec + "' is an impossible camera here: " + e.what());
+    if (e.parameter() == option) throw;
+    throw mpr::argument_error(option, "'" + spec + "' is an impossible camera here: " + detail::nested(e));
   }
   throw mpr::argument_error(option, "'" + spec + "' is not a view (see VIEW in --help)");
 }
@@ -319,7 +327,8 @@ mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& op
 template <std::floating_point T>
 CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FrameParams& p, std::size_t k, int width,
                              int height) {
-  const mpr::PlanarSurface<T> plane = frame_plane(base_plane(job, l, p, width, height), p);
+  const mpr::PlanarSurface<T> base = base_plane(job, l, p, width, height);
+  const mpr::PlanarSurface<T> plane = frame_plane(base, p);
   mpr::GlcSelector<T> glc = make_selector<T>(job.views[k], "--view", plane, job, l, p);
   if (job.morph_to) {
     const mpr::GlcSelector<T> to = make_selector<T>(*job.morph_to, "--morph-to", plane, job, l, p);
@@ -328,7 +337,32 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
     try {
       glc = mpr::GlcSelector<T>(plane, mix(glc.d00(), to.d00()), mix(glc.d10(), to.d10()), mix(glc.d01(), to.d01()));
     } catch (const mpr::argument_error& e) {
-      throw mpr::argument_error("--morph-to", std::string("the two views look to opposite sides: ") + e.what());
+      throw mpr::argument_error("--morph-to", "the two views look to opposite sides of the image plane (" +
+                                                  e.parameter() + " of the morph)");
+    }
+  }
+  if (job.rectify_to_plane) {
+    // Where the view's rays through the untilted plane's corners cross the tilted plane.
+    const mpr::GlcSelector<T> base_glc = make_selector<T>(job.views[k], "--view", base, job, l, p);
+    std::array<mpr::Vec2<T>, 4> target;
+    const std::array<mpr::Vec2<T>, 4> corners = {mpr::Vec2<T>(0, 0), mpr::Vec2<T>(1, 0), mpr::Vec2<T>(1, 1),
+                                                 mpr::Vec2<T>(0, 1)};
+    for (std::size_t i = 0; i < 4; ++i) {
+      const mpr::Vec3<T> o = base.point_at(corners[i]);
+      const mpr::Vec3<T> d = base_glc.direction_at(corners[i]);
+      const T along = d.dot(plane.normal());
+      if (!(std::abs(along) > T(1e-6) * d.norm()))
+        throw mpr::argument_error("--rectify", "a corner ray runs parallel to the tilted plane");
+      const mpr::Vec3<T> x = o + (plane.origin() - o).dot(plane.normal()) / along * d - plane.origin();
+      const mpr::Vec3<T>& a = plane.width_vector();
+      const mpr::Vec3<T>& b = plane.height_vector();
+      const T aa = a.dot(a), ab = a.dot(b), bb = b.dot(b), det = aa * bb - ab * ab;
+      target[i] = mpr::Vec2<T>((bb * a.dot(x) - ab * b.dot(x)) / det, (aa * b.dot(x) - ab * a.dot(x)) / det);
+    }
+    try {
+      return mpr::glc::rectify(plane, glc, target);
+    } catch (const mpr::argument_error& e) {
+      throw mpr::argument_error("--rectify", "view " + job.views[k] + ": " + detail::nested(e));
     }
   }
   if (job.rectify) {
@@ -337,7 +371,7 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
     try {
       return mpr::glc::rectify(plane, glc, mpr::glc::target_region(plane, glc, quad));
     } catch (const mpr::argument_error& e) {
-      throw mpr::argument_error("--rectify", std::string("view ") + job.views[k] + ": " + e.what());
+      throw mpr::argument_error("--rectify", "view " + job.views[k] + ": " + detail::nested(e));
     }
   }
   return PlanarCamera<T>{plane, glc};
