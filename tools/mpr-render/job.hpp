@@ -275,7 +275,8 @@ inline Job make_job(const ParsedArgs& args) {
   if (const auto v = args.get("tilt-y")) job.tilt_y = parse_track(*v, "--tilt-y");
   for (const Track* t : {&job.tilt_x, &job.tilt_y})
     for (const Track::Key& k : t->keys())
-      if (!(std::abs(k.value) < 89)) throw mpr::argument_error("--tilt", "tilt angles must lie within (-89, 89) degrees");
+      if (!(std::abs(k.value) < 89))
+        throw mpr::argument_error(t == &job.tilt_x ? "--tilt-x" : "--tilt-y", "must lie within (-89, 89) degrees");
   if (const auto v = args.get("rectify"); v && *v == "plane") {
     job.rectify_to_plane = true;
   } else if (v) {
