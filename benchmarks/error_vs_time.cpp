@@ -343,7 +343,8 @@ int main(int argc, char** argv) try {
         run_leave_one_out(o, name, temple.cast<double>(), mpr_loo::temple_setup<double>(), views);
     for (std::size_t p = 0; p < tf.size(); ++p) {
       rows.push_back(tf[p].row);
-      precision += precision_row("temple (first held-out view), " + tf[p].row.method, tf[p], td[p]);
+      precision += precision_row("temple (times: mean of the views; difference: first view), " + tf[p].row.method,
+                                tf[p], td[p]);
     }
   } else {
     real_note += "temple data not found under " + data.string() + ": skipped\n";
