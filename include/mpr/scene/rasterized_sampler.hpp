@@ -10,6 +10,18 @@
 /// The virtual array can be written to disk in the Middlebury `_par.txt` calibration format plus
 /// one PNG per camera (`write_virtual_array`) and read back with `mpr::read_par_file`, so a
 /// synthetic data set with a known ground truth (the ray-cast scene) can be shared.
+///
+/// Example (16 x 12 cameras of 160 x 120 in the image plane, cylinder aperture of one spacing):
+///
+///     mpr::scene::VirtualArrayConfig<float> config;
+///     config.columns = 16; config.rows = 12; config.width = 160; config.height = 120;
+///     const mpr::SceneSampler<mpr::scene::Scene<float>, mpr::Rasterized<mpr::CylinderAperture>>
+///         sampler(scene, plane, config, {mpr::CylinderAperture{0.5}});
+///     const mpr::Renderer renderer(plane, glc, sampler);   // renders like any other sampler
+///     sampler.write("classroom-array", "classroom");       // classroom_par.txt + cam_RRR_CCC.png
+///
+/// How close this gets to the ray-cast image depends on the scene's depth range against the
+/// array's spacing (one focal plane for all rays): see docs/accuracy.md.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
