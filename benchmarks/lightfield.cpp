@@ -6,7 +6,8 @@
 // `sample_rays`, cameras in the outer loop) and, for comparison, through the per-pixel
 // `sample(ray)` contract only.
 //
-// usage: lightfield [--quick] [DATA_DIR]
+// usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [DATA_DIR]
+//   --only: run only the workloads whose label contains SUBSTRING (e.g. --only=Chess)
 #include "bench_common.hpp"
 
 #include <mpr/lightfield.hpp>
@@ -90,6 +91,8 @@ std::string load_average() {
   return s;
 }
 
+std::string g_only; // --only=: label filter
+
 struct Result {
   double batch_ms, per_pixel_ms, cpu_ms;
 };
@@ -97,6 +100,7 @@ struct Result {
 template <class Sampler>
 Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr::GlcSelector<T>& glc,
                const Sampler& sampler, int w, int h, int threads, int repeats, bool per_pixel) {
+  if (!g_only.empty() && std::string(label).find(g_only) == std::string::npos) return {0, 0, 0};
   const mpr::Region region(0, 0, w, h);
   mpr::Image<mpr::Rgb8> a(w, h), b(w, h);
   const mpr::Renderer batch(plane, glc, sampler);
@@ -128,14 +132,22 @@ Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr:
 int main(int argc, char** argv) {
   const bool quick = mpr_bench::quick_mode(argc, argv);
   std::string data;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) != "--quick") data = argv[i];
+  int repeats_option = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--only=", 0) == 0)
+      g_only = a.substr(7);
+    else if (a.rfind("--repeats=", 0) == 0)
+      repeats_option = std::atoi(a.c_str() + 10);
+    else if (a != "--quick")
+      data = a;
+  }
   if (data.empty()) {
     const char* env = std::getenv("MPR_DATA_DIR");
     data = env != nullptr ? env : "";
   }
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  const int repeats = quick ? 1 : 15;
+  const int repeats = repeats_option > 0 ? repeats_option : quick ? 1 : 15;
   const int nx = quick ? 4 : 10, ny = quick ? 3 : 9, cw = quick ? 160 : 640, ch = quick ? 120 : 480;
   const int size = quick ? 100 : 500;
   const T spacing = 1, focal = quick ? 150 : 600, depth = 20;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -269,6 +270,22 @@ public:
     }
   }
 
+  /// `out[i] = sample(rays[i])` for the rays of `rays.size() / width` consecutive output rows
+  /// (the renderer's optional tile interface, `TileRaySampler`; preconditions there). For
+  /// `SyntheticAperture` each camera is walked once per tile: rows whose points are evenly
+  /// spaced and seen one camera pixel apart are added by shift-and-add over the whole row, so
+  /// the camera rows shared by neighbouring output rows are read while still in cache. The
+  /// other policies, and rows that do not qualify, go through `sample_rays`. Working memory is
+  /// a per-thread buffer; if it cannot grow, rows are done one by one.
+  void sample_tile(std::span<const Ray<T>> rays, int width, std::span<Color> out) const noexcept {
+    const std::size_t w = width > 0 ? static_cast<std::size_t>(width) : rays.size();
+    if constexpr (std::is_same_v<Interpolation, SyntheticAperture>) {
+      if (w > 0 && tile_synthetic(rays, w, out)) return;
+    }
+    for (std::size_t start = 0; start < rays.size(); start += std::max<std::size_t>(w, 1))
+      sample_rays(rays.subspan(start, std::min(w, rays.size() - start)), out.subspan(start));
+  }
+
 private:
   static constexpr std::size_t kChunk = 256;
 
@@ -282,6 +299,70 @@ private:
     T separation = 0; // distance to the nearest centre not in the neighbour list
     int neighbours_begin = 0, neighbours_end = 0; // into neighbours_
   };
+
+  // Per-thread working memory of `sample_tile`.
+  struct TileScratch {
+    std::vector<Vec3<T>> points;
+    std::vector<float> acc; // 4 per ray, 16-byte aligned rows of 4 floats
+    std::vector<float> weight;
+    std::vector<unsigned char> even;
+  };
+
+  bool tile_synthetic(std::span<const Ray<T>> rays, std::size_t w, std::span<Color> out) const noexcept {
+    const std::size_t n = rays.size(), rows = n / w;
+    thread_local TileScratch scratch;
+    try {
+      if (scratch.points.size() < n) scratch.points.resize(n);
+      if (scratch.acc.size() < 4 * n + 4) scratch.acc.resize(4 * n + 4);
+      if (scratch.weight.size() < n) scratch.weight.resize(n);
+      if (scratch.even.size() < rows) scratch.even.resize(rows);
+    } catch (...) {
+      return false;
+    }
+    Vec3<T>* points = scratch.points.data();
+    // 16-byte alignment of the accumulators (the vector itself only guarantees alignof(float)).
+    float* acc_base = scratch.acc.data();
+    while (reinterpret_cast<std::uintptr_t>(acc_base) % 16 != 0) ++acc_base;
+    float(*acc)[4] = reinterpret_cast<float(*)[4]>(acc_base);
+    float* weight = scratch.weight.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = point_of(rays[i]);
+      acc[i][0] = acc[i][1] = acc[i][2] = acc[i][3] = 0;
+      weight[i] = 0;
+    }
+    for (std::size_t r = 0; r < rows; ++r)
+      scratch.even[r] = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
+    for (const CameraData& c : cameras_) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t o = r * w;
+        if (scratch.even[r] && !c.distorted) {
+          if (shift_add(c, points + o, w, acc + o, weight + o)) continue;
+          // The whole row does not fit the affine model within tolerance: try it in chunks.
+          for (std::size_t s0 = 0; s0 < w; s0 += kChunk) {
+            const std::size_t m = std::min(kChunk, w - s0);
+            if (m >= 8 && shift_add(c, points + o + s0, m, acc + o + s0, weight + o + s0)) continue;
+            add_per_ray(c, points + o + s0, m, acc + o + s0, weight + o + s0);
+          }
+          continue;
+        }
+        add_per_ray(c, points + o, w, acc + o, weight + o);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc[i], weight[i]);
+    return true;
+  }
+
+  // acc[i] += pixel of camera c at points[i], weight[i] += 1, for every point c sees.
+  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float (*acc)[4],
+                   float* weight) const noexcept {
+    for (std::size_t i = 0; i < n; ++i) {
+      T x, y;
+      if (project(c, points[i], x, y)) {
+        fetch_add(c, x, y, 1.0f, acc[i]);
+        weight[i] += 1.0f;
+      }
+    }
+  }
 
   [[nodiscard]] Vec3<T> point_of(const Ray<T>& ray) const noexcept {
     return config_.depth ? ray.at(*config_.depth) : ray.origin;
