@@ -700,17 +700,23 @@ private:
     const bool even = n >= 8 && config_.filter == PixelFilter::bilinear && evenly_spaced(points, n);
     for (int j = 0; j < count; ++j) {
       const CameraData& c = cameras_[static_cast<std::size_t>(candidates[j])];
-      bool any = false;
+      // [lo, hi): the rays this camera weighs; shift-and-add covers just that sub-run.
+      std::size_t lo = n, hi = 0;
       for (std::size_t i = 0; i < n; ++i) {
         const T d2 = inverse_length2[i] > 0
                          ? line_distance2(c.centre, rays[i].origin, rays[i].direction, inverse_length2[i])
                          : r2;
         ray_weight[i] = d2 < r2 ? static_cast<float>(T(1) - std::sqrt(d2) / radius) : 0.0f;
-        any = any || ray_weight[i] > 0;
+        if (ray_weight[i] > 0) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
       }
-      if (!any) continue;
-      if (even && !c.distorted && shift_add(c, points, n, acc, weight, ray_weight)) continue;
-      for (std::size_t i = 0; i < n; ++i) {
+      if (lo >= hi) continue;
+      if (even && !c.distorted && hi - lo >= 8 &&
+          shift_add(c, points + lo, hi - lo, acc + lo, weight + lo, ray_weight + lo))
+        continue;
+      for (std::size_t i = lo; i < hi; ++i) {
         T x, y;
         if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
           fetch_add(c, x, y, ray_weight[i], acc[i]);
