@@ -3,6 +3,8 @@
 // PNG per view plus all three side by side in a single multi-view render.
 //
 // usage: mpr-demo [--size N] [OUTPUT_FOLDER]     (defaults: 480, mpr-demo-output)
+#include "example_args.hpp"
+
 #include <mpr/mpr.hpp>
 
 #include <cmath>
@@ -43,23 +45,11 @@ mpr::GlcSelector<T> two_slit(const mpr::PlanarSurface<T>& plane, const Frame& f,
 } // namespace
 
 int main(int argc, char** argv) try {
-  int size = 480;
-  std::filesystem::path out = "mpr-demo-output";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--size" && i + 1 < argc) {
-      size = std::atoi(argv[++i]);
-      if (size < 8 || size > 8192) throw mpr::argument_error("--size", "must be between 8 and 8192");
-    } else if (arg == "--help" || arg == "-h") {
-      std::puts("usage: mpr-demo [--size N] [OUTPUT_FOLDER]   (defaults: 480, mpr-demo-output)");
-      return 0;
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw mpr::argument_error(arg, "unknown option (see --help)");
-    } else {
-      out = arg;
-    }
-  }
-  std::filesystem::create_directories(out);
+  const std::optional<mpr_example::Args> args =
+      mpr_example::parse_args(argc, argv, "mpr-demo", 480, 8, 8192, "mpr-demo-output");
+  if (!args) return 0;
+  const int size = args->size, threads = args->threads;
+  const std::filesystem::path& out = args->out;
 
   // The scene: a 12 x 12-cell checkerboard on the ground plane y = 0.
   mpr::CheckerboardPlane<T>::Config board;
@@ -81,7 +71,7 @@ int main(int argc, char** argv) try {
 
   const auto save = [&](const char* name, const auto& renderer) {
     mpr::Image<mpr::Rgb8> image(size, size);
-    renderer.render(image.view(), mpr::Region(0, 0, size, size));
+    renderer.render(image.view(), mpr::Region(0, 0, size, size), {threads});
     const auto path = out / name;
     mpr::write_png(path, image);
     std::printf("wrote %s\n", path.string().c_str());
@@ -92,7 +82,7 @@ int main(int argc, char** argv) try {
 
   // The same three views side by side in one render call (one region each).
   mpr::Image<mpr::Rgb8> strip(3 * size, size);
-  mpr::render(strip.view(), mpr::RenderOptions{}, mpr::view(mpr::Region(0, 0, size, size), perspective),
+  mpr::render(strip.view(), mpr::RenderOptions{threads}, mpr::view(mpr::Region(0, 0, size, size), perspective),
               mpr::view(mpr::Region(size, 0, size, size), orthographic),
               mpr::view(mpr::Region(2 * size, 0, size, size), cross_slit));
   mpr::write_png(out / "side_by_side.png", strip);

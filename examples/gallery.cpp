@@ -7,6 +7,8 @@
 //
 // usage: mpr-gallery [--width N] [--threads N] [OUTPUT_FOLDER]   (defaults: 480, all, mpr-gallery-output)
 #include <mpr/glc.hpp>
+#include "example_args.hpp"
+
 #include <mpr/mpr.hpp>
 #include <mpr/sampler/pinhole_camera.hpp>
 #include <mpr/scene.hpp>
@@ -39,26 +41,12 @@ constexpr std::array<std::pair<char, const char*>, 9> kViews = {{{'A', "perspect
 } // namespace
 
 int main(int argc, char** argv) try {
-  int width = 480, threads = 0;
-  std::filesystem::path out = "mpr-gallery-output";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--width" && i + 1 < argc) {
-      width = std::atoi(argv[++i]);
-      if (width < 16 || width > 8192) throw mpr::argument_error("--width", "must be between 16 and 8192");
-    } else if (arg == "--threads" && i + 1 < argc) {
-      threads = std::atoi(argv[++i]);
-    } else if (arg == "--help" || arg == "-h") {
-      std::puts("usage: mpr-gallery [--width N] [--threads N] [OUTPUT_FOLDER]   (defaults: 480, all, mpr-gallery-output)");
-      return 0;
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw mpr::argument_error(arg, "unknown option (see --help)");
-    } else {
-      out = arg;
-    }
-  }
+  const std::optional<mpr_example::Args> args =
+      mpr_example::parse_args(argc, argv, "mpr-gallery", 480, 16, 8192, "mpr-gallery-output");
+  if (!args) return 0;
+  const int width = args->size, threads = args->threads;
+  const std::filesystem::path& out = args->out;
   const int height = width * 3 / 4;
-  std::filesystem::create_directories(out);
 
   const auto start = std::chrono::steady_clock::now();
   const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());

@@ -4,6 +4,8 @@
 //
 // usage: glc_gallery_checker [--size N] [OUTPUT_FOLDER]   (defaults: 240, glc-gallery-output)
 #include <mpr/glc.hpp>
+#include "example_args.hpp"
+
 #include <mpr/mpr.hpp>
 
 #include <cmath>
@@ -16,23 +18,11 @@
 int main(int argc, char** argv) try {
   using T = double;
   using V = mpr::Vec3<T>;
-  int size = 240;
-  std::filesystem::path out = "glc-gallery-output";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--size" && i + 1 < argc) {
-      size = std::atoi(argv[++i]);
-      if (size < 8 || size > 4096) throw mpr::argument_error("--size", "must be between 8 and 4096");
-    } else if (arg == "--help" || arg == "-h") {
-      std::puts("usage: glc_gallery_checker [--size N] [OUTPUT_FOLDER]   (defaults: 240, glc-gallery-output)");
-      return 0;
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw mpr::argument_error(arg, "unknown option (see --help)");
-    } else {
-      out = arg;
-    }
-  }
-  std::filesystem::create_directories(out);
+  const std::optional<mpr_example::Args> args =
+      mpr_example::parse_args(argc, argv, "glc_gallery_checker", 240, 8, 4096, "glc-gallery-output");
+  if (!args) return 0;
+  const int size = args->size, threads = args->threads;
+  const std::filesystem::path& out = args->out;
 
   // A 24 x 24-cell board on the ground y = 0, turned by 30 degrees so no board line is parallel
   // to a slit.
@@ -58,16 +48,16 @@ int main(int argc, char** argv) try {
     const auto selector = mpr::glc::gallery_view(entry.id, plane, centre, scale);
     const auto cl = mpr::glc::classify(plane, selector);
     const mpr::Region region(static_cast<int>(k % 3) * size, static_cast<int>(k / 3) * size, size, size);
-    mpr::Renderer(plane, selector, scene).render(sheet.view(), region);
+    mpr::Renderer(plane, selector, scene).render(sheet.view(), region, {threads});
     // Rectified: the board's central square fills the tile (the views that see its four corners).
     std::string note = "not rectified";
     try {
       const auto quad = mpr::glc::target_region(plane, selector, square);
       const auto r = mpr::glc::rectify(plane, selector, quad);
-      mpr::Renderer(r.surface, r.selector, scene).render(rectified.view(), region);
+      mpr::Renderer(r.surface, r.selector, scene).render(rectified.view(), region, {threads});
       note = "rectified";
     } catch (const mpr::argument_error& e) {
-      mpr::Renderer(plane, selector, scene).render(rectified.view(), region);
+      mpr::Renderer(plane, selector, scene).render(rectified.view(), region, {threads});
       note = std::string("not rectified: ") + e.what();
     }
     std::printf("%c %-36s classified %-22s %s\n", entry.id, std::string(entry.name).c_str(),

@@ -5,22 +5,17 @@
 // 8-bit luma (7x7 uniform windows, C1 = (0.01 * 255)^2, C2 = (0.03 * 255)^2), and the render
 // time (median of 3, all hardware threads). Prints a Markdown table.
 //
-// - Stanford Chess: held-out views (06,06), (08,08), (10,10) of the 7x7 grid; focal plane =
-//   z = 820, the middle of the board's depth range (700-950 with the default planar-array
-//   options; the rectified reference plane is at 1000); cylinder radius 10 (about 12
-//   cameras per ray).
-// - Middlebury temple ring: held-out views 3, 7, 13 (0-based) of 16; focal plane through the
-//   centre of the bounding box, facing the held-out camera; cylinder radius 0.3 (the ring's
-//   neighbours are about 0.22 apart).
+// The set-ups (held-out views, focal planes, cylinder radii) are in
+// benchmarks/leave_one_out_setup.hpp, shared with benchmarks/error_vs_time.cpp.
 //
 // usage: leave_one_out [DATA_DIR] [OUTPUT_FOLDER]   (writes loo_<set>_<view>_<policy>.png)
+#include "../benchmarks/leave_one_out_setup.hpp"
 #include "lightfield_common.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -76,8 +71,7 @@ template <class Sampler>
 Row evaluate(const std::string& set, const std::string& view, const std::string& policy, const Sampler& sampler,
              const mpr::PinholeCamera<T>& held, T depth, const mpr::Image<mpr::Rgb8>& truth,
              const std::filesystem::path& out) {
-  const mpr::PlanarSurface<T> plane = held.image_plane(depth);
-  const mpr::Renderer renderer(plane, held.glc_on(plane), sampler);
+  const auto renderer = mpr_loo::held_out_renderer(sampler, held, depth);
   mpr::Image<mpr::Rgb8> image(held.width(), held.height());
   const mpr::Region region(0, 0, held.width(), held.height());
   std::vector<double> times;
@@ -88,15 +82,15 @@ Row evaluate(const std::string& set, const std::string& view, const std::string&
 }
 
 template <class Px>
-void run_set(const std::string& set, const mpr::CameraFrameSet<T, Px>& all, const std::vector<std::size_t>& held_out,
-             double radius, const std::function<T(const mpr::PinholeCamera<T>&)>& depth_of,
-             const std::filesystem::path& out, std::vector<Row>& rows) {
-  for (const std::size_t k : held_out) {
+void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>& all, const std::filesystem::path& out,
+             std::vector<Row>& rows) {
+  const std::string& set = setup.name;
+  const double radius = setup.cylinder_radius;
+  for (const std::size_t k : setup.held_out) {
     const auto others = std::make_shared<const mpr::CameraFrameSet<T, Px>>(all.without(k));
     const mpr::PinholeCamera<T>& held = all.camera(k);
-    const T depth = depth_of(held);
-    std::string view = all.name(k).substr(0, all.name(k).find('.'));
-    if (view.rfind("out_", 0) == 0) view = view.substr(0, 9); // out_RR_CC
+    const T depth = setup.depth_of(held);
+    const std::string view = mpr_loo::view_name(all.name(k));
     rows.push_back(evaluate(set, view, "nearest", mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(others), held, depth,
                             all.image(k), out));
     rows.push_back(evaluate(set, view, "cylinder",
@@ -116,15 +110,11 @@ int main(int argc, char** argv) try {
   std::vector<Row> rows;
   {
     const auto chess = load_chess(data);
-    run_set<mpr::Rgb8>("chess", *chess, {8, 24, 40}, 10.0, [](const mpr::PinholeCamera<T>&) { return T(820); }, out,
-                       rows);
+    run_set<mpr::Rgb8>(mpr_loo::chess_setup<T>(), *chess, out, rows);
   }
   {
-    const auto temple = mpr::read_par_file<T>(data / "middlebury" / "templeSparseRing" / "templeSR_par.txt");
-    const mpr::Vec3<T> target(T(0.5 * (-0.073568 + 0.028855)), T(0.5 * (0.021728 + 0.181892)),
-                              T(0.5 * (-0.012445 + 0.062736)));
-    run_set<mpr::Rgb8>("temple", temple, {3, 7, 13}, 0.3,
-                       [&](const mpr::PinholeCamera<T>& c) { return c.forward().dot(target - c.centre()); }, out, rows);
+    const auto temple = mpr::read_par_file<T>(mpr_loo::temple_par_file<T>(data));
+    run_set<mpr::Rgb8>(mpr_loo::temple_setup<T>(), temple, out, rows);
   }
   std::printf("\n| data set | held-out view | policy | PSNR (dB) | SSIM | render (ms) |\n|---|---|---|---|---|---|\n");
   for (const Row& r : rows)

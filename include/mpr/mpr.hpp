@@ -1,10 +1,13 @@
 #pragma once
 /// \file
-/// Umbrella header: everything in mpr that needs no optional dependency.
+/// Umbrella header: the core, the GLC module, the scene module and the light-field module --
+/// everything in mpr that needs no optional dependency (the OBJ loader, which needs
+/// tinyobjloader, is included separately: <mpr/scene/obj_loader.hpp>).
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
+#include <mpr/core/image_metrics.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/core/pixel.hpp>
 #include <mpr/core/ray.hpp>
@@ -15,3 +18,6 @@
 #include <mpr/sampler/checkerboard_plane.hpp>
 #include <mpr/selector/glc_selector.hpp>
 #include <mpr/surface/planar_surface.hpp>
+#include <mpr/glc.hpp>
+#include <mpr/lightfield.hpp>
+#include <mpr/scene.hpp>

@@ -36,6 +36,9 @@ TEST_CASE("camera frame samplers satisfy the sampler concepts", "[camera_frame_s
   STATIC_REQUIRE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
   STATIC_REQUIRE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
   STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<mpr::CheckerboardPlane<float>>);
+  STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
+  STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::CylinderAperture, double, mpr::Color>>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<mpr::CheckerboardPlane<float>>);
   STATIC_REQUIRE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
                                          mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
   STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
@@ -182,8 +185,9 @@ TEST_CASE("8-bit frames are decoded to linear colour with the exact sRGB table",
   auto frames = std::make_shared<const mpr::CameraFrameSet<float>>(cams, images);
   const mpr::CameraFrameSampler<mpr::NearestCamera> sampler(frames);
   const mpr::Color c = sampler.sample({mpr::Vec3<float>(0, 0, 3), mpr::Vec3<float>(0, 0, 1)});
-  CHECK(c[0] == mpr::srgb8_to_linear(128));
-  CHECK(c[1] == mpr::srgb8_to_linear(7));
+  // Stored as 16-bit linear fixed point (`FixedTexel`): within 1/131070 of the exact table.
+  CHECK(std::abs(c[0] - mpr::srgb8_to_linear(128)) <= 8e-6f);
+  CHECK(std::abs(c[1] - mpr::srgb8_to_linear(7)) <= 8e-6f);
   CHECK(c[2] == 1.0f);
   CHECK(mpr::to_rgb8(c) == mpr::Rgb8{128, 7, 255});
 }
@@ -269,4 +273,55 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
   compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{1.2}));
   }
+}
+
+TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image, for any thread count",
+                   "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  // 3x2 cameras with rows of 320 pixels (wider than the 256-ray batches), a plane parallel to
+  // the array at their pixel scale (whole-row shift-and-add), rendered into an image region
+  // that starts at an odd row and column so tiles and regions do not line up.
+  auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 21, 320.0);
+  const auto linear = mpr_test::plane_images(cams, 12.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(9);
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        px(x, y) = mpr::to_rgb8(img(x, y));
+        px(x, y).g = static_cast<std::uint8_t>(px(x, y).g ^ (rng() & 63));
+      }
+    images.push_back(std::move(px));
+  }
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
+  mpr::Mat3<T> K = cams[0].K();
+  const mpr::PinholeCamera<T> straight(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), 300, 19);
+  const mpr::PlanarSurface<T> plane = straight.image_plane(T(12));
+  const mpr::GlcSelector<T> glc = straight.glc_on(plane);
+  const mpr::Region region(3, 1, 300, 19);
+  const auto compare = [&](const auto& sampler) {
+    const mpr::Renderer renderer(plane, glc, sampler);
+    mpr::Image<mpr::Rgb8> one(305, 22, mpr::Rgb8{1, 2, 3}), two(305, 22, mpr::Rgb8{1, 2, 3});
+    renderer.render(one.view(), region, mpr::RenderOptions{1});
+    renderer.render(two.view(), region, mpr::RenderOptions{2});
+    CHECK(one == two);
+    int worst = 0, untouched = 0;
+    for (int y = 0; y < 22; ++y)
+      for (int x = 0; x < 305; ++x) {
+        const bool inside = x >= 3 && y >= 1 && y < 20 && x < 303;
+        const mpr::Rgb8 b = one(x, y);
+        if (!inside) {
+          untouched += b == mpr::Rgb8{1, 2, 3} ? 1 : 0;
+          continue;
+        }
+        const mpr::Rgb8 p = mpr::to_rgb8(renderer.shade({x, y}, region));
+        worst = std::max({worst, std::abs(p.r - b.r), std::abs(p.g - b.g), std::abs(p.b - b.b)});
+      }
+    CHECK(worst <= 1);
+    CHECK(untouched == 305 * 22 - 300 * 19);
+  };
+  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
 }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <span>
 #include <utility>
+#include <vector>
 
 namespace mpr {
 
@@ -25,6 +26,24 @@ concept BatchRaySampler =
                               std::span<sampler_color_t<M>> out) {
       { m.sample_rays(rays, out) } noexcept;
     };
+
+/// Optional tile interface of a ray sampler: `sample_tile(rays, width, out)` gets the rays of
+/// `rays.size() / width` consecutive image rows of `width` pixels each (row-major, one pixel
+/// after the other; precondition: `width > 0`, `rays.size()` a multiple of it and equal to
+/// `out.size()`) and writes the colour of every ray, the same colours as `sample` per ray (to
+/// rounding), but free to walk its data once per tile (e.g. each camera's image rows once for
+/// several output rows, which share most of them). `mpr::render` then hands each thread whole
+/// tiles of `kTileRows` rows (fixed, so the image is still the same for every thread count);
+/// `sample(ray)` stays the contract.
+template <class M>
+concept TileRaySampler =
+    RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays, int width,
+                              std::span<sampler_color_t<M>> out) {
+      { m.sample_tile(rays, width, out) } noexcept;
+    };
+
+/// Rows per tile for `TileRaySampler`s.
+inline constexpr int kTileRows = 8;
 
 /// Settings of one render call.
 struct RenderOptions {
@@ -92,6 +111,45 @@ public:
     }
   }
 
+  /// Renders pixels [x_begin, x_end) of rows [y_begin, y_end) into `out`. A sampler that models
+  /// `TileRaySampler` gets all their rays in one call (the rays are kept in a per-thread buffer
+  /// that grows to the largest tile seen; if it cannot grow, the rows are rendered one by one).
+  /// Preconditions: the rectangle lies inside both `out` and `region`.
+  template <class Px>
+    requires StorableAs<Px, color_type>
+  void render_tile(ImageView<Px> out, const Region& region, int y_begin, int y_end, int x_begin,
+                   int x_end) const noexcept {
+    if constexpr (TileRaySampler<Sampler>) {
+      const int width = x_end - x_begin, rows = y_end - y_begin;
+      if (width <= 0 || rows <= 0) return;
+      const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
+      thread_local std::vector<Ray<scalar_type>> rays;
+      thread_local std::vector<color_type> colors;
+      bool room = true;
+      try {
+        if (rays.size() < n) rays.resize(n);
+        if (colors.size() < n) colors.resize(n);
+      } catch (...) {
+        room = false;
+      }
+      if (room) {
+        for (int y = y_begin; y < y_end; ++y)
+          for (int x = x_begin; x < x_end; ++x)
+            rays[static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width) +
+                 static_cast<std::size_t>(x - x_begin)] = ray_at(Pixel{x, y}, region);
+        sampler_.sample_tile(std::span<const Ray<scalar_type>>(rays.data(), n), width,
+                             std::span<color_type>(colors.data(), n));
+        for (int y = y_begin; y < y_end; ++y) {
+          Px* row = out.row(y);
+          const color_type* c = colors.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width);
+          for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(c[x - x_begin]);
+        }
+        return;
+      }
+    }
+    for (int y = y_begin; y < y_end; ++y) render_row(out, region, y, x_begin, x_end);
+  }
+
   /// Renders the view into the part of `region` that lies inside `out`.
   template <class Px>
     requires StorableAs<Px, color_type>
@@ -124,16 +182,33 @@ void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... v
   ((y_begin = std::min(y_begin, std::max(views.region.y, 0)),
     y_end = std::max(y_end, std::min(views.region.y + views.region.height, out.height()))),
    ...);
-  const auto row = [&](int y) noexcept {
-    const auto one = [&](const auto& v) noexcept {
-      const Region& r = v.region;
-      if (y < r.y || y >= r.y + r.height) return;
-      const int x0 = std::max(r.x, 0), x1 = std::min(r.x + r.width, out.width());
-      if (x0 < x1) v.renderer->render_row(out, r, y, x0, x1);
+  if constexpr ((TileRaySampler<typename R::sampler_type> || ...)) {
+    // Tiles of kTileRows rows counted from y_begin (fixed, whatever the thread count); each
+    // view renders its part of the tile, later views over earlier ones as for rows.
+    if (y_end <= y_begin) return;
+    const auto tile = [&](int t) noexcept {
+      const int ty0 = y_begin + t * kTileRows, ty1 = std::min(ty0 + kTileRows, y_end);
+      const auto one = [&](const auto& v) noexcept {
+        const Region& r = v.region;
+        const int y0 = std::max(ty0, r.y), y1 = std::min(ty1, r.y + r.height);
+        const int x0 = std::max(r.x, 0), x1 = std::min(r.x + r.width, out.width());
+        if (y0 < y1 && x0 < x1) v.renderer->render_tile(out, r, y0, y1, x0, x1);
+      };
+      (one(views), ...);
     };
-    (one(views), ...);
-  };
-  detail::parallel_rows(y_begin, y_end, options.threads, row);
+    detail::parallel_rows(0, (y_end - y_begin + kTileRows - 1) / kTileRows, options.threads, tile);
+  } else {
+    const auto row = [&](int y) noexcept {
+      const auto one = [&](const auto& v) noexcept {
+        const Region& r = v.region;
+        if (y < r.y || y >= r.y + r.height) return;
+        const int x0 = std::max(r.x, 0), x1 = std::min(r.x + r.width, out.width());
+        if (x0 < x1) v.renderer->render_row(out, r, y, x0, x1);
+      };
+      (one(views), ...);
+    };
+    detail::parallel_rows(y_begin, y_end, options.threads, row);
+  }
 }
 
 template <class Surface, class Selector, class Sampler>

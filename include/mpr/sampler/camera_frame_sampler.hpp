@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -24,11 +25,130 @@
 #include <type_traits>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+#include <immintrin.h>
+/// x86 with GCC/Clang: the row kernels have an AVX2+FMA version chosen at run time (or at
+/// compile time under -mavx2 -mfma), next to the SSE2 and portable ones.
+#define MPR_LF_X86_KERNELS 1
 #endif
 
 namespace mpr {
+
+namespace detail {
+
+/// The bilinear weights of one shift-and-add row, channel scale of the texel type folded in.
+struct RowWeights {
+  float w00, w10, w01, w11;
+};
+
+/// acc[i] += rw[i] * (w00 a[i] + w10 a[i+1] + w01 b[i] + w11 b[i+1]) for i in [0, n) (texels
+/// times their scale; rw == nullptr: weight 1). Reads a[0..n] and b[0..n]. Portable version.
+template <class Texel>
+inline void shift_add_row_portable(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
+                                   std::size_t n) noexcept {
+  for (std::size_t i = 0; i < n; ++i) {
+    const float r = rw != nullptr ? rw[i] : 1.0f;
+    for (int k = 0; k < 4; ++k)
+      acc[i][k] += r * (w.w00 * static_cast<float>(a[i].c[k]) + w.w10 * static_cast<float>(a[i + 1].c[k]) +
+                        w.w01 * static_cast<float>(b[i].c[k]) + w.w11 * static_cast<float>(b[i + 1].c[k]));
+  }
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+#if defined(__SSE2__)
+[[nodiscard]] inline __m128 load_texel_sse2(const LinearTexel* p) noexcept { return _mm_load_ps(p->c); }
+[[nodiscard]] inline __m128 load_texel_sse2(const FixedTexel* p) noexcept {
+  const __m128i q = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+  return _mm_cvtepi32_ps(_mm_unpacklo_epi16(q, _mm_setzero_si128()));
+}
+
+/// SSE2 version of `shift_add_row_portable` (one pixel per step, the previous texels reused).
+template <class Texel>
+inline void shift_add_row_sse2(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
+                               std::size_t n) noexcept {
+  const __m128 v00 = _mm_set1_ps(w.w00), v10 = _mm_set1_ps(w.w10), v01 = _mm_set1_ps(w.w01), v11 = _mm_set1_ps(w.w11);
+  __m128 a0 = load_texel_sse2(a), b0 = load_texel_sse2(b);
+  for (std::size_t i = 0; i < n; ++i) {
+    const __m128 a1 = load_texel_sse2(a + i + 1), b1 = load_texel_sse2(b + i + 1);
+    __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v00, a0), _mm_mul_ps(v10, a1)),
+                            _mm_add_ps(_mm_mul_ps(v01, b0), _mm_mul_ps(v11, b1)));
+    if (rw != nullptr) sum = _mm_mul_ps(sum, _mm_set1_ps(rw[i]));
+    _mm_storeu_ps(acc[i], _mm_add_ps(_mm_loadu_ps(acc[i]), sum));
+    a0 = a1;
+    b0 = b1;
+  }
+}
+#endif
+
+// Two texels (8 floats) starting at p.
+[[nodiscard]] __attribute__((target("avx2,fma"))) inline __m256 load_texels2_avx2(const LinearTexel* p) noexcept {
+  return _mm256_loadu_ps(p->c);
+}
+[[nodiscard]] __attribute__((target("avx2,fma"))) inline __m256 load_texels2_avx2(const FixedTexel* p) noexcept {
+  return _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
+}
+
+/// AVX2+FMA version of `shift_add_row_portable`: two pixels per step. Call only where the CPU
+/// has AVX2 and FMA (`cpu_has_avx2_fma`).
+template <class Texel>
+__attribute__((target("avx2,fma"))) inline void shift_add_row_avx2(const Texel* a, const Texel* b, RowWeights w,
+                                                                   const float* rw, float (*acc)[4],
+                                                                   std::size_t n) noexcept {
+  const __m256 v00 = _mm256_set1_ps(w.w00), v10 = _mm256_set1_ps(w.w10), v01 = _mm256_set1_ps(w.w01),
+               v11 = _mm256_set1_ps(w.w11);
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
+    __m256 sum = _mm256_mul_ps(v00, load_texels2_avx2(a + i));
+    sum = _mm256_fmadd_ps(v10, load_texels2_avx2(a + i + 1), sum);
+    sum = _mm256_fmadd_ps(v01, load_texels2_avx2(b + i), sum);
+    sum = _mm256_fmadd_ps(v11, load_texels2_avx2(b + i + 1), sum);
+    float* o = acc[i];
+    if (rw != nullptr) {
+      const __m256 r = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_set1_ps(rw[i])), _mm_set1_ps(rw[i + 1]), 1);
+      _mm256_storeu_ps(o, _mm256_fmadd_ps(r, sum, _mm256_loadu_ps(o)));
+    } else {
+      _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), sum));
+    }
+  }
+  if (i < n) shift_add_row_portable(a + i, b + i, w, rw != nullptr ? rw + i : nullptr, acc + i, n - i);
+}
+
+/// Whether this CPU runs the AVX2+FMA kernels (checked once).
+[[nodiscard]] inline bool cpu_has_avx2_fma() noexcept {
+#if defined(__AVX2__) && defined(__FMA__)
+  return true;
+#else
+  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return yes;
+#endif
+}
+#endif
+
+/// The row kernel `shift_add_row` uses on this machine: "avx2+fma", "sse2" or "portable".
+[[nodiscard]] inline const char* shift_add_kernel_name() noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  if (cpu_has_avx2_fma()) return "avx2+fma";
+#if defined(__SSE2__)
+  return "sse2";
+#endif
+#endif
+  return "portable";
+}
+
+/// `shift_add_row_portable` with the fastest kernel this machine runs.
+template <class Texel>
+inline void shift_add_row(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
+                          std::size_t n) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  if (cpu_has_avx2_fma()) return shift_add_row_avx2(a, b, w, rw, acc, n);
+#if defined(__SSE2__)
+  return shift_add_row_sse2(a, b, w, rw, acc, n);
+#endif
+#endif
+  shift_add_row_portable(a, b, w, rw, acc, n);
+}
+
+} // namespace detail
 
 /// Answers a ray with the colour the cameras of a `CameraFrameSet` see at the ray's point.
 ///
@@ -56,6 +176,7 @@ public:
   using color_type = Color;
   using frame_set_type = CameraFrameSet<T, Px>;
   using interpolation_type = Interpolation;
+  using texel_type = typename frame_set_type::texel_type;
 
   struct Config {
     /// Reconstruction of each camera's pixels.
@@ -149,6 +270,22 @@ public:
     }
   }
 
+  /// `out[i] = sample(rays[i])` for the rays of `rays.size() / width` consecutive output rows
+  /// (the renderer's optional tile interface, `TileRaySampler`; preconditions there). For
+  /// `SyntheticAperture` each camera is walked once per tile: rows whose points are evenly
+  /// spaced and seen one camera pixel apart are added by shift-and-add over the whole row, so
+  /// the camera rows shared by neighbouring output rows are read while still in cache. The
+  /// other policies, and rows that do not qualify, go through `sample_rays`. Working memory is
+  /// a per-thread buffer; if it cannot grow, rows are done one by one.
+  void sample_tile(std::span<const Ray<T>> rays, int width, std::span<Color> out) const noexcept {
+    const std::size_t w = width > 0 ? static_cast<std::size_t>(width) : rays.size();
+    if constexpr (std::is_same_v<Interpolation, SyntheticAperture>) {
+      if (w > 0 && tile_synthetic(rays, w, out)) return;
+    }
+    for (std::size_t start = 0; start < rays.size(); start += std::max<std::size_t>(w, 1))
+      sample_rays(rays.subspan(start, std::min(w, rays.size() - start)), out.subspan(start));
+  }
+
 private:
   static constexpr std::size_t kChunk = 256;
 
@@ -157,11 +294,75 @@ private:
     Vec3<T> centre;
     bool distorted = false;
     int width = 0, height = 0;
-    const LinearTexel* texels = nullptr;
+    const texel_type* texels = nullptr;
     const PinholeCamera<T>* camera = nullptr;
     T separation = 0; // distance to the nearest centre not in the neighbour list
     int neighbours_begin = 0, neighbours_end = 0; // into neighbours_
   };
+
+  // Per-thread working memory of `sample_tile`.
+  struct TileScratch {
+    std::vector<Vec3<T>> points;
+    std::vector<float> acc; // 4 per ray, 16-byte aligned rows of 4 floats
+    std::vector<float> weight;
+    std::vector<unsigned char> even;
+  };
+
+  bool tile_synthetic(std::span<const Ray<T>> rays, std::size_t w, std::span<Color> out) const noexcept {
+    const std::size_t n = rays.size(), rows = n / w;
+    thread_local TileScratch scratch;
+    try {
+      if (scratch.points.size() < n) scratch.points.resize(n);
+      if (scratch.acc.size() < 4 * n + 4) scratch.acc.resize(4 * n + 4);
+      if (scratch.weight.size() < n) scratch.weight.resize(n);
+      if (scratch.even.size() < rows) scratch.even.resize(rows);
+    } catch (...) {
+      return false;
+    }
+    Vec3<T>* points = scratch.points.data();
+    // 16-byte alignment of the accumulators (the vector itself only guarantees alignof(float)).
+    float* acc_base = scratch.acc.data();
+    while (reinterpret_cast<std::uintptr_t>(acc_base) % 16 != 0) ++acc_base;
+    float(*acc)[4] = reinterpret_cast<float(*)[4]>(acc_base);
+    float* weight = scratch.weight.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = point_of(rays[i]);
+      acc[i][0] = acc[i][1] = acc[i][2] = acc[i][3] = 0;
+      weight[i] = 0;
+    }
+    for (std::size_t r = 0; r < rows; ++r)
+      scratch.even[r] = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
+    for (const CameraData& c : cameras_) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t o = r * w;
+        if (scratch.even[r] && !c.distorted) {
+          if (shift_add(c, points + o, w, acc + o, weight + o)) continue;
+          // The whole row does not fit the affine model within tolerance: try it in chunks.
+          for (std::size_t s0 = 0; s0 < w; s0 += kChunk) {
+            const std::size_t m = std::min(kChunk, w - s0);
+            if (m >= 8 && shift_add(c, points + o + s0, m, acc + o + s0, weight + o + s0)) continue;
+            add_per_ray(c, points + o + s0, m, acc + o + s0, weight + o + s0);
+          }
+          continue;
+        }
+        add_per_ray(c, points + o, w, acc + o, weight + o);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc[i], weight[i]);
+    return true;
+  }
+
+  // acc[i] += pixel of camera c at points[i], weight[i] += 1, for every point c sees.
+  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float (*acc)[4],
+                   float* weight) const noexcept {
+    for (std::size_t i = 0; i < n; ++i) {
+      T x, y;
+      if (project(c, points[i], x, y)) {
+        fetch_add(c, x, y, 1.0f, acc[i]);
+        weight[i] += 1.0f;
+      }
+    }
+  }
 
   [[nodiscard]] Vec3<T> point_of(const Ray<T>& ray) const noexcept {
     return config_.depth ? ray.at(*config_.depth) : ray.origin;
@@ -310,11 +511,12 @@ private:
 
   // acc += weight * (pixel of camera c at continuous (x, y)); (x, y) lies inside the image.
   void fetch_add(const CameraData& c, T x, T y, float weight, float acc[4]) const noexcept {
+    const float scaled = weight * texel_type::scale;
     if (config_.filter == PixelFilter::nearest) {
       const int ix = std::min(static_cast<int>(std::floor(x + T(0.5))), c.width - 1);
       const int iy = std::min(static_cast<int>(std::floor(y + T(0.5))), c.height - 1);
-      const float* v = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width + ix].c;
-      for (int k = 0; k < 4; ++k) acc[k] += weight * v[k];
+      const texel_type& v = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width + ix];
+      for (int k = 0; k < 4; ++k) acc[k] += scaled * static_cast<float>(v.c[k]);
       return;
     }
     const T fx0 = std::floor(x), fy0 = std::floor(y);
@@ -322,12 +524,13 @@ private:
     const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
     const int xa = std::max(x0, 0), xb = std::min(x0 + 1, c.width - 1);
     const int ya = std::max(y0, 0), yb = std::min(y0 + 1, c.height - 1);
-    const LinearTexel* ra = c.texels + static_cast<std::ptrdiff_t>(ya) * c.width;
-    const LinearTexel* rb = c.texels + static_cast<std::ptrdiff_t>(yb) * c.width;
-    const float w00 = (1 - ax) * (1 - ay) * weight, w10 = ax * (1 - ay) * weight;
-    const float w01 = (1 - ax) * ay * weight, w11 = ax * ay * weight;
+    const texel_type* ra = c.texels + static_cast<std::ptrdiff_t>(ya) * c.width;
+    const texel_type* rb = c.texels + static_cast<std::ptrdiff_t>(yb) * c.width;
+    const float w00 = (1 - ax) * (1 - ay) * scaled, w10 = ax * (1 - ay) * scaled;
+    const float w01 = (1 - ax) * ay * scaled, w11 = ax * ay * scaled;
     for (int k = 0; k < 4; ++k)
-      acc[k] += w00 * ra[xa].c[k] + w10 * ra[xb].c[k] + w01 * rb[xa].c[k] + w11 * rb[xb].c[k];
+      acc[k] += w00 * static_cast<float>(ra[xa].c[k]) + w10 * static_cast<float>(ra[xb].c[k]) +
+                w01 * static_cast<float>(rb[xa].c[k]) + w11 * static_cast<float>(rb[xb].c[k]);
   }
 
   // Synthetic aperture over one run of rays, cameras in the outer loop. When the run's points
@@ -413,36 +616,18 @@ private:
     // Bilinear interpolation is continuous, so a position off by the tolerance across a pixel
     // boundary changes the colour by at most tolerance x the local gradient.
     const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
-    const float w00 = (1 - ax) * (1 - ay), w10 = ax * (1 - ay), w01 = (1 - ax) * ay, w11 = ax * ay;
-    const LinearTexel* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
-    const LinearTexel* b = a + c.width;
+    const float sc = texel_type::scale;
+    const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
+    const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
+    const texel_type* b = a + c.width;
+    detail::shift_add_row(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr,
+                          acc + i_begin, i_end - i_begin);
     if (ray_weight != nullptr) {
-      for (std::size_t i = i_begin; i < i_end; ++i) {
-        const float w = ray_weight[i];
-        if (!(w > 0)) continue;
-        for (int k = 0; k < 4; ++k)
-          acc[i][k] += w * (w00 * a[i].c[k] + w10 * a[i + 1].c[k] + w01 * b[i].c[k] + w11 * b[i + 1].c[k]);
-        weight[i] += w;
-      }
-      return true;
+      for (std::size_t i = i_begin; i < i_end; ++i)
+        if (ray_weight[i] > 0) weight[i] += ray_weight[i];
+    } else {
+      for (std::size_t i = i_begin; i < i_end; ++i) weight[i] += 1.0f;
     }
-#if defined(__SSE2__)
-    const __m128 v00 = _mm_set1_ps(w00), v10 = _mm_set1_ps(w10), v01 = _mm_set1_ps(w01), v11 = _mm_set1_ps(w11);
-    __m128 a0 = _mm_load_ps(a[i_begin].c), b0 = _mm_load_ps(b[i_begin].c);
-    for (std::size_t i = i_begin; i < i_end; ++i) {
-      const __m128 a1 = _mm_load_ps(a[i + 1].c), b1 = _mm_load_ps(b[i + 1].c);
-      const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v00, a0), _mm_mul_ps(v10, a1)),
-                                    _mm_add_ps(_mm_mul_ps(v01, b0), _mm_mul_ps(v11, b1)));
-      _mm_store_ps(acc[i], _mm_add_ps(_mm_load_ps(acc[i]), sum));
-      a0 = a1;
-      b0 = b1;
-    }
-#else
-    for (std::size_t i = i_begin; i < i_end; ++i)
-      for (int k = 0; k < 4; ++k)
-        acc[i][k] += w00 * a[i].c[k] + w10 * a[i + 1].c[k] + w01 * b[i].c[k] + w11 * b[i + 1].c[k];
-#endif
-    for (std::size_t i = i_begin; i < i_end; ++i) weight[i] += 1.0f;
     return true;
   }
 
@@ -515,17 +700,23 @@ private:
     const bool even = n >= 8 && config_.filter == PixelFilter::bilinear && evenly_spaced(points, n);
     for (int j = 0; j < count; ++j) {
       const CameraData& c = cameras_[static_cast<std::size_t>(candidates[j])];
-      bool any = false;
+      // [lo, hi): the rays this camera weighs; shift-and-add covers just that sub-run.
+      std::size_t lo = n, hi = 0;
       for (std::size_t i = 0; i < n; ++i) {
         const T d2 = inverse_length2[i] > 0
                          ? line_distance2(c.centre, rays[i].origin, rays[i].direction, inverse_length2[i])
                          : r2;
         ray_weight[i] = d2 < r2 ? static_cast<float>(T(1) - std::sqrt(d2) / radius) : 0.0f;
-        any = any || ray_weight[i] > 0;
+        if (ray_weight[i] > 0) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
       }
-      if (!any) continue;
-      if (even && !c.distorted && shift_add(c, points, n, acc, weight, ray_weight)) continue;
-      for (std::size_t i = 0; i < n; ++i) {
+      if (lo >= hi) continue;
+      if (even && !c.distorted && hi - lo >= 8 &&
+          shift_add(c, points + lo, hi - lo, acc + lo, weight + lo, ray_weight + lo))
+        continue;
+      for (std::size_t i = lo; i < hi; ++i) {
         T x, y;
         if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
           fetch_add(c, x, y, ray_weight[i], acc[i]);
