@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   const mpr::Renderer direct(plane, mpr::glc::gallery_view('G', plane, look, T(14)), *loaded.scene_sampler);
 
   const mpr_cli::CameraVariant<T> camera = mpr_cli::make_camera(job, loaded, params, 0, w, h);
-  const mpr_cli::SamplerVariant<T> sampler = mpr_cli::make_sampler(job, loaded, params);
+  const mpr_cli::SamplerVariant<T> sampler = mpr_cli::make_sampler(job, loaded, params, w, h);
 
   std::printf("classroom, gallery view G (cross-slit), %dx%d, float, median of %d runs (min-max)\n\n", w, h, repeats);
   std::printf("| path | threads | ms | Mrays/s |\n|---|---|---|---|\n");
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
         }));
     row("mpr-render: whole frame (Job -> camera, sampler)", mpr_bench::time_repeated(repeats, [&] {
           const mpr_cli::CameraVariant<T> cam = mpr_cli::make_camera(job, loaded, params, 0, w, h);
-          const mpr_cli::SamplerVariant<T> smp = mpr_cli::make_sampler(job, loaded, params);
+          const mpr_cli::SamplerVariant<T> smp = mpr_cli::make_sampler(job, loaded, params, w, h);
           mpr_cli::render_view(cam, smp, c.view(), region, options);
         }));
   }

@@ -361,3 +361,23 @@ TEST_CASE("mpr-render: --rectify plane keeps the untilted framing", "[tools]") {
   CHECK(differing(plain, render({"--tilt-y", "20", "--rectify", "plane"})) < pixels / 20);
   CHECK(differing(plain, render({"--tilt-y", "20"})) > pixels / 4);
 }
+
+TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API", "[tools]") {
+  using T = float;
+  const int w = 32, h = 24;
+  const std::vector<Image> frames = mpr_cli::render_frames(job_of(
+      {"--size", "32x24", "--view", "A", "--raster", "3x2", "--interp", "cylinder", "--radius", "2", "--focal-depth", "9"}));
+  REQUIRE(frames.size() == 1);
+  const mpr::scene::Scene<T> scene = mpr::scenes::classroom<T>();
+  const mpr::PlanarSurface<T> plane = classroom_plane<T>(w, h);
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 3;
+  config.rows = 2;
+  config.focal_depth = T(9);
+  const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>> sampler(
+      scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{2}});
+  CHECK(identical(frames[0], direct(plane, mpr::glc::gallery_view('A', plane, mpr::Vec3<T>(0, 1.6f, -8), T(14)),
+                                    sampler, w, h)));
+  CHECK_THROWS_AS(job_of({"--raster", "3x2", "--stanford", "/nonexistent"}), mpr::error);
+  CHECK_THROWS_AS(job_of({"--focal-depth", "9"}), mpr::argument_error); // scene without --raster
+}

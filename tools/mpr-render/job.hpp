@@ -39,6 +39,7 @@ struct Job {
   SamplerKind sampler = SamplerKind::scene;
   std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
   double obj_scale = 1;
+  std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
   Track radius{10};                   ///< cylinder aperture radius
   std::optional<Track> focal_depth;   ///< light fields: depth of the focal (image) plane
@@ -78,6 +79,10 @@ inline const std::vector<OptionSpec>& options() {
       {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",
        "--scene classroom"},
       {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj bunny.obj"},
+      {"raster", "CxR",
+       "Scene/OBJ: sample a rasterized virtual camera array of C x R cameras (160x120 pixels each, on the image "
+       "plane) instead of ray casting; --interp, --radius and --focal-depth (in front of the plane) apply.",
+       "--raster 16x12 --interp cylinder --radius 0.5"},
       {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).", "--obj-scale 0.01"},
       {"par", "FILE_par.txt", "Sampler: a light field from a Middlebury-style _par.txt calibration.",
        "--par data/templeSR/templeSR_par.txt"},
@@ -222,8 +227,13 @@ inline Job make_job(const ParsedArgs& args) {
     if (args.has(name) && !light_field)
       throw mpr::argument_error(std::string("--") + name, "applies to light fields (--par, --stanford, --lfca) only");
   };
-  for (const char* name : {"interp", "radius", "focal-depth", "reference-depth", "position-scale", "camera"})
-    lf_only(name);
+  if (const auto v = args.get("raster")) {
+    if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
+    job.raster = parse_size(*v, "--raster");
+  }
+  for (const char* name : {"reference-depth", "position-scale", "camera"}) lf_only(name);
+  if (!job.raster)
+    for (const char* name : {"interp", "radius", "focal-depth"}) lf_only(name);
   if (args.has("obj-scale") && job.sampler != SamplerKind::obj)
     throw mpr::argument_error("--obj-scale", "applies to --obj only");
   if (const auto v = args.get("obj-scale")) {

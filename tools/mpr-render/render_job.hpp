@@ -10,6 +10,7 @@
 #include <mpr/lightfield.hpp>
 #include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
+#include <mpr/scene/rasterized_sampler.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
 #include <mpr/scene/obj_loader.hpp>
 #endif
@@ -38,7 +39,10 @@ template <std::floating_point T> using CameraVariant = std::variant<PlanarCamera
 template <std::floating_point T>
 using SamplerVariant =
     std::variant<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>, mpr::CameraFrameSampler<mpr::NearestCamera, T>,
-                 mpr::CameraFrameSampler<mpr::SyntheticAperture, T>, mpr::CameraFrameSampler<mpr::CylinderAperture, T>>;
+                 mpr::CameraFrameSampler<mpr::SyntheticAperture, T>, mpr::CameraFrameSampler<mpr::CylinderAperture, T>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::NearestCamera>>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::SyntheticAperture>>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>>>;
 
 /// Renders one view: the only run-time dispatch of a render (one std::visit).
 template <std::floating_point T>
@@ -377,7 +381,32 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
   return PlanarCamera<T>{plane, glc};
 }
 
-template <std::floating_point T> SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p) {
+/// The rasterized virtual-array sampler (--raster) on the frame's untilted image plane.
+template <std::floating_point T>
+SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p,
+                                      const mpr::PlanarSurface<T>& plane) {
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = job.raster->first;
+  config.rows = job.raster->second;
+  if (job.focal_depth) config.focal_depth = static_cast<T>(p.focal_depth);
+  config.raster.threads = job.threads;
+  using S = mpr::scene::Scene<T>;
+  switch (job.interpolation) {
+  case Interpolation::nearest:
+    return mpr::SceneSampler<S, mpr::Rasterized<mpr::NearestCamera>>(*l.scene, plane, config);
+  case Interpolation::synthetic:
+    return mpr::SceneSampler<S, mpr::Rasterized<mpr::SyntheticAperture>>(*l.scene, plane, config);
+  case Interpolation::cylinder:
+    break;
+  }
+  return mpr::SceneSampler<S, mpr::Rasterized<mpr::CylinderAperture>>(
+      *l.scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{p.radius}});
+}
+
+template <std::floating_point T>
+SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p, int width = 1,
+                               int height = 1) {
+  if (job.raster) return make_raster_sampler(job, l, p, base_plane(job, l, p, width, height));
   if (l.scene_sampler) return *l.scene_sampler;
   switch (job.interpolation) {
   case Interpolation::nearest:
@@ -428,7 +457,7 @@ template <std::floating_point T> void run_typed(const Job& job, const FrameSink&
   const mpr::RenderOptions options{job.threads};
   for (int f = 0; f < count; ++f) {
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
-    const SamplerVariant<T> sampler = make_sampler(job, l, p);
+    const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
     mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
     for (std::size_t k = 0; k < job.views.size(); ++k) {
       const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
