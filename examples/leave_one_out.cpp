@@ -105,8 +105,7 @@ void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>
 
 int main(int argc, char** argv) try {
   const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
-  const std::filesystem::path out = argc > 2 ? argv[2] : "lightfield-output";
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = output_dir(argc, argv);
   std::vector<Row> rows;
   {
     const auto chess = load_chess(data);

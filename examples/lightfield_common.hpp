@@ -52,6 +52,13 @@ inline mpr::GlcSelector<T> two_plane_glc(const mpr::PlanarSurface<T>& plane, con
                              mpr::Vec3<T>(plane.point_at({1, 0}) - s10), mpr::Vec3<T>(plane.point_at({0, 1}) - s01));
 }
 
+/// The output folder: the second argument or "lightfield-output", created if missing.
+inline std::filesystem::path output_dir(int argc, char** argv) {
+  const std::filesystem::path out = argc > 2 ? argv[2] : "lightfield-output";
+  std::filesystem::create_directories(out);
+  return out;
+}
+
 inline void report(const std::filesystem::path& path) { std::printf("wrote %s\n", path.string().c_str()); }
 
 template <class Fn> double seconds(Fn&& fn) {

@@ -487,13 +487,7 @@ private:
       y = p->y();
       return true;
     }
-    const T* P = c.P;
-    const T w = P[8] * X.x() + P[9] * X.y() + P[10] * X.z() + P[11];
-    if (!(w > 0)) return false;
-    const T inv = T(1) / w;
-    x = (P[0] * X.x() + P[1] * X.y() + P[2] * X.z() + P[3]) * inv;
-    y = (P[4] * X.x() + P[5] * X.y() + P[6] * X.z() + P[7]) * inv;
-    return x >= T(-0.5) && x < static_cast<T>(c.width) - T(0.5) && y >= T(-0.5) &&
+    return project_any(c, X, x, y) && x >= T(-0.5) && x < static_cast<T>(c.width) - T(0.5) && y >= T(-0.5) &&
            y < static_cast<T>(c.height) - T(0.5);
   }
 
