@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <cstdlib>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,7 +27,8 @@ namespace {
 using T = float;
 
 /// Hides a sampler's batch interface, so the renderer calls `sample(ray)` per pixel.
-template <class S> struct PerPixel {
+template <class S>
+struct PerPixel {
   using scalar_type = typename S::scalar_type;
   using color_type = typename S::color_type;
   S inner;
@@ -36,7 +37,8 @@ template <class S> struct PerPixel {
 
 // nx x ny cameras, `spacing` apart on z = 0, looking along +z, images of a textured plane at
 // z = depth (a checkerboard modulated by smooth colour ramps).
-std::shared_ptr<const mpr::CameraFrameSet<T>> synthetic_array(int nx, int ny, T spacing, int w, int h, T focal, T depth) {
+std::shared_ptr<const mpr::CameraFrameSet<T>> synthetic_array(int nx, int ny, T spacing, int w, int h, T focal,
+                                                              T depth) {
   std::vector<mpr::PinholeCamera<T>> cameras;
   std::vector<mpr::Image<mpr::Rgb8>> images;
   for (int j = 0; j < ny; ++j)
@@ -65,7 +67,8 @@ std::shared_ptr<const mpr::CameraFrameSet<T>> synthetic_array(int nx, int ny, T 
 
 /// Median CPU time of the calling thread over `repeats` runs (after one warm-up), in ms: on a
 /// machine shared with other jobs this is what a single-threaded run costs when it has a core.
-template <class Fn> double thread_cpu_ms(int repeats, Fn&& fn) {
+template <class Fn>
+double thread_cpu_ms(int repeats, Fn&& fn) {
   fn();
   std::vector<double> ms;
   for (int i = 0; i < repeats; ++i) {
@@ -115,8 +118,8 @@ Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr:
     int worst = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
-        worst = std::max({worst, std::abs(a(x, y).r - b(x, y).r), std::abs(a(x, y).g - b(x, y).g),
-                          std::abs(a(x, y).b - b(x, y).b)});
+        worst = std::max(
+            {worst, std::abs(a(x, y).r - b(x, y).r), std::abs(a(x, y).g - b(x, y).g), std::abs(a(x, y).b - b(x, y).b)});
     if (worst > 1) {
       std::fprintf(stderr, "lightfield: %s: batch and per-pixel images differ by %d levels\n", label, worst);
       std::exit(1);
@@ -153,8 +156,9 @@ int main(int argc, char** argv) {
     data = env != nullptr ? env : "";
   }
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  std::printf("shift-and-add row kernel: %s; 8-bit frames sampled from 8-byte fixed-point linear texels; tiles of %d rows\n",
-              mpr::detail::shift_add_kernel_name(), mpr::kTileRows);
+  std::printf(
+      "shift-and-add kernels: %s; 8-bit frames sampled from 6-byte fixed-point linear RGB texels; tiles of %d rows\n",
+      mpr::detail::simd_level_name(), mpr::kTileRows);
   const int repeats = repeats_option > 0 ? repeats_option : quick ? 1 : 15;
   const int nx = quick ? 4 : 10, ny = quick ? 3 : 9, cw = quick ? 160 : 640, ch = quick ? 120 : 480;
   const int size = quick ? 100 : 500;
@@ -187,7 +191,8 @@ int main(int argc, char** argv) {
   double in_cylinder = 0;
   for (int y = 0; y < size; y += 7)
     for (int x = 0; x < size; x += 7) {
-      const mpr::Vec2<T> uv((static_cast<T>(x) + T(0.5)) / static_cast<T>(size), (static_cast<T>(y) + T(0.5)) / static_cast<T>(size));
+      const mpr::Vec2<T> uv((static_cast<T>(x) + T(0.5)) / static_cast<T>(size),
+                            (static_cast<T>(y) + T(0.5)) / static_cast<T>(size));
       const mpr::Ray<T> r = glc.ray_at({x, y}, uv, plane.point_at(uv));
       int count = 0;
       nearest.index().within(r.origin, r.direction, radius, [&](int, T) { ++count; });
@@ -195,10 +200,12 @@ int main(int argc, char** argv) {
     }
   in_cylinder /= std::pow(std::ceil(size / 7.0), 2);
 
-  std::printf("\nreference workload: %dx%d output, %d cameras of %dx%d on a planar grid (8-bit frames), cross-slit GLC, "
-              "focal plane parallel to the camera plane at the cameras' pixel scale unless 'tilted'; cylinder radius %.1f grid steps = %.1f cameras per ray; "
-              "median of %d runs (min-max); thread CPU time for 1 thread; load average at start: %s\n\n",
-              size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats, load_average().c_str());
+  std::printf(
+      "\nreference workload: %dx%d output, %d cameras of %dx%d on a planar grid (8-bit frames), cross-slit GLC, "
+      "focal plane parallel to the camera plane at the cameras' pixel scale unless 'tilted'; cylinder radius %.1f grid "
+      "steps = %.1f cameras per ray; "
+      "median of %d runs (min-max); thread CPU time for 1 thread; load average at start: %s\n\n",
+      size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats, load_average().c_str());
   std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s | vs 2004 "
               "(wall) |\n|---|---|---|---|---|---|---|\n");
   for (int threads : {1, 2}) {
@@ -219,8 +226,9 @@ int main(int argc, char** argv) {
   Kc(1, 2) = T(0.5) * static_cast<T>(lf->camera(0).height() - 1);
   const mpr::PinholeCamera<T> centre(Kc, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), lf->camera(0).width(),
                                      lf->camera(0).height());
-  std::printf("\nStanford Chess: %zu views of %dx%d, refocus at the reference plane (z = 1000) and at z = 820 (mid-board)\n\n",
-              lf->size(), centre.width(), centre.height());
+  std::printf(
+      "\nStanford Chess: %zu views of %dx%d, refocus at the reference plane (z = 1000) and at z = 820 (mid-board)\n\n",
+      lf->size(), centre.width(), centre.height());
   std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s |\n"
               "|---|---|---|---|---|---|\n");
   const mpr::CameraFrameSampler<mpr::SyntheticAperture, T> chess_full(lf);

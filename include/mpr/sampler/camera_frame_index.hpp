@@ -28,7 +28,8 @@ template <std::floating_point T>
 
 /// Ball tree over a fixed set of points (camera centres). Queries are `const noexcept` and
 /// allocation-free, so threads may share one index.
-template <std::floating_point T> class CameraCentreIndex {
+template <std::floating_point T>
+class CameraCentreIndex {
 public:
   CameraCentreIndex() = default;
 
@@ -137,7 +138,8 @@ private:
   };
 
   // A lower bound on the squared distance from the line to any point of the node's ball.
-  [[nodiscard]] T lower_bound2(const Node& node, const Vec3<T>& origin, const Vec3<T>& direction, T inv) const noexcept {
+  [[nodiscard]] T lower_bound2(const Node& node, const Vec3<T>& origin, const Vec3<T>& direction,
+                               T inv) const noexcept {
     const T d = std::sqrt(line_distance2(node.centre, origin, direction, inv)) - node.radius;
     return d > 0 ? d * d : T(0);
   }
@@ -155,7 +157,8 @@ private:
     const Vec3<T> centre = sum / static_cast<T>(end - begin);
     T radius = 0;
     for (int k = begin; k < end; ++k)
-      radius = std::max(radius, (centres_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])] - centre).norm());
+      radius =
+          std::max(radius, (centres_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])] - centre).norm());
     radius = radius * T(1.0001) + T(1e-4) * (hi - lo).norm() + std::numeric_limits<T>::min();
     nodes_[static_cast<std::size_t>(index)].centre = centre;
     nodes_[static_cast<std::size_t>(index)].radius = radius;

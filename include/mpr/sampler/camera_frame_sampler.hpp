@@ -11,6 +11,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/sampler/camera_frame_index.hpp>
 #include <mpr/sampler/camera_frame_interpolation.hpp>
+#include <mpr/sampler/camera_frame_kernels.hpp>
 #include <mpr/sampler/camera_frame_set.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -25,130 +26,7 @@
 #include <type_traits>
 #include <vector>
 
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
-#include <immintrin.h>
-/// x86 with GCC/Clang: the row kernels have an AVX2+FMA version chosen at run time (or at
-/// compile time under -mavx2 -mfma), next to the SSE2 and portable ones.
-#define MPR_LF_X86_KERNELS 1
-#endif
-
 namespace mpr {
-
-namespace detail {
-
-/// The bilinear weights of one shift-and-add row, channel scale of the texel type folded in.
-struct RowWeights {
-  float w00, w10, w01, w11;
-};
-
-/// acc[i] += rw[i] * (w00 a[i] + w10 a[i+1] + w01 b[i] + w11 b[i+1]) for i in [0, n) (texels
-/// times their scale; rw == nullptr: weight 1). Reads a[0..n] and b[0..n]. Portable version.
-template <class Texel>
-inline void shift_add_row_portable(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
-                                   std::size_t n) noexcept {
-  for (std::size_t i = 0; i < n; ++i) {
-    const float r = rw != nullptr ? rw[i] : 1.0f;
-    for (int k = 0; k < 4; ++k)
-      acc[i][k] += r * (w.w00 * static_cast<float>(a[i].c[k]) + w.w10 * static_cast<float>(a[i + 1].c[k]) +
-                        w.w01 * static_cast<float>(b[i].c[k]) + w.w11 * static_cast<float>(b[i + 1].c[k]));
-  }
-}
-
-#if defined(MPR_LF_X86_KERNELS)
-#if defined(__SSE2__)
-[[nodiscard]] inline __m128 load_texel_sse2(const LinearTexel* p) noexcept { return _mm_load_ps(p->c); }
-[[nodiscard]] inline __m128 load_texel_sse2(const FixedTexel* p) noexcept {
-  const __m128i q = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
-  return _mm_cvtepi32_ps(_mm_unpacklo_epi16(q, _mm_setzero_si128()));
-}
-
-/// SSE2 version of `shift_add_row_portable` (one pixel per step, the previous texels reused).
-template <class Texel>
-inline void shift_add_row_sse2(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
-                               std::size_t n) noexcept {
-  const __m128 v00 = _mm_set1_ps(w.w00), v10 = _mm_set1_ps(w.w10), v01 = _mm_set1_ps(w.w01), v11 = _mm_set1_ps(w.w11);
-  __m128 a0 = load_texel_sse2(a), b0 = load_texel_sse2(b);
-  for (std::size_t i = 0; i < n; ++i) {
-    const __m128 a1 = load_texel_sse2(a + i + 1), b1 = load_texel_sse2(b + i + 1);
-    __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v00, a0), _mm_mul_ps(v10, a1)),
-                            _mm_add_ps(_mm_mul_ps(v01, b0), _mm_mul_ps(v11, b1)));
-    if (rw != nullptr) sum = _mm_mul_ps(sum, _mm_set1_ps(rw[i]));
-    _mm_storeu_ps(acc[i], _mm_add_ps(_mm_loadu_ps(acc[i]), sum));
-    a0 = a1;
-    b0 = b1;
-  }
-}
-#endif
-
-// Two texels (8 floats) starting at p.
-[[nodiscard]] __attribute__((target("avx2,fma"))) inline __m256 load_texels2_avx2(const LinearTexel* p) noexcept {
-  return _mm256_loadu_ps(p->c);
-}
-[[nodiscard]] __attribute__((target("avx2,fma"))) inline __m256 load_texels2_avx2(const FixedTexel* p) noexcept {
-  return _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
-}
-
-/// AVX2+FMA version of `shift_add_row_portable`: two pixels per step. Call only where the CPU
-/// has AVX2 and FMA (`cpu_has_avx2_fma`).
-template <class Texel>
-__attribute__((target("avx2,fma"))) inline void shift_add_row_avx2(const Texel* a, const Texel* b, RowWeights w,
-                                                                   const float* rw, float (*acc)[4],
-                                                                   std::size_t n) noexcept {
-  const __m256 v00 = _mm256_set1_ps(w.w00), v10 = _mm256_set1_ps(w.w10), v01 = _mm256_set1_ps(w.w01),
-               v11 = _mm256_set1_ps(w.w11);
-  std::size_t i = 0;
-  for (; i + 2 <= n; i += 2) {
-    __m256 sum = _mm256_mul_ps(v00, load_texels2_avx2(a + i));
-    sum = _mm256_fmadd_ps(v10, load_texels2_avx2(a + i + 1), sum);
-    sum = _mm256_fmadd_ps(v01, load_texels2_avx2(b + i), sum);
-    sum = _mm256_fmadd_ps(v11, load_texels2_avx2(b + i + 1), sum);
-    float* o = acc[i];
-    if (rw != nullptr) {
-      const __m256 r = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_set1_ps(rw[i])), _mm_set1_ps(rw[i + 1]), 1);
-      _mm256_storeu_ps(o, _mm256_fmadd_ps(r, sum, _mm256_loadu_ps(o)));
-    } else {
-      _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), sum));
-    }
-  }
-  if (i < n) shift_add_row_portable(a + i, b + i, w, rw != nullptr ? rw + i : nullptr, acc + i, n - i);
-}
-
-/// Whether this CPU runs the AVX2+FMA kernels (checked once).
-[[nodiscard]] inline bool cpu_has_avx2_fma() noexcept {
-#if defined(__AVX2__) && defined(__FMA__)
-  return true;
-#else
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return yes;
-#endif
-}
-#endif
-
-/// The row kernel `shift_add_row` uses on this machine: "avx2+fma", "sse2" or "portable".
-[[nodiscard]] inline const char* shift_add_kernel_name() noexcept {
-#if defined(MPR_LF_X86_KERNELS)
-  if (cpu_has_avx2_fma()) return "avx2+fma";
-#if defined(__SSE2__)
-  return "sse2";
-#endif
-#endif
-  return "portable";
-}
-
-/// `shift_add_row_portable` with the fastest kernel this machine runs.
-template <class Texel>
-inline void shift_add_row(const Texel* a, const Texel* b, RowWeights w, const float* rw, float (*acc)[4],
-                          std::size_t n) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
-  if (cpu_has_avx2_fma()) return shift_add_row_avx2(a, b, w, rw, acc, n);
-#if defined(__SSE2__)
-  return shift_add_row_sse2(a, b, w, rw, acc, n);
-#endif
-#endif
-  shift_add_row_portable(a, b, w, rw, acc, n);
-}
-
-} // namespace detail
 
 /// Answers a ray with the colour the cameras of a `CameraFrameSet` see at the ray's point.
 ///
@@ -166,7 +44,8 @@ inline void shift_add_row(const Texel* a, const Texel* b, RowWeights w, const fl
 /// one set of images. Besides the per-ray `sample` (the contract), it offers `sample_rays`, a
 /// batch form the renderer uses when present: it walks cameras in the outer loop for
 /// `SyntheticAperture` and returns the same colours.
-template <class Interpolation, std::floating_point T = float, class Px = Rgb8> class CameraFrameSampler {
+template <class Interpolation, std::floating_point T = float, class Px = Rgb8>
+class CameraFrameSampler {
   static_assert(std::is_same_v<Interpolation, NearestCamera> || std::is_same_v<Interpolation, SyntheticAperture> ||
                     std::is_same_v<Interpolation, CylinderAperture>,
                 "Interpolation is NearestCamera, SyntheticAperture or CylinderAperture");
@@ -231,7 +110,7 @@ public:
   [[nodiscard]] Color sample(const Ray<T>& ray) const noexcept {
     const Vec3<T> X = point_of(ray);
     if constexpr (std::is_same_v<Interpolation, SyntheticAperture>) {
-      alignas(16) float acc[4] = {0, 0, 0, 0};
+      float acc[3] = {0, 0, 0};
       float weight = 0;
       for (const CameraData& c : cameras_) {
         T x, y;
@@ -281,6 +160,10 @@ public:
     const std::size_t w = width > 0 ? static_cast<std::size_t>(width) : rays.size();
     if constexpr (std::is_same_v<Interpolation, SyntheticAperture>) {
       if (w > 0 && tile_synthetic(rays, w, out)) return;
+    } else if constexpr (std::is_same_v<Interpolation, NearestCamera>) {
+      if (planar_ && w > 0 && tile_nearest(rays, w, out)) return;
+    } else {
+      if (planar_ && w > 0 && tile_cylinder(rays, w, out)) return;
     }
     for (std::size_t start = 0; start < rays.size(); start += std::max<std::size_t>(w, 1))
       sample_rays(rays.subspan(start, std::min(w, rays.size() - start)), out.subspan(start));
@@ -296,14 +179,14 @@ private:
     int width = 0, height = 0;
     const texel_type* texels = nullptr;
     const PinholeCamera<T>* camera = nullptr;
-    T separation = 0; // distance to the nearest centre not in the neighbour list
+    T separation = 0;                             // distance to the nearest centre not in the neighbour list
     int neighbours_begin = 0, neighbours_end = 0; // into neighbours_
   };
 
   // Per-thread working memory of `sample_tile`.
   struct TileScratch {
     std::vector<Vec3<T>> points;
-    std::vector<float> acc; // 4 per ray, 16-byte aligned rows of 4 floats
+    std::vector<float> acc; // 3 per ray (r g b), the layout of the texel rows
     std::vector<float> weight;
     std::vector<unsigned char> even;
   };
@@ -313,52 +196,280 @@ private:
     thread_local TileScratch scratch;
     try {
       if (scratch.points.size() < n) scratch.points.resize(n);
-      if (scratch.acc.size() < 4 * n + 4) scratch.acc.resize(4 * n + 4);
+      if (scratch.acc.size() < 3 * n) scratch.acc.resize(3 * n);
       if (scratch.weight.size() < n) scratch.weight.resize(n);
       if (scratch.even.size() < rows) scratch.even.resize(rows);
     } catch (...) {
       return false;
     }
     Vec3<T>* points = scratch.points.data();
-    // 16-byte alignment of the accumulators (the vector itself only guarantees alignof(float)).
-    float* acc_base = scratch.acc.data();
-    while (reinterpret_cast<std::uintptr_t>(acc_base) % 16 != 0) ++acc_base;
-    float(*acc)[4] = reinterpret_cast<float(*)[4]>(acc_base);
+    float* acc = scratch.acc.data();
     float* weight = scratch.weight.data();
     for (std::size_t i = 0; i < n; ++i) {
       points[i] = point_of(rays[i]);
-      acc[i][0] = acc[i][1] = acc[i][2] = acc[i][3] = 0;
       weight[i] = 0;
     }
+    std::fill(acc, acc + 3 * n, 0.0f);
     for (std::size_t r = 0; r < rows; ++r)
       scratch.even[r] = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
     for (const CameraData& c : cameras_) {
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
-          if (shift_add(c, points + o, w, acc + o, weight + o)) continue;
+          if (shift_add(c, points + o, w, acc + 3 * o, weight + o)) continue;
           // The whole row does not fit the affine model within tolerance: try it in chunks.
           for (std::size_t s0 = 0; s0 < w; s0 += kChunk) {
             const std::size_t m = std::min(kChunk, w - s0);
-            if (m >= 8 && shift_add(c, points + o + s0, m, acc + o + s0, weight + o + s0)) continue;
-            add_per_ray(c, points + o + s0, m, acc + o + s0, weight + o + s0);
+            if (m >= 8 && shift_add(c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0)) continue;
+            add_per_ray(c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0);
           }
           continue;
         }
-        add_per_ray(c, points + o, w, acc + o, weight + o);
+        add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
       }
     }
-    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc[i], weight[i]);
+    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc + 3 * i, weight[i]);
+    return true;
+  }
+
+  // Per-thread working memory of the row paths on planar arrays (`tile_nearest`,
+  // `tile_cylinder`), sized for one output row.
+  struct RowScratch {
+    using Flag = typename detail::PlaneRays<T>::Flag;
+    std::vector<Vec3<T>> points;
+    std::vector<float> acc, weight, ray_weight;
+    std::vector<int> camera;
+    std::vector<T> soa[6]; // ray origins relative to the plane point, then directions
+    std::vector<T> xu, xv, du, dv, dd, cos2, inv_dd;
+    std::vector<Flag> ok;
+
+    // False when memory runs out.
+    bool reserve(std::size_t w) noexcept {
+      try {
+        if (points.size() < w) {
+          points.resize(w);
+          for (std::vector<float>* v : {&acc, &weight, &ray_weight}) v->resize(v == &acc ? 3 * w : w);
+          camera.resize(w);
+          for (std::vector<T>& v : soa) v.resize(w);
+          for (std::vector<T>* v : {&xu, &xv, &du, &dv, &dd, &cos2, &inv_dd}) v->resize(w);
+          ok.resize(w);
+        }
+        return true;
+      } catch (...) {
+        return false;
+      }
+    }
+    [[nodiscard]] detail::PlaneRays<T> plane_rays(std::size_t offset = 0) noexcept {
+      return {xu.data() + offset, xv.data() + offset, du.data() + offset,
+              dv.data() + offset, dd.data() + offset, ok.data() + offset};
+    }
+  };
+
+  // The points of one row of rays and where the rays cross the camera plane (scratch.xu ...,
+  // see `detail::PlaneRays`). Returns the least cosine between a crossing ray and the plane
+  // normal (1 when none crosses); `all_cross` tells whether every ray does.
+  T prepare_row(const Ray<T>* row, std::size_t w, RowScratch& scratch, bool& all_cross) const noexcept {
+    const detail::PlaneFrame<T> frame{plane_point_.x(),  plane_point_.y(),  plane_point_.z(), plane_normal_.x(),
+                                      plane_normal_.y(), plane_normal_.z(), axis_u_.x(),      axis_u_.y(),
+                                      axis_u_.z(),       axis_v_.x(),       axis_v_.y(),      axis_v_.z()};
+    T* const soa[6] = {scratch.soa[0].data(), scratch.soa[1].data(), scratch.soa[2].data(),
+                       scratch.soa[3].data(), scratch.soa[4].data(), scratch.soa[5].data()};
+    for (std::size_t i = 0; i < w; ++i) {
+      const Ray<T>& ray = row[i];
+      soa[0][i] = ray.origin.x() - frame.px;
+      soa[1][i] = ray.origin.y() - frame.py;
+      soa[2][i] = ray.origin.z() - frame.pz;
+      soa[3][i] = ray.direction.x();
+      soa[4][i] = ray.direction.y();
+      soa[5][i] = ray.direction.z();
+      scratch.points[i] = point_of(ray);
+    }
+    const T* const soa_in[6] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5]};
+    detail::plane_rays(soa_in, w, frame, scratch.plane_rays(), scratch.cos2.data());
+    T cos2_min = 1;
+    all_cross = true;
+    for (std::size_t i = 0; i < w; ++i) {
+      if (scratch.ok[i] != 0)
+        cos2_min = std::min(cos2_min, scratch.cos2[i]);
+      else
+        all_cross = false;
+    }
+    return std::sqrt(cos2_min);
+  }
+
+  static constexpr std::size_t kProofBlock = 32;
+
+  // Nearest camera on a planar array, a row at a time. The choice: once camera k is chosen for
+  // a pixel, the following pixels are proved to keep k a block at a time (`prove_nearest`,
+  // vectorised); the first pixel the proof does not cover gets `nearest_with_hint`, which is
+  // exact (a proof of its own or the ball tree). The block proof uses the same two facts as
+  // `nearest_with_hint`: (a) every listed neighbour j is farther than k by a margin; (b) an
+  // unlisted camera j has distance >= cos(theta) |c_j - x| >= cos(theta) (sep_k - r) with
+  // r = |c_k - x| the in-plane distance to the crossing x, while d_k <= r; so d_j > d_k when
+  // r < rho = (cos_min sep_k - margin) / (cos_min + 1.001), cos_min the least cosine of the row.
+  // The colour: each run of pixels with one camera is a shift-and-add of one camera row when
+  // the run's points are seen one camera pixel apart (as in `sample_rays_synthetic`), else
+  // per ray. Equal to `sample` up to the affine model's 1e-3 pixel.
+  bool tile_nearest(std::span<const Ray<T>> rays, std::size_t w, std::span<Color> out) const noexcept {
+    using Flag = typename RowScratch::Flag;
+    const std::size_t rows = rays.size() / w;
+    thread_local RowScratch scratch;
+    if (!scratch.reserve(w)) return false;
+    const T margin = T(1e-4) * extent_;
+    Flag pass[kProofBlock];
+    T threshold[kProofBlock];
+    for (std::size_t r = 0; r < rows; ++r) {
+      const Ray<T>* row = rays.data() + r * w;
+      bool all_cross = true;
+      const T cos_min = prepare_row(row, w, scratch, all_cross);
+      int* camera = scratch.camera.data();
+      int k = -1, prepared = -1;
+      detail::NearestCandidate<T> candidate{};
+      for (std::size_t i = 0; i < w;) {
+        if (k >= 0) {
+          if (prepared != k) {
+            const CameraData& c = cameras_[static_cast<std::size_t>(k)];
+            const T reach = cos_min * c.separation - margin;
+            const T rho = reach > 0 ? reach / (cos_min + T(1.001)) : T(0);
+            candidate = {centre_u_[static_cast<std::size_t>(k)],
+                         centre_v_[static_cast<std::size_t>(k)],
+                         rho * rho,
+                         margin * margin,
+                         neighbour_u_.data() + c.neighbours_begin,
+                         neighbour_v_.data() + c.neighbours_begin,
+                         c.neighbours_end - c.neighbours_begin};
+            prepared = k;
+          }
+          const std::size_t m = std::min(kProofBlock, w - i);
+          detail::prove_nearest(scratch.plane_rays(i), m, candidate, pass, threshold);
+          std::size_t p = 0;
+          while (p < m && pass[p] != 0) camera[i + p++] = k;
+          i += p;
+          if (p == m) continue;
+        }
+        k = nearest_with_hint(row[i], k);
+        camera[i++] = k;
+      }
+      const Vec3<T>* points = scratch.points.data();
+      const bool even = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points, w);
+      Color* o = out.data() + r * w;
+      for (std::size_t s0 = 0; s0 < w;) {
+        const int kk = camera[s0];
+        std::size_t e = s0 + 1;
+        while (e < w && camera[e] == kk) ++e;
+        bool copied = false;
+        if (even && kk >= 0 && e - s0 >= 8 && !cameras_[static_cast<std::size_t>(kk)].distorted) {
+          float* acc = scratch.acc.data() + 3 * s0;
+          float* weight = scratch.weight.data() + s0;
+          std::fill(acc, acc + 3 * (e - s0), 0.0f);
+          std::fill(weight, weight + (e - s0), 0.0f);
+          copied = shift_add(cameras_[static_cast<std::size_t>(kk)], points + s0, e - s0, acc, weight);
+          if (copied)
+            for (std::size_t i = s0; i < e; ++i) o[i] = finish(acc + 3 * (i - s0), weight[i - s0]);
+        }
+        if (!copied)
+          for (std::size_t i = s0; i < e; ++i) o[i] = colour_from(kk, points[i]);
+        s0 = e;
+      }
+    }
+    return true;
+  }
+
+  static constexpr std::size_t kSegment = 64;
+
+  // Cylinder aperture on a planar array, a row at a time, cameras in the outer loop. A camera
+  // can weigh only rays whose plane crossing lies within radius / cos_min of its centre, so each
+  // camera is tried only on the 64-pixel segments whose crossings' bounding box is that close;
+  // there its weights are computed for all rays at once (`cylinder_weights`, vectorised), and
+  // the rays it weighs are added by a weighted shift-and-add (or per ray). Rays that no camera
+  // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the
+  // plane goes through `sample_rays`.
+  bool tile_cylinder(std::span<const Ray<T>> rays, std::size_t w, std::span<Color> out) const noexcept {
+    const std::size_t rows = rays.size() / w;
+    thread_local RowScratch scratch;
+    if (!scratch.reserve(w)) return false;
+    const T radius = static_cast<T>(interpolation_.radius), inv_radius = T(1) / radius;
+    const T margin = T(1e-4) * extent_;
+    const std::size_t segments = (w + kSegment - 1) / kSegment;
+    constexpr std::size_t kMaxSegments = 64;
+    if (segments > kMaxSegments) return false;
+    T lo_u[kMaxSegments], hi_u[kMaxSegments], lo_v[kMaxSegments], hi_v[kMaxSegments];
+    for (std::size_t r = 0; r < rows; ++r) {
+      const Ray<T>* row = rays.data() + r * w;
+      Color* o = out.data() + r * w;
+      bool all_cross = true;
+      const T cos_min = prepare_row(row, w, scratch, all_cross);
+      if (!all_cross) {
+        sample_rays(std::span<const Ray<T>>(row, w), std::span<Color>(o, w));
+        continue;
+      }
+      for (std::size_t i = 0; i < w; ++i) scratch.inv_dd[i] = T(1) / scratch.dd[i];
+      for (std::size_t g = 0; g < segments; ++g) {
+        lo_u[g] = lo_v[g] = std::numeric_limits<T>::infinity();
+        hi_u[g] = hi_v[g] = -std::numeric_limits<T>::infinity();
+        for (std::size_t i = g * kSegment; i < std::min(w, (g + 1) * kSegment); ++i) {
+          lo_u[g] = std::min(lo_u[g], scratch.xu[i]);
+          hi_u[g] = std::max(hi_u[g], scratch.xu[i]);
+          lo_v[g] = std::min(lo_v[g], scratch.xv[i]);
+          hi_v[g] = std::max(hi_v[g], scratch.xv[i]);
+        }
+      }
+      const T reach = radius / cos_min * T(1.001) + margin;
+      const Vec3<T>* points = scratch.points.data();
+      const bool even = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points, w);
+      float* acc = scratch.acc.data();
+      float* weight = scratch.weight.data();
+      float* ray_weight = scratch.ray_weight.data();
+      std::fill(acc, acc + 3 * w, 0.0f);
+      std::fill(weight, weight + w, 0.0f);
+      for (std::size_t k = 0; k < cameras_.size(); ++k) {
+        const T cu = centre_u_[k], cv = centre_v_[k];
+        std::size_t first = segments, last = 0;
+        for (std::size_t g = 0; g < segments; ++g) {
+          const T gu = std::max({lo_u[g] - cu, cu - hi_u[g], T(0)}), gv = std::max({lo_v[g] - cv, cv - hi_v[g], T(0)});
+          if (gu * gu + gv * gv < reach * reach) {
+            first = std::min(first, g);
+            last = g + 1;
+          }
+        }
+        if (first >= last) continue;
+        const std::size_t b0 = first * kSegment, b1 = std::min(w, last * kSegment);
+        detail::cylinder_weights(scratch.xu.data() + b0, scratch.xv.data() + b0, scratch.du.data() + b0,
+                                 scratch.dv.data() + b0, scratch.inv_dd.data() + b0, b1 - b0, cu, cv, inv_radius,
+                                 ray_weight + b0);
+        std::size_t lo = b1, hi = b0;
+        for (std::size_t i = b0; i < b1; ++i)
+          if (ray_weight[i] > 0) {
+            lo = std::min(lo, i);
+            hi = i + 1;
+          }
+        if (lo >= hi) continue;
+        const CameraData& c = cameras_[k];
+        if (even && !c.distorted && hi - lo >= 8 &&
+            shift_add(c, points + lo, hi - lo, acc + 3 * lo, weight + lo, ray_weight + lo))
+          continue;
+        for (std::size_t i = lo; i < hi; ++i) {
+          T x, y;
+          if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
+            fetch_add(c, x, y, ray_weight[i], acc + 3 * i);
+            weight[i] += ray_weight[i];
+          }
+        }
+      }
+      for (std::size_t i = 0; i < w; ++i)
+        o[i] = weight[i] > 0 ? finish(acc + 3 * i, weight[i])
+                             : colour_from(index_->nearest(row[i].origin, row[i].direction), points[i]);
+    }
     return true;
   }
 
   // acc[i] += pixel of camera c at points[i], weight[i] += 1, for every point c sees.
-  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float (*acc)[4],
+  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float* acc,
                    float* weight) const noexcept {
     for (std::size_t i = 0; i < n; ++i) {
       T x, y;
       if (project(c, points[i], x, y)) {
-        fetch_add(c, x, y, 1.0f, acc[i]);
+        fetch_add(c, x, y, 1.0f, acc + 3 * i);
         weight[i] += 1.0f;
       }
     }
@@ -405,6 +516,20 @@ private:
     }
     plane_normal_ = normal.template cast<T>();
     plane_point_ = mean.template cast<T>();
+    // In-plane axes (the other two eigenvectors) and every centre in those coordinates, for the
+    // row proofs of `tile_nearest`.
+    axis_u_ = eig.eigenvectors().col(2).normalized().template cast<T>();
+    axis_v_ = eig.eigenvectors().col(1).normalized().template cast<T>();
+    centre_u_.resize(n);
+    centre_v_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      centre_u_[i] = axis_u_.dot(centres[i] - plane_point_);
+      centre_v_[i] = axis_v_.dot(centres[i] - plane_point_);
+    }
+    for (const int j : neighbours_) {
+      neighbour_u_.push_back(centre_u_[static_cast<std::size_t>(j)]);
+      neighbour_v_.push_back(centre_v_[static_cast<std::size_t>(j)]);
+    }
     extent_ = static_cast<T>(extent);
     planar_ = true;
   }
@@ -467,12 +592,12 @@ private:
     const CameraData& c = cameras_[static_cast<std::size_t>(camera)];
     T x, y;
     if (!project(c, X, x, y)) return config_.background;
-    alignas(16) float acc[4] = {0, 0, 0, 0};
+    float acc[3] = {0, 0, 0};
     fetch_add(c, x, y, 1.0f, acc);
     return finish(acc, 1.0f);
   }
 
-  [[nodiscard]] Color finish(const float acc[4], float weight) const noexcept {
+  [[nodiscard]] Color finish(const float* acc, float weight) const noexcept {
     if (!(weight > 0)) return config_.background;
     const float inv = 1.0f / weight;
     return Color(acc[0] * inv, acc[1] * inv, acc[2] * inv);
@@ -503,14 +628,14 @@ private:
     return std::isfinite(x) && std::isfinite(y);
   }
 
-  // acc += weight * (pixel of camera c at continuous (x, y)); (x, y) lies inside the image.
-  void fetch_add(const CameraData& c, T x, T y, float weight, float acc[4]) const noexcept {
+  // acc[0..2] += weight * (pixel of camera c at continuous (x, y)); (x, y) lies inside the image.
+  void fetch_add(const CameraData& c, T x, T y, float weight, float* acc) const noexcept {
     const float scaled = weight * texel_type::scale;
     if (config_.filter == PixelFilter::nearest) {
       const int ix = std::min(static_cast<int>(std::floor(x + T(0.5))), c.width - 1);
       const int iy = std::min(static_cast<int>(std::floor(y + T(0.5))), c.height - 1);
       const texel_type& v = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width + ix];
-      for (int k = 0; k < 4; ++k) acc[k] += scaled * static_cast<float>(v.c[k]);
+      for (int k = 0; k < 3; ++k) acc[k] += scaled * static_cast<float>(v.c[k]);
       return;
     }
     const T fx0 = std::floor(x), fy0 = std::floor(y);
@@ -522,7 +647,7 @@ private:
     const texel_type* rb = c.texels + static_cast<std::ptrdiff_t>(yb) * c.width;
     const float w00 = (1 - ax) * (1 - ay) * scaled, w10 = ax * (1 - ay) * scaled;
     const float w01 = (1 - ax) * ay * scaled, w11 = ax * ay * scaled;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 3; ++k)
       acc[k] += w00 * static_cast<float>(ra[xa].c[k]) + w10 * static_cast<float>(ra[xb].c[k]) +
                 w01 * static_cast<float>(rb[xa].c[k]) + w11 * static_cast<float>(rb[xb].c[k]);
   }
@@ -536,14 +661,14 @@ private:
   // below one 8-bit level after averaging.
   void sample_rays_synthetic(std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
     const std::size_t n = rays.size();
-    alignas(16) float acc[kChunk][4];
+    float acc[3 * kChunk];
     float weight[kChunk];
     Vec3<T> points[kChunk];
     for (std::size_t i = 0; i < n; ++i) {
       points[i] = point_of(rays[i]);
-      acc[i][0] = acc[i][1] = acc[i][2] = acc[i][3] = 0;
       weight[i] = 0;
     }
+    std::fill(acc, acc + 3 * n, 0.0f);
     const bool even = n >= 8 && evenly_spaced(points, n);
     for (const CameraData& c : cameras_) {
       if (even && config_.filter == PixelFilter::bilinear && !c.distorted && shift_add(c, points, n, acc, weight))
@@ -551,12 +676,12 @@ private:
       for (std::size_t i = 0; i < n; ++i) {
         T x, y;
         if (project(c, points[i], x, y)) {
-          fetch_add(c, x, y, 1.0f, acc[i]);
+          fetch_add(c, x, y, 1.0f, acc + 3 * i);
           weight[i] += 1.0f;
         }
       }
     }
-    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc[i], weight[i]);
+    for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc + 3 * i, weight[i]);
   }
 
   // Points p_i = p_0 + i (p_{n-1} - p_0) / (n - 1) up to rounding.
@@ -573,7 +698,7 @@ private:
 
   // The shift-and-add case of `sample_rays_synthetic`; false (nothing added) when it does not apply.
   // `ray_weight`: the weight of camera c for each ray (nullptr: 1 for every ray; <= 0: none).
-  bool shift_add(const CameraData& c, const Vec3<T>* points, std::size_t n, float (*acc)[4], float* weight,
+  bool shift_add(const CameraData& c, const Vec3<T>* points, std::size_t n, float* acc, float* weight,
                  const float* ray_weight = nullptr) const noexcept {
     T x0, y0, x1, y1, xm, ym;
     if (!project_any(c, points[0], x0, y0) || !project_any(c, points[n - 1], x1, y1) ||
@@ -600,7 +725,7 @@ private:
         const float w = ray_weight != nullptr ? ray_weight[i] : 1.0f;
         T x, y;
         if (w > 0 && project(c, points[i], x, y)) {
-          fetch_add(c, x, y, w, acc[i]);
+          fetch_add(c, x, y, w, acc + 3 * i);
           weight[i] += w;
         }
       }
@@ -614,8 +739,8 @@ private:
     const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
     const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
     const texel_type* b = a + c.width;
-    detail::shift_add_row(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr,
-                          acc + i_begin, i_end - i_begin);
+    add_rows(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr, acc + 3 * i_begin,
+             i_end - i_begin);
     if (ray_weight != nullptr) {
       for (std::size_t i = i_begin; i < i_end; ++i)
         if (ray_weight[i] > 0) weight[i] += ray_weight[i];
@@ -625,11 +750,32 @@ private:
     return true;
   }
 
+  // The shift-and-add kernel over the n pixels of rows a and b (flat channel arrays); with
+  // per-ray weights, those are spread over the three channel slots of each pixel first, a
+  // stack buffer at a time.
+  static void add_rows(const texel_type* a, const texel_type* b, detail::RowWeights w, const float* ray_weight,
+                       float* acc, std::size_t n) noexcept {
+    using channel = typename texel_type::channel_type;
+    // Texels are packed channel triples (static_assert in camera_frame_set.hpp): a row is one
+    // flat array of 3 n channels.
+    const channel* fa = a->c;
+    const channel* fb = b->c;
+    if (ray_weight == nullptr) return detail::shift_add_flat(fa, fb, w, nullptr, acc, 3 * n);
+    constexpr std::size_t kStep = 256;
+    float spread[3 * kStep];
+    for (std::size_t s0 = 0; s0 < n; s0 += kStep) {
+      const std::size_t m = std::min(kStep, n - s0);
+      for (std::size_t i = 0; i < m; ++i) spread[3 * i] = spread[3 * i + 1] = spread[3 * i + 2] = ray_weight[s0 + i];
+      detail::shift_add_flat(fa + 3 * s0, fb + 3 * s0, w, spread, acc + 3 * s0, 3 * m);
+    }
+  }
+
   [[nodiscard]] Color cylinder(const Ray<T>& ray, const Vec3<T>& X) const noexcept {
     const T radius = static_cast<T>(interpolation_.radius);
-    alignas(16) float acc[4] = {0, 0, 0, 0};
+    float acc[3] = {0, 0, 0};
     float weight = 0;
-    index_->within(ray.origin, ray.direction, radius, [&](int i, T d) noexcept { add_cylinder(i, d, radius, X, acc, weight); });
+    index_->within(ray.origin, ray.direction, radius,
+                   [&](int i, T d) noexcept { add_cylinder(i, d, radius, X, acc, weight); });
     if (!(weight > 0)) return colour_from(index_->nearest(ray.origin, ray.direction), X);
     return finish(acc, weight);
   }
@@ -680,13 +826,13 @@ private:
     }
     const T r2 = radius * radius;
     Vec3<T> points[kChunk];
-    alignas(16) float acc[kChunk][4];
+    float acc[3 * kChunk];
     float weight[kChunk];
     T inverse_length2[kChunk];
     float ray_weight[kChunk];
     for (std::size_t i = 0; i < n; ++i) {
       points[i] = point_of(rays[i]);
-      acc[i][0] = acc[i][1] = acc[i][2] = acc[i][3] = 0;
+      acc[3 * i] = acc[3 * i + 1] = acc[3 * i + 2] = 0;
       weight[i] = 0;
       const T dd = rays[i].direction.squaredNorm();
       inverse_length2[i] = dd > 0 && std::isfinite(dd) ? T(1) / dd : T(0);
@@ -708,18 +854,18 @@ private:
       }
       if (lo >= hi) continue;
       if (even && !c.distorted && hi - lo >= 8 &&
-          shift_add(c, points + lo, hi - lo, acc + lo, weight + lo, ray_weight + lo))
+          shift_add(c, points + lo, hi - lo, acc + 3 * lo, weight + lo, ray_weight + lo))
         continue;
       for (std::size_t i = lo; i < hi; ++i) {
         T x, y;
         if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
-          fetch_add(c, x, y, ray_weight[i], acc[i]);
+          fetch_add(c, x, y, ray_weight[i], acc + 3 * i);
           weight[i] += ray_weight[i];
         }
       }
     }
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = weight[i] > 0 ? finish(acc[i], weight[i])
+      out[i] = weight[i] > 0 ? finish(acc + 3 * i, weight[i])
                              : colour_from(index_->nearest(rays[i].origin, rays[i].direction), points[i]);
   }
 
@@ -735,6 +881,8 @@ private:
   bool planar_ = false;
   Vec3<T> plane_normal_ = Vec3<T>::UnitZ();
   Vec3<T> plane_point_ = Vec3<T>::Zero();
+  Vec3<T> axis_u_ = Vec3<T>::UnitX(), axis_v_ = Vec3<T>::UnitY();
+  std::vector<T> centre_u_, centre_v_, neighbour_u_, neighbour_v_;
   T extent_ = 0;
 };
 

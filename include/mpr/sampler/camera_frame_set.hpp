@@ -19,34 +19,40 @@
 
 namespace mpr {
 
-/// A linear RGB colour stored as four floats (the fourth is 0), 16-byte aligned so that one
-/// SIMD load fetches a pixel: the sampling-time form of linear (`Color`) frames, which may hold
-/// any finite value (HDR, negative).
-struct alignas(16) LinearTexel {
+/// A linear RGB colour stored as three floats (12 bytes): the sampling-time form of linear
+/// (`Color`) frames, which may hold any finite value (HDR, negative). Texels are packed with no
+/// padding, so a row of texels is also a flat array of channels (r g b r g b ...): the
+/// shift-and-add kernels stream it as such, at any SIMD width.
+struct LinearTexel {
   using channel_type = float;
   /// Stored channel value times `scale` is the linear colour.
   static constexpr float scale = 1.0f;
-  float c[4];
+  float c[3];
 };
 
-/// A linear RGB colour in 16-bit unsigned fixed point, colour = `c[k] * scale` = c[k] / 65535
-/// (the fourth channel is 0), 8 bytes: the sampling-time form of 8-bit sRGB frames. Each 8-bit
+/// A linear RGB colour in 16-bit unsigned fixed point, colour = `c[k] * scale` = c[k] / 65535,
+/// 6 bytes, packed like `LinearTexel`: the sampling-time form of 8-bit sRGB frames. Each 8-bit
 /// code is decoded with the exact table of core/color.hpp and rounded to the nearest 1/65535,
 /// an error below 7.7e-6 (1/500 of the smallest step between sRGB codes in linear), so colours
-/// still round-trip through `to_rgb8` exactly; half the memory traffic of `LinearTexel`.
-struct alignas(8) FixedTexel {
+/// still round-trip through `to_rgb8` exactly; half the memory traffic of `LinearTexel`, which
+/// matters because a full synthetic aperture reads every texel of every frame.
+struct FixedTexel {
   using channel_type = std::uint16_t;
   static constexpr float scale = 1.0f / 65535.0f;
-  std::uint16_t c[4];
+  std::uint16_t c[3];
 };
+
+static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(FixedTexel) == 3 * sizeof(std::uint16_t),
+              "texels are packed: a texel row is a flat channel array");
 
 /// Camera `i` took image `i`. Images are 8-bit sRGB (`Rgb8`, the default: 3 bytes per pixel,
 /// decoded to linear with the exact table of core/color.hpp while sampling) or linear `Color`.
 /// Every image has exactly its camera's width and height; different cameras may differ in size.
 /// At construction every image is also decoded once into linear texels, which the samplers read:
-/// `FixedTexel` (8 bytes per pixel) for 8-bit frames, `LinearTexel` (16 bytes) for linear ones;
+/// `FixedTexel` (6 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
 /// this is the bulk of the memory a frame set takes.
-template <std::floating_point T, class Px = Rgb8> class CameraFrameSet {
+template <std::floating_point T, class Px = Rgb8>
+class CameraFrameSet {
   static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
 
 public:
@@ -102,15 +108,15 @@ public:
   }
 
   /// The frames with their cameras converted to scalar `U` (images are copied unchanged).
-  template <std::floating_point U> [[nodiscard]] CameraFrameSet<U, Px> cast() const {
+  template <std::floating_point U>
+  [[nodiscard]] CameraFrameSet<U, Px> cast() const {
     std::vector<PinholeCamera<U>> cameras;
     cameras.reserve(size());
     for (const camera_type& c : cameras_)
-      cameras.emplace_back(c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(),
-                           c.height(),
-                           typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1),
-                                                                 static_cast<U>(c.distortion().k2)},
-                           std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
+      cameras.emplace_back(
+          c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(), c.height(),
+          typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1), static_cast<U>(c.distortion().k2)},
+          std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
     return CameraFrameSet<U, Px>(std::move(cameras), images_, names_);
   }
 
@@ -123,9 +129,9 @@ private:
       for (int v = 0; v < 256; ++v)
         table[static_cast<std::size_t>(v)] = static_cast<std::uint16_t>(
             std::lround(static_cast<double>(srgb8_to_linear(static_cast<std::uint8_t>(v))) * 65535.0));
-      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{table[p[k].r], table[p[k].g], table[p[k].b], 0}};
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{table[p[k].r], table[p[k].g], table[p[k].b]}};
     } else {
-      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k][0], p[k][1], p[k][2], 0.0f}};
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k][0], p[k][1], p[k][2]}};
     }
     return out;
   }

@@ -18,7 +18,8 @@ namespace mpr {
 /// `light_alt` in 2x2 blocks, so the board's orientation and scale stay readable in distorted
 /// views. With `cells > 0` the board covers only |i|, |j| < cells; rays that miss it, hit it
 /// behind their origin, or run parallel to it return `background`.
-template <std::floating_point T> class CheckerboardPlane {
+template <std::floating_point T>
+class CheckerboardPlane {
 public:
   using scalar_type = T;
 

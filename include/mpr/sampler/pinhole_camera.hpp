@@ -27,7 +27,8 @@ namespace mpr {
 ///
 /// Distortion (optional, Brown's radial model): normalized coordinates `p = (x/z, y/z)` are
 /// scaled by `1 + k1 r^2 + k2 r^4`, r = |p|, before K is applied.
-template <std::floating_point T> class PinholeCamera {
+template <std::floating_point T>
+class PinholeCamera {
 public:
   using scalar_type = T;
 
@@ -39,8 +40,8 @@ public:
   /// Throws `argument_error` naming "K", "R", "t", "width", "height" or "distortion" when a value
   /// is not finite, K is not upper triangular with positive focal lengths, R is not a rotation
   /// (max |R^T R - I| > `rotation_tolerance` or det R < 0), or the image size is not positive.
-  PinholeCamera(const Mat3<T>& K, const Mat3<T>& R, const Vec3<T>& t, int width, int height,
-                Distortion distortion = {}, T rotation_tolerance = default_rotation_tolerance())
+  PinholeCamera(const Mat3<T>& K, const Mat3<T>& R, const Vec3<T>& t, int width, int height, Distortion distortion = {},
+                T rotation_tolerance = default_rotation_tolerance())
       : R_(R), t_(t), width_(width), height_(height), distortion_(distortion) {
     if (!K.allFinite()) throw argument_error("K", "not finite");
     if (!R.allFinite()) throw argument_error("R", "not finite");

@@ -27,7 +27,8 @@ namespace mpr {
 /// is +-1 everywhere, so no ray is ever parallel to the plane and `ray.at(t)` lies at depth `t`
 /// from the plane. Any image surface can be combined with it (the selector reads only `uv` and
 /// the point); the GLC itself is defined with respect to the plane given here.
-template <std::floating_point T> class GlcSelector {
+template <std::floating_point T>
+class GlcSelector {
 public:
   using scalar_type = T;
 
@@ -53,7 +54,12 @@ public:
   }
 
   /// The scaled direction at `uv` (component +-1 along the plane normal).
-  [[nodiscard]] Vec3<T> direction_at(const Vec2<T>& uv) const noexcept { return d00_ + uv.x() * du_ + uv.y() * dv_; }
+  [[nodiscard]] Vec3<T> direction_at(const Vec2<T>& uv) const noexcept {
+    // Per component, as `PlanarSurface::point_at`: keeps the per-pixel path free of calls.
+    const T u = uv.x(), v = uv.y();
+    return Vec3<T>(d00_.x() + u * du_.x() + v * dv_.x(), d00_.y() + u * du_.y() + v * dv_.y(),
+                   d00_.z() + u * du_.z() + v * dv_.z());
+  }
 
   /// The scaled corner directions at uv (0,0), (1,0) and (0,1).
   [[nodiscard]] Vec3<T> d00() const noexcept { return d00_; }

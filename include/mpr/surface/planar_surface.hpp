@@ -18,7 +18,8 @@ namespace mpr {
 /// top edge (u to the right) and `height_vector` down the left edge (v down), all in world units.
 /// `normal()` is `normalize(width_vector x height_vector)`: with u right and v down, it points
 /// *away* from a viewer who sees the image upright, i.e. into the scene.
-template <std::floating_point T> class PlanarSurface {
+template <std::floating_point T>
+class PlanarSurface {
 public:
   using scalar_type = T;
 
@@ -49,7 +50,11 @@ public:
 
   /// The surface point shown at normalized region coordinates `uv`.
   [[nodiscard]] Vec3<T> point_at(const Vec2<T>& uv) const noexcept {
-    return origin_ + uv.x() * width_ + uv.y() * height_;
+    // Written per component: GCC does not always inline Eigen's assignment loop for this
+    // expression, and a call per pixel costs more than the arithmetic (renderer benchmarks).
+    const T u = uv.x(), v = uv.y();
+    return Vec3<T>(origin_.x() + u * width_.x() + v * height_.x(), origin_.y() + u * width_.y() + v * height_.y(),
+                   origin_.z() + u * width_.z() + v * height_.z());
   }
 
   [[nodiscard]] const Vec3<T>& origin() const noexcept { return origin_; }

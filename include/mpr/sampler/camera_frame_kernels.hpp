@@ -1,0 +1,366 @@
+#pragma once
+/// \file
+/// The inner loops of `CameraFrameSampler`'s row paths, with the instruction set chosen at run
+/// time: shift-and-add of two camera rows with fixed bilinear weights (refocusing as in
+/// Isaksen et al. 2000; the "shift-and-add" of synthetic-aperture photography, Vaish et al.
+/// 2004), on rows stored as flat channel arrays (r g b r g b ..., see `FixedTexel`), and the
+/// test that proves one camera nearest to each ray of a run (planar arrays).
+///
+/// Each kernel is written once as plain C++ and compiled up to three times: for the baseline
+/// of the build, and, on x86 with GCC or Clang, for AVX2+FMA and for AVX-512, which the
+/// compiler's vectoriser fills at full width. `simd_level()` picks the widest one the CPU runs;
+/// the environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`) can lower that choice,
+/// e.g. to compare kernels or to match a machine without AVX-512.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <type_traits>
+
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+/// x86 with GCC/Clang: kernels also compiled for AVX2+FMA and AVX-512, chosen at run time.
+#define MPR_LF_X86_KERNELS 1
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
+#define MPR_RESTRICT __restrict__
+#else
+#define MPR_ALWAYS_INLINE inline
+#define MPR_RESTRICT
+#endif
+
+#if defined(MPR_LF_X86_KERNELS)
+#include <immintrin.h>
+#define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
+#if defined(__clang__)
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
+#else
+// GCC's generic tuning would use 256-bit vectors even here; the kernels are streaming loops
+// that gain from the full width.
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
+#endif
+#endif
+
+namespace mpr::detail {
+
+/// The instruction sets the kernels are compiled for, widest last.
+enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
+
+/// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
+[[nodiscard]] inline SimdLevel simd_level() noexcept {
+  static const SimdLevel level = [] {
+    SimdLevel best = SimdLevel::portable;
+#if defined(MPR_LF_X86_KERNELS)
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) best = SimdLevel::avx2;
+    if (best == SimdLevel::avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
+      best = SimdLevel::avx512;
+#endif
+    const char* limit = std::getenv("MPR_SIMD");
+    if (limit != nullptr) {
+      if (std::strcmp(limit, "portable") == 0) return SimdLevel::portable;
+      if (std::strcmp(limit, "avx2") == 0 && best == SimdLevel::avx512) return SimdLevel::avx2;
+    }
+    return best;
+  }();
+  return level;
+}
+
+/// The name of `simd_level()`: "avx512", "avx2+fma" or "portable" (the build's baseline, which
+/// is SSE2 on x86-64).
+[[nodiscard]] inline const char* simd_level_name() noexcept {
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return "avx512";
+  case SimdLevel::avx2:
+    return "avx2+fma";
+  default:
+    return "portable";
+  }
+}
+
+/// The bilinear weights of one shift-and-add row, the channel scale of the texel type folded in.
+struct RowWeights {
+  float w00, w10, w01, w11;
+};
+
+/// acc[j] += rw[j] * (w00 a[j] + w10 a[j + 3] + w01 b[j] + w11 b[j + 3]) for j in [0, m): the
+/// bilinear blend of rows a and b at a fixed sub-pixel offset, over flat RGB rows (so j + 3 is
+/// the same channel one pixel to the right). `rw` (nullptr: weight 1) holds one weight per
+/// channel slot. Reads a[0, m + 3) and b[0, m + 3); acc must not overlap them.
+template <class C>
+MPR_ALWAYS_INLINE void shift_add_flat_body(const C* MPR_RESTRICT a, const C* MPR_RESTRICT b, RowWeights w,
+                                           const float* MPR_RESTRICT rw, float* MPR_RESTRICT acc,
+                                           std::size_t m) noexcept {
+  if (rw == nullptr) {
+    for (std::size_t j = 0; j < m; ++j)
+      acc[j] += w.w00 * static_cast<float>(a[j]) + w.w10 * static_cast<float>(a[j + 3]) +
+                w.w01 * static_cast<float>(b[j]) + w.w11 * static_cast<float>(b[j + 3]);
+  } else {
+    for (std::size_t j = 0; j < m; ++j)
+      acc[j] += rw[j] * (w.w00 * static_cast<float>(a[j]) + w.w10 * static_cast<float>(a[j + 3]) +
+                         w.w01 * static_cast<float>(b[j]) + w.w11 * static_cast<float>(b[j + 3]));
+  }
+}
+
+template <class C>
+inline void shift_add_flat_portable(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
+                                    std::size_t m) noexcept {
+  shift_add_flat_body(a, b, w, rw, acc, m);
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+template <class C>
+MPR_TARGET_AVX2 inline void shift_add_flat_avx2(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
+                                                std::size_t m) noexcept {
+  shift_add_flat_body(a, b, w, rw, acc, m);
+}
+
+template <class C>
+MPR_TARGET_AVX512 inline void shift_add_flat_avx512(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
+                                                    std::size_t m) noexcept {
+  shift_add_flat_body(a, b, w, rw, acc, m);
+}
+#endif
+
+/// `shift_add_flat_body` with the widest kernel `simd_level()` allows.
+template <class C>
+inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return shift_add_flat_avx512(a, b, w, rw, acc, m);
+  case SimdLevel::avx2:
+    return shift_add_flat_avx2(a, b, w, rw, acc, m);
+  default:
+    break;
+  }
+#endif
+  shift_add_flat_portable(a, b, w, rw, acc, m);
+}
+
+/// The rays of one output row, seen from the plane of a planar camera array, structure of
+/// arrays: ray i crosses the plane at (xu[i], xv[i]) (in-plane coordinates), its direction has
+/// in-plane components (du[i], dv[i]) and squared length dd[i]; ok[i] is nonzero (all bits
+/// set) when the crossing is well defined (the ray is not within ~0.06 degrees of the plane).
+template <class T>
+struct PlaneRays {
+  using Flag = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+  T *xu, *xv, *du, *dv, *dd;
+  Flag* ok;
+};
+
+/// The plane of a planar camera array: a point on it, its unit normal and two in-plane unit
+/// axes, all orthogonal.
+template <class T>
+struct PlaneFrame {
+  T px, py, pz, nx, ny, nz, ux, uy, uz, vx, vy, vz;
+};
+
+/// Fills `out` (n entries from each pointer) for rays given as structure of arrays (origin
+/// o = (ox, oy, oz) relative to the frame's point, direction (dx, dy, dz)), and cos2[i], the
+/// squared cosine between ray i and the normal. A ray crosses when (d . n)^2 > 1e-6 |d|^2 and
+/// the crossing is finite; where it does not, ok[i] = 0 and the other outputs are unspecified.
+template <class T>
+MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RESTRICT oy, const T* MPR_RESTRICT oz,
+                                       const T* MPR_RESTRICT dx, const T* MPR_RESTRICT dy, const T* MPR_RESTRICT dz,
+                                       std::size_t n, const PlaneFrame<T>& f, T* MPR_RESTRICT xu, T* MPR_RESTRICT xv,
+                                       T* MPR_RESTRICT du, T* MPR_RESTRICT dv, T* MPR_RESTRICT dd,
+                                       typename PlaneRays<T>::Flag* MPR_RESTRICT ok, T* MPR_RESTRICT cos2) noexcept {
+  // (Outputs are parameters: GCC honours `restrict` on parameters, not on local copies.)
+  using Flag = typename PlaneRays<T>::Flag;
+  // The frame in locals: loads through `f` inside the loop could alias the outputs.
+  const T nx = f.nx, ny = f.ny, nz = f.nz, ux = f.ux, uy = f.uy, uz = f.uz, vx = f.vx, vy = f.vy, vz = f.vz;
+  for (std::size_t i = 0; i < n; ++i) {
+    const T dn = nx * dx[i] + ny * dy[i] + nz * dz[i], on = nx * ox[i] + ny * oy[i] + nz * oz[i];
+    const T length2 = dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i];
+    const T u = ux * dx[i] + uy * dy[i] + uz * dz[i], v = vx * dx[i] + vy * dy[i] + vz * dz[i];
+    const T t = -on / dn;
+    const T cu = ux * ox[i] + uy * oy[i] + uz * oz[i] + t * u;
+    const T cv = vx * ox[i] + vy * oy[i] + vz * oz[i] + t * v;
+    // Where ok[i] is 0 the other outputs are meaningless (possibly NaN); every reader masks them
+    // with ok. No branches or float selects, so that the loop vectorises; x - x == 0 is false
+    // exactly for infinities and NaN.
+    const bool good =
+        (dn * dn > T(1e-6) * length2) & (cu - cu == T(0)) & (cv - cv == T(0)) & (length2 - length2 == T(0));
+    xu[i] = cu;
+    xv[i] = cv;
+    du[i] = u;
+    dv[i] = v;
+    dd[i] = length2;
+    ok[i] = good ? Flag(-1) : Flag(0);
+    cos2[i] = dn * dn / length2;
+  }
+}
+
+template <class T>
+inline void plane_rays_portable(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
+                                T* cos2) noexcept {
+  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+template <class T>
+MPR_TARGET_AVX2 inline void plane_rays_avx2(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f,
+                                            const PlaneRays<T>& out, T* cos2) noexcept {
+  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
+}
+
+template <class T>
+MPR_TARGET_AVX512 inline void plane_rays_avx512(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f,
+                                                const PlaneRays<T>& out, T* cos2) noexcept {
+  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
+}
+#endif
+
+/// `plane_rays_body` with the widest kernel `simd_level()` allows; `soa` = {ox, oy, oz, dx, dy, dz}.
+template <class T>
+inline void plane_rays(const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
+                       T* cos2) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return plane_rays_avx512(soa, n, f, out, cos2);
+  case SimdLevel::avx2:
+    return plane_rays_avx2(soa, n, f, out, cos2);
+  default:
+    break;
+  }
+#endif
+  plane_rays_portable(soa, n, f, out, cos2);
+}
+
+/// Camera k of a planar array as the nearest-camera proof needs it: in-plane centre (cu, cv),
+/// the in-plane centres of its listed neighbours, and rho2: rays crossing the plane within
+/// sqrt(rho2) of the centre are farther from every unlisted camera (see
+/// `CameraFrameSampler::tile_nearest`); margin2 is the absolute slack on squared distances.
+template <class T>
+struct NearestCandidate {
+  T cu, cv, rho2, margin2;
+  const T *nu, *nv;
+  int neighbours;
+};
+
+/// pass[i] = all bits set when ray i of `rays` (i in [0, n)) is proved nearer to camera `k`
+/// than to any other camera, 0 otherwise; `scratch` holds n values. The squared distance of an
+/// in-plane centre c to the line through x with direction d is (|e|^2 |d|^2 - (e . d)^2) / |d|^2
+/// with e = c - x; the test compares these numerators (all scaled by the same |d|^2): every
+/// listed neighbour must be farther by a relative 1e-4 plus the margin, and the crossing must lie
+/// within rho of the centre.
+template <class T>
+MPR_ALWAYS_INLINE void prove_nearest_body(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
+                                          typename PlaneRays<T>::Flag* MPR_RESTRICT pass,
+                                          T* MPR_RESTRICT scratch) noexcept {
+  using Flag = typename PlaneRays<T>::Flag;
+  const T* MPR_RESTRICT xu = rays.xu;
+  const T* MPR_RESTRICT xv = rays.xv;
+  const T* MPR_RESTRICT du = rays.du;
+  const T* MPR_RESTRICT dv = rays.dv;
+  const T* MPR_RESTRICT dd = rays.dd;
+  const Flag* MPR_RESTRICT ok = rays.ok;
+  for (std::size_t i = 0; i < n; ++i) {
+    const T eu = k.cu - xu[i], ev = k.cv - xv[i];
+    const T r2 = eu * eu + ev * ev, ed = eu * du[i] + ev * dv[i];
+    scratch[i] = (r2 * dd[i] - ed * ed) * T(1.0001) + k.margin2 * dd[i];
+    pass[i] = ok[i] & (r2 < k.rho2 ? Flag(-1) : Flag(0));
+  }
+  for (int j = 0; j < k.neighbours; ++j) {
+    const T cu = k.nu[j], cv = k.nv[j];
+    for (std::size_t i = 0; i < n; ++i) {
+      const T eu = cu - xu[i], ev = cv - xv[i];
+      const T r2 = eu * eu + ev * ev, ed = eu * du[i] + ev * dv[i];
+      pass[i] &= (r2 * dd[i] - ed * ed) > scratch[i] ? Flag(-1) : Flag(0);
+    }
+  }
+}
+
+template <class T>
+inline void prove_nearest_portable(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
+                                   typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
+  prove_nearest_body(rays, n, k, pass, scratch);
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+template <class T>
+MPR_TARGET_AVX2 inline void prove_nearest_avx2(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
+                                               typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
+  prove_nearest_body(rays, n, k, pass, scratch);
+}
+
+template <class T>
+MPR_TARGET_AVX512 inline void prove_nearest_avx512(const PlaneRays<T>& rays, std::size_t n,
+                                                   const NearestCandidate<T>& k, typename PlaneRays<T>::Flag* pass,
+                                                   T* scratch) noexcept {
+  prove_nearest_body(rays, n, k, pass, scratch);
+}
+#endif
+
+/// `prove_nearest_body` with the widest kernel `simd_level()` allows.
+template <class T>
+inline void prove_nearest(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
+                          typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return prove_nearest_avx512(rays, n, k, pass, scratch);
+  case SimdLevel::avx2:
+    return prove_nearest_avx2(rays, n, k, pass, scratch);
+  default:
+    break;
+  }
+#endif
+  prove_nearest_portable(rays, n, k, pass, scratch);
+}
+
+/// w[i] = max(0, 1 - d_i / radius) for i in [0, n), d_i the distance from the in-plane centre
+/// (cu, cv) to ray i of a row (see `PlaneRays`; inv_dd[i] = 1 / dd[i]): the linear falloff of
+/// `CylinderAperture`. d^2 = |e|^2 - (e . d)^2 / |d|^2 with e = c - x, clamped at 0 against
+/// rounding. Zero weight means outside the cylinder.
+template <class T>
+inline void cylinder_weights_portable(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd,
+                                      std::size_t n, T cu, T cv, T inv_radius, float* w) noexcept {
+  for (std::size_t i = 0; i < n; ++i) {
+    const T eu = cu - xu[i], ev = cv - xv[i];
+    const T ed = eu * du[i] + ev * dv[i];
+    const T d2 = std::max(eu * eu + ev * ev - ed * ed * inv_dd[i], T(0));
+    w[i] = static_cast<float>(std::max(T(1) - std::sqrt(d2) * inv_radius, T(0)));
+  }
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+// Written with intrinsics: with errno-setting sqrt (the default), compilers do not vectorise
+// std::sqrt, and this loop is mostly the square root.
+MPR_TARGET_AVX2 inline void cylinder_weights_avx2(const float* xu, const float* xv, const float* du, const float* dv,
+                                                  const float* inv_dd, std::size_t n, float cu, float cv,
+                                                  float inv_radius, float* w) noexcept {
+  const __m256 vcu = _mm256_set1_ps(cu), vcv = _mm256_set1_ps(cv), vinv = _mm256_set1_ps(inv_radius);
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const __m256 eu = _mm256_sub_ps(vcu, _mm256_loadu_ps(xu + i)), ev = _mm256_sub_ps(vcv, _mm256_loadu_ps(xv + i));
+    const __m256 ed = _mm256_fmadd_ps(eu, _mm256_loadu_ps(du + i), _mm256_mul_ps(ev, _mm256_loadu_ps(dv + i)));
+    const __m256 r2 = _mm256_fmadd_ps(eu, eu, _mm256_mul_ps(ev, ev));
+    const __m256 d2 = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_mul_ps(ed, ed), _mm256_loadu_ps(inv_dd + i), r2), zero);
+    _mm256_storeu_ps(w + i, _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one), zero));
+  }
+  cylinder_weights_portable(xu + i, xv + i, du + i, dv + i, inv_dd + i, n - i, cu, cv, inv_radius, w + i);
+}
+#endif
+
+/// `cylinder_weights_portable` with the AVX2 kernel where it runs (float only).
+template <class T>
+inline void cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd, std::size_t n, T cu,
+                             T cv, T inv_radius, float* w) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  if constexpr (std::is_same_v<T, float>)
+    if (simd_level() != SimdLevel::portable)
+      return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+#endif
+  cylinder_weights_portable(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+}
+
+} // namespace mpr::detail
