@@ -6,8 +6,9 @@
 // `sample_rays`, cameras in the outer loop) and, for comparison, through the per-pixel
 // `sample(ray)` contract only.
 //
-// usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [DATA_DIR]
+// usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [--no-per-pixel] [DATA_DIR]
 //   --only: run only the workloads whose label contains SUBSTRING (e.g. --only=Chess)
+//   --no-per-pixel: skip the per-pixel runs and the batch == per-pixel check (for profiling)
 #include "bench_common.hpp"
 
 #include <mpr/lightfield.hpp>
@@ -94,7 +95,8 @@ std::string load_average() {
   return s;
 }
 
-std::string g_only; // --only=: label filter
+std::string g_only;      // --only=: label filter
+bool g_per_pixel = true; // --no-per-pixel clears it
 
 struct Result {
   double batch_ms, per_pixel_ms, cpu_ms;
@@ -110,7 +112,7 @@ Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr:
   const mpr_bench::Timing tb = mpr_bench::time_repeated(repeats, [&] { batch.render(a.view(), region, {threads}); });
   const double cpu = threads == 1 ? thread_cpu_ms(repeats, [&] { batch.render(a.view(), region, {1}); }) : 0.0;
   double pp = 0;
-  if (per_pixel) {
+  if (per_pixel && g_per_pixel) {
     const mpr::Renderer slow(plane, glc, PerPixel<Sampler>{sampler});
     const mpr_bench::Timing tp =
         mpr_bench::time_repeated(std::max(1, repeats / 4), [&] { slow.render(b.view(), region, {threads}); });
@@ -146,6 +148,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a.rfind("--only=", 0) == 0)
       g_only = a.substr(7);
+    else if (a == "--no-per-pixel")
+      g_per_pixel = false;
     else if (a.rfind("--repeats=", 0) == 0)
       repeats_option = std::atoi(a.c_str() + 10);
     else if (a != "--quick")

@@ -14,6 +14,15 @@
 #include <utility>
 #include <vector>
 
+#if defined(__GNUC__) || defined(__clang__)
+/// Inlines every call, recursively, into the function it marks: used on the small loops that
+/// build rays and store colours, so that no policy call is left out of line however large the
+/// enclosing render function grows (the compiler's inlining budget is per function).
+#define MPR_FLATTEN __attribute__((flatten))
+#else
+#define MPR_FLATTEN
+#endif
+
 namespace mpr {
 
 /// Optional batch interface of a ray sampler: `sample_rays(rays, out)` writes the colour of
@@ -21,11 +30,11 @@ namespace mpr {
 /// its data in a better order (e.g. cameras in the outer loop). `Renderer::render_row` uses it
 /// when present, on chunks of one row; `sample(ray)` stays the contract.
 template <class M>
-concept BatchRaySampler =
-    RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
-                              std::span<sampler_color_t<M>> out) {
-      { m.sample_rays(rays, out) } noexcept;
-    };
+concept BatchRaySampler = RaySampler<M> &&
+    requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays, std::span<sampler_color_t<M>> out) {
+  { m.sample_rays(rays, out) }
+  noexcept;
+};
 
 /// Optional tile interface of a ray sampler: `sample_tile(rays, width, out)` gets the rays of
 /// `rays.size() / width` consecutive image rows of `width` pixels each (row-major, one pixel
@@ -36,11 +45,11 @@ concept BatchRaySampler =
 /// tiles of `kTileRows` rows (fixed, so the image is still the same for every thread count);
 /// `sample(ray)` stays the contract.
 template <class M>
-concept TileRaySampler =
-    RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays, int width,
-                              std::span<sampler_color_t<M>> out) {
-      { m.sample_tile(rays, width, out) } noexcept;
-    };
+concept TileRaySampler = RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
+                                                   int width, std::span<sampler_color_t<M>> out) {
+  { m.sample_tile(rays, width, out) }
+  noexcept;
+};
 
 /// Rows per tile for `TileRaySampler`s.
 inline constexpr int kTileRows = 8;
@@ -56,7 +65,7 @@ struct RenderOptions {
 /// policies take no storage. The inner loop is exactly: uv from pixel, point from surface, ray
 /// from selector, colour from sampler; every call is resolved at compile time.
 template <class Surface, class Selector, class Sampler>
-  requires ComposablePolicies<Surface, Selector, Sampler>
+requires ComposablePolicies<Surface, Selector, Sampler>
 class Renderer {
 public:
   using scalar_type = typename Surface::scalar_type;
@@ -91,7 +100,7 @@ public:
   /// models `BatchRaySampler` gets the rays of up to 256 pixels per call.
   /// Preconditions: the span lies inside both `out` and `region`.
   template <class Px>
-    requires StorableAs<Px, color_type>
+  requires StorableAs<Px, color_type>
   void render_row(ImageView<Px> out, const Region& region, int y, int x_begin, int x_end) const noexcept {
     Px* row = out.row(y);
     if constexpr (BatchRaySampler<Sampler>) {
@@ -101,10 +110,10 @@ public:
       color_type colors[kBatch];
       for (int x0 = x_begin; x0 < x_end; x0 += kBatch) {
         const int n = std::min(kBatch, x_end - x0);
-        for (int i = 0; i < n; ++i) rays[i] = ray_at(Pixel{x0 + i, y}, region);
+        rays_of_row(region, y, x0, x0 + n, rays);
         sampler_.sample_rays(std::span<const Ray<scalar_type>>(rays, static_cast<std::size_t>(n)),
                              std::span<color_type>(colors, static_cast<std::size_t>(n)));
-        for (int i = 0; i < n; ++i) row[x0 + i] = PixelTraits<Px>::from_color(colors[i]);
+        store_row(row + x0, colors, n);
       }
     } else {
       for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(shade(Pixel{x, y}, region));
@@ -116,7 +125,7 @@ public:
   /// that grows to the largest tile seen; if it cannot grow, the rows are rendered one by one).
   /// Preconditions: the rectangle lies inside both `out` and `region`.
   template <class Px>
-    requires StorableAs<Px, color_type>
+  requires StorableAs<Px, color_type>
   void render_tile(ImageView<Px> out, const Region& region, int y_begin, int y_end, int x_begin,
                    int x_end) const noexcept {
     if constexpr (TileRaySampler<Sampler>) {
@@ -134,16 +143,13 @@ public:
       }
       if (room) {
         for (int y = y_begin; y < y_end; ++y)
-          for (int x = x_begin; x < x_end; ++x)
-            rays[static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width) +
-                 static_cast<std::size_t>(x - x_begin)] = ray_at(Pixel{x, y}, region);
+          rays_of_row(region, y, x_begin, x_end,
+                      rays.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width));
         sampler_.sample_tile(std::span<const Ray<scalar_type>>(rays.data(), n), width,
                              std::span<color_type>(colors.data(), n));
-        for (int y = y_begin; y < y_end; ++y) {
-          Px* row = out.row(y);
-          const color_type* c = colors.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width);
-          for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(c[x - x_begin]);
-        }
+        for (int y = y_begin; y < y_end; ++y)
+          store_row(out.row(y) + x_begin,
+                    colors.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width), width);
         return;
       }
     }
@@ -152,10 +158,22 @@ public:
 
   /// Renders the view into the part of `region` that lies inside `out`.
   template <class Px>
-    requires StorableAs<Px, color_type>
+  requires StorableAs<Px, color_type>
   void render(ImageView<Px> out, const Region& region, const RenderOptions& options = {}) const noexcept;
 
 private:
+  // rays[i] = the ray of pixel (x_begin + i, y).
+  MPR_FLATTEN void rays_of_row(const Region& region, int y, int x_begin, int x_end,
+                               Ray<scalar_type>* rays) const noexcept {
+    for (int x = x_begin; x < x_end; ++x) rays[x - x_begin] = ray_at(Pixel{x, y}, region);
+  }
+
+  // row[i] = colors[i] stored as Px, for i in [0, n).
+  template <class Px>
+  MPR_FLATTEN static void store_row(Px* row, const color_type* colors, int n) noexcept {
+    for (int i = 0; i < n; ++i) row[i] = PixelTraits<Px>::from_color(colors[i]);
+  }
+
   [[no_unique_address]] Surface surface_{};
   [[no_unique_address]] Selector selector_{};
   [[no_unique_address]] Sampler sampler_{};
@@ -163,13 +181,15 @@ private:
 
 /// One view of a multi-view render: a region of the output and the renderer that fills it.
 /// Holds the renderer by reference; it must outlive the `render` call.
-template <class R> struct View {
+template <class R>
+struct View {
   Region region;
   const R* renderer;
 };
 
 /// Pairs a region with a renderer for `mpr::render`.
-template <class R> [[nodiscard]] View<R> view(const Region& region, const R& renderer) noexcept {
+template <class R>
+[[nodiscard]] View<R> view(const Region& region, const R& renderer) noexcept {
   return {region, &renderer};
 }
 
@@ -212,9 +232,9 @@ void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... v
 }
 
 template <class Surface, class Selector, class Sampler>
-  requires ComposablePolicies<Surface, Selector, Sampler>
+requires ComposablePolicies<Surface, Selector, Sampler>
 template <class Px>
-  requires StorableAs<Px, typename Renderer<Surface, Selector, Sampler>::color_type>
+requires StorableAs<Px, typename Renderer<Surface, Selector, Sampler>::color_type>
 void Renderer<Surface, Selector, Sampler>::render(ImageView<Px> out, const Region& region,
                                                   const RenderOptions& options) const noexcept {
   mpr::render(out, options, view(region, *this));

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
@@ -164,7 +165,8 @@ struct PlaneFrame {
 /// Fills `out` (n entries from each pointer) for rays given as structure of arrays (origin
 /// o = (ox, oy, oz) relative to the frame's point, direction (dx, dy, dz)), and cos2[i], the
 /// squared cosine between ray i and the normal. A ray crosses when (d . n)^2 > 1e-6 |d|^2 and
-/// the crossing is finite; where it does not, ok[i] = 0 and the other outputs are unspecified.
+/// the crossing is finite; where it does not, ok[i] = 0, cos2[i] = 1 and the other outputs are
+/// unspecified.
 template <class T>
 MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RESTRICT oy, const T* MPR_RESTRICT oz,
                                        const T* MPR_RESTRICT dx, const T* MPR_RESTRICT dy, const T* MPR_RESTRICT dz,
@@ -193,7 +195,7 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
     dv[i] = v;
     dd[i] = length2;
     ok[i] = good ? Flag(-1) : Flag(0);
-    cos2[i] = dn * dn / length2;
+    cos2[i] = good ? dn * dn / length2 : T(1);
   }
 }
 
@@ -361,6 +363,72 @@ inline void cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv,
       return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
 #endif
   cylinder_weights_portable(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+}
+
+/// The least of v[0, n) (+inf when n = 0), with eight independent running minima so that the
+/// loop is not one chain of dependent comparisons.
+template <class T>
+[[nodiscard]] inline T min_of(const T* v, std::size_t n) noexcept {
+  T m[8];
+  for (T& x : m) x = std::numeric_limits<T>::infinity();
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (std::size_t l = 0; l < 8; ++l) m[l] = std::min(m[l], v[i + l]);
+  for (; i < n; ++i) m[0] = std::min(m[0], v[i]);
+  T out = m[0];
+  for (std::size_t l = 1; l < 8; ++l) out = std::min(out, m[l]);
+  return out;
+}
+
+/// Whether the points (x[i], y[i], z[i]), i in [0, n), lie at p_0 + i (p_{n-1} - p_0) / (n - 1)
+/// within `tolerance` per coordinate (NaN never does). Structure of arrays, so that it vectorises.
+template <class T>
+MPR_ALWAYS_INLINE bool evenly_spaced_body(const T* MPR_RESTRICT x, const T* MPR_RESTRICT y, const T* MPR_RESTRICT z,
+                                          int n, T tolerance) noexcept {
+  if (n < 3) return true;
+  const T span = static_cast<T>(n - 1);
+  const T sx = (x[n - 1] - x[0]) / span, sy = (y[n - 1] - y[0]) / span, sz = (z[n - 1] - z[0]) / span;
+  const T x0 = x[0], y0 = y[0], z0 = z[0];
+  int bad = 0;
+  for (int i = 1; i < n - 1; ++i) {
+    const T t = static_cast<T>(i);
+    const bool good = (std::abs(x[i] - (x0 + t * sx)) <= tolerance) & (std::abs(y[i] - (y0 + t * sy)) <= tolerance) &
+                      (std::abs(z[i] - (z0 + t * sz)) <= tolerance);
+    bad |= good ? 0 : 1;
+  }
+  return bad == 0;
+}
+
+template <class T>
+inline bool evenly_spaced_portable(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
+  return evenly_spaced_body(x, y, z, n, tolerance);
+}
+
+#if defined(MPR_LF_X86_KERNELS)
+template <class T>
+MPR_TARGET_AVX2 inline bool evenly_spaced_avx2(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
+  return evenly_spaced_body(x, y, z, n, tolerance);
+}
+template <class T>
+MPR_TARGET_AVX512 inline bool evenly_spaced_avx512(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
+  return evenly_spaced_body(x, y, z, n, tolerance);
+}
+#endif
+
+/// `evenly_spaced_body` with the widest kernel `simd_level()` allows.
+template <class T>
+inline bool evenly_spaced(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
+#if defined(MPR_LF_X86_KERNELS)
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return evenly_spaced_avx512(x, y, z, n, tolerance);
+  case SimdLevel::avx2:
+    return evenly_spaced_avx2(x, y, z, n, tolerance);
+  default:
+    break;
+  }
+#endif
+  return evenly_spaced_portable(x, y, z, n, tolerance);
 }
 
 } // namespace mpr::detail

@@ -240,6 +240,7 @@ private:
     std::vector<float> acc, weight, ray_weight;
     std::vector<int> camera;
     std::vector<T> soa[6]; // ray origins relative to the plane point, then directions
+    std::vector<T> at[3];  // the points relative to the plane point, when `Config::depth` is set
     std::vector<T> xu, xv, du, dv, dd, cos2, inv_dd;
     std::vector<Flag> ok;
 
@@ -251,6 +252,7 @@ private:
           for (std::vector<float>* v : {&acc, &weight, &ray_weight}) v->resize(v == &acc ? 3 * w : w);
           camera.resize(w);
           for (std::vector<T>& v : soa) v.resize(w);
+          for (std::vector<T>& v : at) v.resize(w);
           for (std::vector<T>* v : {&xu, &xv, &du, &dv, &dd, &cos2, &inv_dd}) v->resize(w);
           ok.resize(w);
         }
@@ -267,8 +269,9 @@ private:
 
   // The points of one row of rays and where the rays cross the camera plane (scratch.xu ...,
   // see `detail::PlaneRays`). Returns the least cosine between a crossing ray and the plane
-  // normal (1 when none crosses); `all_cross` tells whether every ray does.
-  T prepare_row(const Ray<T>* row, std::size_t w, RowScratch& scratch, bool& all_cross) const noexcept {
+  // normal (1 when none crosses); `all_cross` tells whether every ray does, `even` whether the
+  // points are evenly spaced (`evenly_spaced`; only asked for bilinear filtering and w >= 8).
+  T prepare_row(const Ray<T>* row, std::size_t w, RowScratch& scratch, bool& all_cross, bool& even) const noexcept {
     const detail::PlaneFrame<T> frame{plane_point_.x(),  plane_point_.y(),  plane_point_.z(), plane_normal_.x(),
                                       plane_normal_.y(), plane_normal_.z(), axis_u_.x(),      axis_u_.y(),
                                       axis_u_.z(),       axis_v_.x(),       axis_v_.y(),      axis_v_.z()};
@@ -286,15 +289,22 @@ private:
     }
     const T* const soa_in[6] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5]};
     detail::plane_rays(soa_in, w, frame, scratch.plane_rays(), scratch.cos2.data());
-    T cos2_min = 1;
-    all_cross = true;
-    for (std::size_t i = 0; i < w; ++i) {
-      if (scratch.ok[i] != 0)
-        cos2_min = std::min(cos2_min, scratch.cos2[i]);
-      else
-        all_cross = false;
+    all_cross = std::find(scratch.ok.begin(), scratch.ok.begin() + static_cast<std::ptrdiff_t>(w), 0) ==
+                scratch.ok.begin() + static_cast<std::ptrdiff_t>(w);
+    even = false;
+    if (config_.filter == PixelFilter::bilinear && w >= 8) {
+      const T* p[3] = {soa[0], soa[1], soa[2]};
+      if (config_.depth) {
+        const T depth = *config_.depth;
+        for (int k = 0; k < 3; ++k) {
+          T* q = scratch.at[k].data();
+          for (std::size_t i = 0; i < w; ++i) q[i] = soa[k][i] + depth * soa[k + 3][i];
+          p[k] = q;
+        }
+      }
+      even = evenly_spaced_points(scratch.points.data(), p, w);
     }
-    return std::sqrt(cos2_min);
+    return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
   }
 
   static constexpr std::size_t kProofBlock = 32;
@@ -320,8 +330,8 @@ private:
     T threshold[kProofBlock];
     for (std::size_t r = 0; r < rows; ++r) {
       const Ray<T>* row = rays.data() + r * w;
-      bool all_cross = true;
-      const T cos_min = prepare_row(row, w, scratch, all_cross);
+      bool all_cross = true, even = false;
+      const T cos_min = prepare_row(row, w, scratch, all_cross, even);
       int* camera = scratch.camera.data();
       int k = -1, prepared = -1;
       detail::NearestCandidate<T> candidate{};
@@ -351,7 +361,6 @@ private:
         camera[i++] = k;
       }
       const Vec3<T>* points = scratch.points.data();
-      const bool even = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points, w);
       Color* o = out.data() + r * w;
       for (std::size_t s0 = 0; s0 < w;) {
         const int kk = camera[s0];
@@ -397,8 +406,8 @@ private:
     for (std::size_t r = 0; r < rows; ++r) {
       const Ray<T>* row = rays.data() + r * w;
       Color* o = out.data() + r * w;
-      bool all_cross = true;
-      const T cos_min = prepare_row(row, w, scratch, all_cross);
+      bool all_cross = true, even = false;
+      const T cos_min = prepare_row(row, w, scratch, all_cross, even);
       if (!all_cross) {
         sample_rays(std::span<const Ray<T>>(row, w), std::span<Color>(o, w));
         continue;
@@ -416,7 +425,6 @@ private:
       }
       const T reach = radius / cos_min * T(1.001) + margin;
       const Vec3<T>* points = scratch.points.data();
-      const bool even = config_.filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points, w);
       float* acc = scratch.acc.data();
       float* weight = scratch.weight.data();
       float* ray_weight = scratch.ray_weight.data();
@@ -682,6 +690,16 @@ private:
       }
     }
     for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc + 3 * i, weight[i]);
+  }
+
+  // `evenly_spaced` for points also given as coordinates relative to the plane point (SoA,
+  // vectorised); the tolerance is that of the absolute points.
+  [[nodiscard]] static bool evenly_spaced_points(const Vec3<T>* p, const T* const (&relative)[3],
+                                                 std::size_t n) noexcept {
+    if (n > static_cast<std::size_t>(std::numeric_limits<int>::max())) return evenly_spaced(p, n);
+    const T scale = p[0].cwiseAbs().maxCoeff() + p[n - 1].cwiseAbs().maxCoeff();
+    const T tolerance = T(64) * std::numeric_limits<T>::epsilon() * scale;
+    return detail::evenly_spaced(relative[0], relative[1], relative[2], static_cast<int>(n), tolerance);
   }
 
   // Points p_i = p_0 + i (p_{n-1} - p_0) / (n - 1) up to rounding.
