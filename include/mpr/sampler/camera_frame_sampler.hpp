@@ -373,8 +373,12 @@ private:
           std::fill(acc, acc + 3 * (e - s0), 0.0f);
           std::fill(weight, weight + (e - s0), 0.0f);
           copied = shift_add(cameras_[static_cast<std::size_t>(kk)], points + s0, e - s0, acc, weight);
+          // One camera: weight is exactly 1 where it added its pixel, 0 where it sees nothing.
           if (copied)
-            for (std::size_t i = s0; i < e; ++i) o[i] = finish(acc + 3 * (i - s0), weight[i - s0]);
+            for (std::size_t i = s0; i < e; ++i) {
+              const float* a = acc + 3 * (i - s0);
+              o[i] = weight[i - s0] > 0 ? Color(a[0], a[1], a[2]) : config_.background;
+            }
         }
         if (!copied)
           for (std::size_t i = s0; i < e; ++i) o[i] = colour_from(kk, points[i]);
