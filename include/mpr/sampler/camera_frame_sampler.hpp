@@ -456,17 +456,7 @@ private:
             hi = i + 1;
           }
         if (lo >= hi) continue;
-        const CameraData& c = cameras_[k];
-        if (even && !c.distorted && hi - lo >= 8 &&
-            shift_add(c, points + lo, hi - lo, acc + 3 * lo, weight + lo, ray_weight + lo))
-          continue;
-        for (std::size_t i = lo; i < hi; ++i) {
-          T x, y;
-          if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
-            fetch_add(c, x, y, ray_weight[i], acc + 3 * i);
-            weight[i] += ray_weight[i];
-          }
-        }
+        add_weighted(cameras_[k], points + lo, hi - lo, even, acc + 3 * lo, weight + lo, ray_weight + lo);
       }
       for (std::size_t i = 0; i < w; ++i)
         o[i] = weight[i] > 0 ? finish(acc + 3 * i, weight[i])
@@ -476,15 +466,25 @@ private:
   }
 
   // acc[i] += pixel of camera c at points[i], weight[i] += 1, for every point c sees.
-  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float* acc,
-                   float* weight) const noexcept {
+  // With `ray_weight` (not nullptr): weighted by ray_weight[i], rays of weight <= 0 skipped.
+  void add_per_ray(const CameraData& c, const Vec3<T>* points, std::size_t n, float* acc, float* weight,
+                   const float* ray_weight = nullptr) const noexcept {
     for (std::size_t i = 0; i < n; ++i) {
+      const float w = ray_weight != nullptr ? ray_weight[i] : 1.0f;
       T x, y;
-      if (project(c, points[i], x, y)) {
-        fetch_add(c, x, y, 1.0f, acc + 3 * i);
-        weight[i] += 1.0f;
+      if (w > 0 && project(c, points[i], x, y)) {
+        fetch_add(c, x, y, w, acc + 3 * i);
+        weight[i] += w;
       }
     }
+  }
+
+  // Camera c's weighted contribution to a run of rays: shift-and-add when the run qualifies
+  // (`even`: its points are evenly spaced), else per ray.
+  void add_weighted(const CameraData& c, const Vec3<T>* points, std::size_t n, bool even, float* acc, float* weight,
+                    const float* ray_weight) const noexcept {
+    if (even && !c.distorted && n >= 8 && shift_add(c, points, n, acc, weight, ray_weight)) return;
+    add_per_ray(c, points, n, acc, weight, ray_weight);
   }
 
   [[nodiscard]] Vec3<T> point_of(const Ray<T>& ray) const noexcept {
@@ -681,18 +681,8 @@ private:
       weight[i] = 0;
     }
     std::fill(acc, acc + 3 * n, 0.0f);
-    const bool even = n >= 8 && evenly_spaced(points, n);
-    for (const CameraData& c : cameras_) {
-      if (even && config_.filter == PixelFilter::bilinear && !c.distorted && shift_add(c, points, n, acc, weight))
-        continue;
-      for (std::size_t i = 0; i < n; ++i) {
-        T x, y;
-        if (project(c, points[i], x, y)) {
-          fetch_add(c, x, y, 1.0f, acc + 3 * i);
-          weight[i] += 1.0f;
-        }
-      }
-    }
+    const bool even = config_.filter == PixelFilter::bilinear && n >= 8 && evenly_spaced(points, n);
+    for (const CameraData& c : cameras_) add_weighted(c, points, n, even, acc, weight, nullptr);
     for (std::size_t i = 0; i < n; ++i) out[i] = finish(acc + 3 * i, weight[i]);
   }
 
@@ -742,18 +732,9 @@ private:
     const long last = std::min(static_cast<long>(n), static_cast<long>(c.width) - 1 - ix);
     if (first >= last) return false;
     const std::size_t i_begin = static_cast<std::size_t>(first), i_end = static_cast<std::size_t>(last);
-    const auto per_ray = [&](std::size_t begin, std::size_t end) noexcept {
-      for (std::size_t i = begin; i < end; ++i) {
-        const float w = ray_weight != nullptr ? ray_weight[i] : 1.0f;
-        T x, y;
-        if (w > 0 && project(c, points[i], x, y)) {
-          fetch_add(c, x, y, w, acc + 3 * i);
-          weight[i] += w;
-        }
-      }
-    };
-    per_ray(0, i_begin);
-    per_ray(i_end, n);
+    add_per_ray(c, points, i_begin, acc, weight, ray_weight);
+    add_per_ray(c, points + i_end, n - i_end, acc + 3 * i_end, weight + i_end,
+                ray_weight != nullptr ? ray_weight + i_end : nullptr);
     // Bilinear interpolation is continuous, so a position off by the tolerance across a pixel
     // boundary changes the colour by at most tolerance x the local gradient.
     const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
@@ -875,16 +856,7 @@ private:
         }
       }
       if (lo >= hi) continue;
-      if (even && !c.distorted && hi - lo >= 8 &&
-          shift_add(c, points + lo, hi - lo, acc + 3 * lo, weight + lo, ray_weight + lo))
-        continue;
-      for (std::size_t i = lo; i < hi; ++i) {
-        T x, y;
-        if (ray_weight[i] > 0 && project(c, points[i], x, y)) {
-          fetch_add(c, x, y, ray_weight[i], acc + 3 * i);
-          weight[i] += ray_weight[i];
-        }
-      }
+      add_weighted(c, points + lo, hi - lo, even, acc + 3 * lo, weight + lo, ray_weight + lo);
     }
     for (std::size_t i = 0; i < n; ++i)
       out[i] = weight[i] > 0 ? finish(acc + 3 * i, weight[i])
