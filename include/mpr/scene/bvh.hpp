@@ -15,9 +15,11 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -295,6 +297,15 @@ public:
     if constexpr (std::is_same_v<T, float>) return closest_hit_impl<true>(ray, t_max);
 #endif
     return closest_hit_impl<false>(ray, t_max);
+  }
+
+  /// `hits[i] = closest_hit(rays[i], t_max)` for every i (the same walk per ray, so the same
+  /// hits bit for bit). Precondition: equal lengths. (Walking two or four rays in turn, one
+  /// node each, to overlap their dependent chains of node fetch and box test measured 10-25%
+  /// slower on the classroom than one ray after the other, so this is a plain loop.)
+  void closest_hits(std::span<const Ray<T>> rays, std::span<Hit<T>> hits,
+                    T t_max = std::numeric_limits<T>::infinity()) const noexcept {
+    for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = closest_hit(rays[i], t_max);
   }
 
   /// The same query through the portable (scalar) kernels only: the reference the SIMD kernels
