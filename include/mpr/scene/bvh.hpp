@@ -5,7 +5,9 @@
 /// hierarchies", IRT 2007), and closest-hit ray queries with the watertight ray/triangle test of
 /// Woop, Benthin and Wald ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013): a ray that
 /// crosses a shared edge or vertex hits at least one of the triangles (no cracks), and the
-/// closest-hit query reports exactly one of them (no double hits).
+/// closest-hit query reports exactly one of them (no double hits). Queries walk a 4-wide collapse
+/// of the binary tree with SSE box and triangle-edge tests (float, x86-64), bit-identical to the
+/// portable kernels.
 
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
@@ -284,6 +286,7 @@ public:
   /// Builds over every triangle of `scene` (an empty scene gives an empty BVH that hits nothing).
   explicit Bvh(const Scene<T>& scene, const BvhConfig& config = {}) { build(scene, config); }
 
+  /// The binary SAH tree (built first; `closest_hit` walks its 4-wide collapse, `wide_nodes()`).
   [[nodiscard]] const std::vector<Node>& nodes() const noexcept { return nodes_; }
   [[nodiscard]] std::size_t triangle_count() const noexcept { return order_.size(); }
   [[nodiscard]] int depth() const noexcept { return depth_; }
