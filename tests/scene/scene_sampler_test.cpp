@@ -6,12 +6,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
+#include <span>
 #include <type_traits>
+#include <vector>
 
 namespace {
 
-template <class T> mpr::PinholeCamera<T> classroom_camera(int w, int h) {
+template <class T>
+mpr::PinholeCamera<T> classroom_camera(int w, int h) {
   return mpr::PinholeCamera<T>::look_at(mpr::Vec3<T>(0.3, 2.2, 3.5), mpr::Vec3<T>(0, 1.3, -8), mpr::Vec3<T>(0, 1, 0),
                                         T(1.0), w, h);
 }
@@ -115,4 +119,48 @@ TEST_CASE("untextured triangles never touch a texture; depth sampling never shad
   CHECK((color.sample({V(5, 5, 0), V(0, 0, 1)}) == scene->background()).all());
   using Sampler = mpr::SceneSampler<mpr::scene::Scene<float>, mpr::RayCast>;
   CHECK_THROWS_AS(Sampler(std::shared_ptr<const mpr::scene::Scene<float>>()), mpr::argument_error);
+}
+
+TEMPLATE_TEST_CASE("the batch ray cast (sample_rays, closest_hits) equals the per-ray one bit for bit",
+                   "[scene][batch]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  using Color = mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>;
+  using Depth = mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>;
+  STATIC_REQUIRE(mpr::BatchRaySampler<Color>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<Depth>);
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const Color color(scene);
+  const Depth depth(scene);
+  // A camera's rays (coherent) with degenerate ones mixed in: zero and NaN directions, which
+  // finish at once and must not disturb the rays walked alongside them.
+  const auto camera = classroom_camera<T>(97, 61);
+  std::vector<mpr::Ray<T>> rays;
+  for (int y = 0; y < 61; ++y)
+    for (int x = 0; x < 97; ++x) {
+      rays.push_back(camera.ray_through(mpr::Vec2<T>(T(x) + T(0.5), T(y) + T(0.5))));
+      if ((x * 7 + y) % 23 == 0) rays.push_back({V(0, 1, 0), V::Zero()});
+      if ((x * 5 + y) % 31 == 0) rays.push_back({V(0, 1, 0), V(std::nan(""), 0, -1)});
+    }
+  for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(3), rays.size()}) {
+    const std::span<const mpr::Ray<T>> batch(rays.data(), n);
+    std::vector<mpr::Color> c(n);
+    std::vector<float> d(n);
+    std::vector<mpr::scene::Hit<T>> h(n);
+    color.sample_rays(batch, std::span<mpr::Color>(c));
+    depth.sample_rays(batch, std::span<float>(d));
+    color.bvh().closest_hits(batch, std::span<mpr::scene::Hit<T>>(h));
+    int differ = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const mpr::Color ci = color.sample(rays[i]);
+      const float di = depth.sample(rays[i]);
+      const mpr::scene::Hit<T> hi = color.bvh().closest_hit(rays[i]);
+      differ += std::memcmp(ci.data(), c[i].data(), sizeof(float) * 3) != 0;
+      differ += std::memcmp(&di, &d[i], sizeof(float)) != 0;
+      differ += hi.triangle != h[i].triangle || std::memcmp(&hi.t, &h[i].t, sizeof(T)) != 0 ||
+                std::memcmp(&hi.b1, &h[i].b1, sizeof(T)) != 0 || std::memcmp(&hi.b2, &h[i].b2, sizeof(T)) != 0;
+    }
+    INFO(n << " rays");
+    CHECK(differ == 0);
+  }
 }

@@ -15,8 +15,11 @@
 #include <mpr/scene/bvh.hpp>
 #include <mpr/scene/scene.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -30,11 +33,13 @@ struct ShadedColor {};
 /// Output tag: the ray parameter of the first hit (float, +inf for a miss).
 struct HitDepth {};
 
-template <class SceneT, class Policy, class Output = ShadedColor> class SceneSampler;
+template <class SceneT, class Policy, class Output = ShadedColor>
+class SceneSampler;
 
 /// The ray-cast scene sampler. Copies share one immutable scene and BVH (a `shared_ptr`), so a
 /// sampler is one pointer wide and cheap to copy into a `Renderer`.
-template <std::floating_point T, class Output> class SceneSampler<scene::Scene<T>, RayCast, Output> {
+template <std::floating_point T, class Output>
+class SceneSampler<scene::Scene<T>, RayCast, Output> {
   static_assert(std::is_same_v<Output, ShadedColor> || std::is_same_v<Output, HitDepth>,
                 "Output must be mpr::ShadedColor or mpr::HitDepth");
 
@@ -56,7 +61,24 @@ public:
   [[nodiscard]] const scene::Bvh<T>& bvh() const noexcept { return state_->bvh; }
 
   [[nodiscard]] color_type sample(const Ray<T>& ray) const noexcept {
-    const scene::Hit<T> hit = state_->bvh.closest_hit(ray);
+    return answer(ray, state_->bvh.closest_hit(ray));
+  }
+
+  /// `out[i] = sample(rays[i])` for every i (`mpr::BatchRaySampler`): the same values, from
+  /// `Bvh::closest_hits`, which overlaps the walks of several rays. Precondition: equal lengths.
+  void sample_rays(std::span<const Ray<T>> rays, std::span<color_type> out) const noexcept {
+    constexpr std::size_t kChunk = 64;
+    scene::Hit<T> hits[kChunk];
+    for (std::size_t i0 = 0; i0 < rays.size(); i0 += kChunk) {
+      const std::size_t n = std::min(kChunk, rays.size() - i0);
+      state_->bvh.closest_hits(rays.subspan(i0, n), std::span<scene::Hit<T>>(hits, n));
+      for (std::size_t i = 0; i < n; ++i) out[i0 + i] = answer(rays[i0 + i], hits[i]);
+    }
+  }
+
+private:
+  /// What `Output` asks for, given the ray's closest hit.
+  [[nodiscard]] color_type answer(const Ray<T>& ray, const scene::Hit<T>& hit) const noexcept {
     if constexpr (std::is_same_v<Output, HitDepth>) {
       return hit.valid() ? static_cast<float>(hit.t) : std::numeric_limits<float>::infinity();
     } else {
@@ -67,7 +89,6 @@ public:
     }
   }
 
-private:
   struct State {
     State(std::shared_ptr<const scene::Scene<T>> s, const scene::BvhConfig& config)
         : scene(std::move(s)), bvh(*scene, config) {}
