@@ -2,8 +2,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 TEST_CASE("8-bit sRGB round trip is exact for every code", "[color]") {
   for (int k = 0; k < 256; ++k) {
@@ -50,4 +53,35 @@ TEST_CASE("PixelTraits store colours in each pixel type", "[color]") {
   STATIC_REQUIRE(mpr::StorableAs<mpr::Rgb8, mpr::Color>);
   STATIC_REQUIRE(mpr::StorableAs<float, float>);
   STATIC_REQUIRE_FALSE(mpr::StorableAs<mpr::Rgb8, float>);
+}
+
+TEST_CASE("linear_to_srgb8_row gives the per-channel codes bit for bit", "[color]") {
+  // Every channel value that matters: both float neighbours of each code boundary, a dense
+  // sweep of [0, 1], and the values clamped or mapped to 0 (negative, -0, NaN, infinities,
+  // subnormals, >= 1), at every position of a 16-wide vector and in the tails.
+  std::vector<float> in;
+  for (int k = 0; k < 255; ++k) {
+    const float t = mpr::detail::srgb_tables.threshold[static_cast<std::size_t>(k)];
+    in.push_back(t);
+    in.push_back(std::nextafter(t, 0.0f));
+    in.push_back(std::nextafter(t, 2.0f));
+  }
+  for (int i = 0; i <= 100000; ++i) in.push_back(static_cast<float>(i) / 100000.0f);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const float v : {-1.0f, -0.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), -inf, inf,
+                        std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(), 1.0f,
+                        std::nextafter(1.0f, 0.0f), std::nextafter(1.0f, 2.0f), 1e30f, -1e30f})
+    for (int r = 0; r < 17; ++r) in.push_back(v);
+  for (const std::size_t length : {in.size(), std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{16},
+                                   std::size_t{17}, std::size_t{33}}) {
+    for (std::size_t offset = 0; offset < 3; ++offset) {
+      const std::size_t m = std::min(length, in.size() - offset);
+      std::vector<std::uint8_t> out(m + 4, 7);
+      mpr::linear_to_srgb8_row(in.data() + offset, out.data(), m);
+      int wrong = 0;
+      for (std::size_t j = 0; j < m; ++j) wrong += out[j] != mpr::linear_to_srgb8(in[offset + j]) ? 1 : 0;
+      CHECK(wrong == 0);
+      CHECK(out[m] == 7); // nothing written past the end
+    }
+  }
 }

@@ -50,7 +50,7 @@ const char* kernel_name(Kernel k) {
 }
 
 bool cpu_avx2() {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #else
   return false;
@@ -58,7 +58,7 @@ bool cpu_avx2() {
 }
 
 bool cpu_avx512() {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   return cpu_avx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq");
 #else
@@ -88,7 +88,7 @@ Kernel dispatched() {
 template <class C>
 void shift_add_with(Kernel k, const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) {
   switch (k) {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   case Kernel::avx2:
     return mpr::detail::shift_add_flat_avx2(a, b, w, rw, acc, m);
   case Kernel::avx512:
@@ -103,7 +103,7 @@ template <class T>
 void plane_rays_with(Kernel k, const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
                      T* cos2) {
   switch (k) {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   case Kernel::avx2:
     return mpr::detail::plane_rays_avx2(soa, n, f, out, cos2);
   case Kernel::avx512:
@@ -118,7 +118,7 @@ template <class T>
 void prove_nearest_with(Kernel k, const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& c,
                         typename PlaneRays<T>::Flag* pass, T* scratch) {
   switch (k) {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   case Kernel::avx2:
     return mpr::detail::prove_nearest_avx2(rays, n, c, pass, scratch);
   case Kernel::avx512:
@@ -132,7 +132,7 @@ void prove_nearest_with(Kernel k, const PlaneRays<T>& rays, std::size_t n, const
 template <class T>
 bool evenly_spaced_with(Kernel k, const T* x, const T* y, const T* z, int n, T tolerance) {
   switch (k) {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   case Kernel::avx2:
     return mpr::detail::evenly_spaced_avx2(x, y, z, n, tolerance);
   case Kernel::avx512:
@@ -865,7 +865,7 @@ TEMPLATE_TEST_CASE("cylinder_weights: the linear falloff 1 - d / r, the AVX2 ker
         }
         for (std::size_t i = len; i < len + kGuard; ++i)
           if (w[i] != kSentinel<float>) fail("portable wrote past the end");
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
         if constexpr (std::is_same_v<T, float>) {
           if (cpu_avx2()) {
             ++simd_runs;

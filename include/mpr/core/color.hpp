@@ -12,6 +12,8 @@
 ///   every 8-bit value.
 
 #include <Eigen/Core>
+#include <mpr/core/simd.hpp>
+
 #include <array>
 #include <cmath>
 #include <concepts>
@@ -49,9 +51,10 @@ struct SrgbTables {
   std::array<float, 256> decoded{};
   /// threshold[k]: the smallest float x with round(255 * encode(x)) > k; +inf for k = 255.
   std::array<float, 256> threshold{};
-  /// bin_start[i]: the 8-bit code of the lower edge i / kBins of bin i.
+  /// bin_start[i]: the 8-bit code of the lower edge i / kBins of bin i. Three entries past the
+  /// end (255) let a SIMD gather read four bytes at any bin.
   static constexpr int kBins = 8192;
-  std::array<std::uint8_t, kBins> bin_start{};
+  std::array<std::uint8_t, kBins + 3> bin_start{};
 
   SrgbTables() noexcept {
     for (int k = 0; k < 256; ++k) decoded[k] = static_cast<float>(srgb_decode(k / 255.0));
@@ -72,6 +75,7 @@ struct SrgbTables {
       while (edge >= threshold[k]) ++k;
       bin_start[i] = static_cast<std::uint8_t>(k);
     }
+    for (int i = kBins; i < kBins + 3; ++i) bin_start[static_cast<std::size_t>(i)] = 255;
   }
 };
 
@@ -89,6 +93,48 @@ inline const SrgbTables srgb_tables{};
   return static_cast<std::uint8_t>(k + (linear >= t.threshold[k] ? 1 : 0));
 }
 
+#if defined(MPR_SIMD_X86)
+// GCC 12's AVX-512 headers start some intrinsics from _mm512_undefined_*(), which its own
+// -Wmaybe-uninitialized then reports at every use.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+namespace detail {
+/// `linear_to_srgb8` on 16 channels at a time (AVX-512: two gathers from the same tables), the
+/// rest one by one; the same codes bit for bit. NaN and values <= 0 clamp to 0, values >= 1 to
+/// the last bin, whose code is 255.
+MPR_TARGET_AVX512 inline void linear_to_srgb8_row_avx512(const float* in, std::uint8_t* out, std::size_t m) noexcept {
+  const auto& t = srgb_tables;
+  const __m512 zero = _mm512_setzero_ps(), below_one = _mm512_set1_ps(0x1.fffffep-1f);
+  const __m512 bins = _mm512_set1_ps(static_cast<float>(SrgbTables::kBins));
+  const __m512i byte = _mm512_set1_epi32(0xff), one = _mm512_set1_epi32(1);
+  std::size_t j = 0;
+  for (; j + 16 <= m; j += 16) {
+    // max(x, 0) returns 0 for NaN (the second operand).
+    const __m512 x = _mm512_min_ps(_mm512_max_ps(_mm512_loadu_ps(in + j), zero), below_one);
+    const __m512i bin = _mm512_cvttps_epi32(_mm512_mul_ps(x, bins));
+    const __m512i k = _mm512_and_si512(_mm512_i32gather_epi32(bin, t.bin_start.data(), 1), byte);
+    const __m512 threshold = _mm512_i32gather_ps(k, t.threshold.data(), 4);
+    const __mmask16 up = _mm512_cmp_ps_mask(x, threshold, _CMP_GE_OQ);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm512_cvtepi32_epi8(_mm512_mask_add_epi32(k, up, k, one)));
+  }
+  for (; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
+}
+} // namespace detail
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#endif
+
+/// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), vectorised where the CPU allows.
+inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m) noexcept {
+#if defined(MPR_SIMD_X86)
+  if (detail::simd_level() == detail::SimdLevel::avx512) return detail::linear_to_srgb8_row_avx512(in, out, m);
+#endif
+  for (std::size_t j = 0; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
+}
+
 /// 8-bit sRGB to linear conversion of one channel (a table lookup).
 [[nodiscard]] inline float srgb8_to_linear(std::uint8_t code) noexcept { return detail::srgb_tables.decoded[code]; }
 
@@ -104,21 +150,25 @@ inline const SrgbTables srgb_tables{};
 
 /// Converts what a sampler returns into a stored pixel. Specialise it (or add `from_color`
 /// overloads) to store another pixel type or to accept a sampler's own colour type.
-template <class Px> struct PixelTraits;
+template <class Px>
+struct PixelTraits;
 
 /// 8-bit sRGB pixels: linear colour is encoded with `to_rgb8`.
-template <> struct PixelTraits<Rgb8> {
+template <>
+struct PixelTraits<Rgb8> {
   [[nodiscard]] static Rgb8 from_color(const Color& c) noexcept { return to_rgb8(c); }
 };
 
 /// Linear float pixels: stored unchanged (no clamping, so HDR values survive).
-template <> struct PixelTraits<Color> {
+template <>
+struct PixelTraits<Color> {
   [[nodiscard]] static Color from_color(const Color& c) noexcept { return c; }
 };
 
 /// Scalar float pixels (depth, luminance, masks): a sampler whose colour type is `float` stores
 /// it unchanged; a linear `Color` is stored as its Rec. 709 luminance.
-template <> struct PixelTraits<float> {
+template <>
+struct PixelTraits<float> {
   [[nodiscard]] static float from_color(float value) noexcept { return value; }
   [[nodiscard]] static float from_color(const Color& c) noexcept {
     return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];

@@ -13,13 +13,15 @@
 namespace mpr {
 
 namespace detail {
-template <class Px> [[nodiscard]] bool pixel_equal(const Px& a, const Px& b) noexcept {
+template <class Px>
+[[nodiscard]] bool pixel_equal(const Px& a, const Px& b) noexcept {
   if constexpr (requires { (a == b).all(); })
     return (a == b).all();
   else
     return a == b;
 }
-template <class Px> [[nodiscard]] Px zero_pixel() noexcept {
+template <class Px>
+[[nodiscard]] Px zero_pixel() noexcept {
   if constexpr (requires { Px::Zero(); })
     return Px::Zero();
   else
@@ -30,7 +32,8 @@ template <class Px> [[nodiscard]] Px zero_pixel() noexcept {
 /// A non-owning view of a 2D grid of pixels, rows `stride` elements apart (stride >= width).
 /// Pixel (x, y) is at `data[y * stride + x]`, y down. `ImageView<const Px>` is a read-only view.
 /// A view never allocates and is cheap to copy; it must not outlive the storage it points to.
-template <class Px> class ImageView {
+template <class Px>
+class ImageView {
 public:
   using pixel_type = Px;
 
@@ -42,9 +45,7 @@ public:
   constexpr ImageView(Px* data, int width, int height) noexcept : ImageView(data, width, height, width) {}
 
   /// A read-only view of a mutable view.
-  constexpr operator ImageView<const Px>() const noexcept
-    requires(!std::is_const_v<Px>)
-  {
+  constexpr operator ImageView<const Px>() const noexcept requires(!std::is_const_v<Px>) {
     return {data_, width_, height_, stride_};
   }
 
@@ -81,7 +82,8 @@ private:
 };
 
 /// An owning, contiguous (stride == width) image of `Px`.
-template <class Px> class Image {
+template <class Px>
+class Image {
 public:
   using pixel_type = Px;
 

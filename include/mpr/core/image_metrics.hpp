@@ -75,7 +75,8 @@ inline void require_same_size(int aw, int ah, int bw, int bh) {
   const auto luma = [](const Rgb8& p) { return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b; };
   constexpr int window = 8, step = 4;
   constexpr double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
-  if (image.width() < window || image.height() < window) throw argument_error("image", "smaller than the 8x8 SSIM window");
+  if (image.width() < window || image.height() < window)
+    throw argument_error("image", "smaller than the 8x8 SSIM window");
   double total = 0;
   long long windows = 0;
   for (int y0 = 0; y0 + window <= image.height(); y0 += step)

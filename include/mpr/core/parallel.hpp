@@ -25,10 +25,12 @@ namespace mpr::detail {
 
 /// Calls `row(y)` for y in [begin, end) on up to `threads` std::threads (the caller included).
 /// If threads cannot be started, the caller does the remaining rows itself.
-template <class RowFn> void parallel_rows_std(int begin, int end, int threads, const RowFn& row) noexcept {
+template <class RowFn>
+void parallel_rows_std(int begin, int end, int threads, const RowFn& row) noexcept {
   std::atomic<int> next{begin};
   const auto worker = [&]() noexcept {
-    for (int y = next.fetch_add(1, std::memory_order_relaxed); y < end; y = next.fetch_add(1, std::memory_order_relaxed))
+    for (int y = next.fetch_add(1, std::memory_order_relaxed); y < end;
+         y = next.fetch_add(1, std::memory_order_relaxed))
       row(y);
   };
   std::vector<std::thread> pool;
@@ -44,14 +46,16 @@ template <class RowFn> void parallel_rows_std(int begin, int end, int threads, c
 
 #if defined(_OPENMP)
 /// OpenMP version of `parallel_rows_std`.
-template <class RowFn> void parallel_rows_openmp(int begin, int end, int threads, const RowFn& row) noexcept {
+template <class RowFn>
+void parallel_rows_openmp(int begin, int end, int threads, const RowFn& row) noexcept {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int y = begin; y < end; ++y) row(y);
 }
 #endif
 
 /// Calls `row(y)` for every y in [begin, end), on `resolve_thread_count(threads)` threads.
-template <class RowFn> void parallel_rows(int begin, int end, int threads, const RowFn& row) noexcept {
+template <class RowFn>
+void parallel_rows(int begin, int end, int threads, const RowFn& row) noexcept {
   if (end <= begin) return;
   const int n = resolve_thread_count(threads, end - begin);
   if (n == 1) {

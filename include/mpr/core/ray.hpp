@@ -11,7 +11,8 @@ namespace mpr {
 /// `direction` is *not* required to be unit length: the GLC selector, for example, scales it so
 /// that its component along the image-plane normal is exactly 1, which makes `t` the depth in
 /// front of the image plane. Samplers must not assume a unit direction.
-template <std::floating_point T> struct Ray {
+template <std::floating_point T>
+struct Ray {
   using scalar_type = T;
   Vec3<T> origin;
   Vec3<T> direction;

@@ -30,11 +30,23 @@ struct Region {
   }
 
   /// Normalized coordinates of the centre of `px` within the region (see the struct comment).
-  template <std::floating_point T> [[nodiscard]] Vec2<T> pixel_to_uv(Pixel px) const noexcept {
+  template <std::floating_point T>
+  [[nodiscard]] Vec2<T> pixel_to_uv(Pixel px) const noexcept {
+    return {column_to_u<T>(px.x), row_to_v<T>(px.y)};
+  }
+
+  /// The u of every pixel in image column `column` (the first coordinate of `pixel_to_uv`).
+  template <std::floating_point T>
+  [[nodiscard]] T column_to_u(int column) const noexcept {
     // Division rather than multiplication by a reciprocal: uv is then the correctly rounded
     // value of the exact fraction, identical for every view and thread.
-    return {(static_cast<T>(px.x - x) + T(0.5)) / static_cast<T>(width),
-            (static_cast<T>(px.y - y) + T(0.5)) / static_cast<T>(height)};
+    return (static_cast<T>(column - x) + T(0.5)) / static_cast<T>(width);
+  }
+
+  /// The v of every pixel in image row `row` (the second coordinate of `pixel_to_uv`).
+  template <std::floating_point T>
+  [[nodiscard]] T row_to_v(int row) const noexcept {
+    return (static_cast<T>(row - y) + T(0.5)) / static_cast<T>(height);
   }
 
   [[nodiscard]] constexpr bool contains(Pixel px) const noexcept {

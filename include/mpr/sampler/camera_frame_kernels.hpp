@@ -6,83 +6,20 @@
 /// 2004), on rows stored as flat channel arrays (r g b r g b ..., see `FixedTexel`), and the
 /// test that proves one camera nearest to each ray of a run (planar arrays).
 ///
-/// Each kernel is written once as plain C++ and compiled up to three times: for the baseline
-/// of the build, and, on x86 with GCC or Clang, for AVX2+FMA and for AVX-512, which the
-/// compiler's vectoriser fills at full width. `simd_level()` picks the widest one the CPU runs;
-/// the environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`) can lower that choice,
-/// e.g. to compare kernels or to match a machine without AVX-512.
+/// Each kernel is written once as plain C++ and compiled up to three times (core/simd.hpp): for
+/// the baseline of the build, and, on x86 with GCC or Clang, for AVX2+FMA and for AVX-512,
+/// which the compiler's vectoriser fills at full width.
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <type_traits>
 
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
-/// x86 with GCC/Clang: kernels also compiled for AVX2+FMA and AVX-512, chosen at run time.
-#define MPR_LF_X86_KERNELS 1
-#endif
-
-#if defined(__GNUC__) || defined(__clang__)
-#define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
-#define MPR_RESTRICT __restrict__
-#else
-#define MPR_ALWAYS_INLINE inline
-#define MPR_RESTRICT
-#endif
-
-#if defined(MPR_LF_X86_KERNELS)
-#include <immintrin.h>
-#define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
-#if defined(__clang__)
-#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
-#else
-// GCC's generic tuning would use 256-bit vectors even here; the kernels are streaming loops
-// that gain from the full width.
-#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
-#endif
-#endif
+#include <mpr/core/simd.hpp>
 
 namespace mpr::detail {
-
-/// The instruction sets the kernels are compiled for, widest last.
-enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
-
-/// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
-[[nodiscard]] inline SimdLevel simd_level() noexcept {
-  static const SimdLevel level = [] {
-    SimdLevel best = SimdLevel::portable;
-#if defined(MPR_LF_X86_KERNELS)
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) best = SimdLevel::avx2;
-    if (best == SimdLevel::avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
-      best = SimdLevel::avx512;
-#endif
-    const char* limit = std::getenv("MPR_SIMD");
-    if (limit != nullptr) {
-      if (std::strcmp(limit, "portable") == 0) return SimdLevel::portable;
-      if (std::strcmp(limit, "avx2") == 0 && best == SimdLevel::avx512) return SimdLevel::avx2;
-    }
-    return best;
-  }();
-  return level;
-}
-
-/// The name of `simd_level()`: "avx512", "avx2+fma" or "portable" (the build's baseline, which
-/// is SSE2 on x86-64).
-[[nodiscard]] inline const char* simd_level_name() noexcept {
-  switch (simd_level()) {
-  case SimdLevel::avx512:
-    return "avx512";
-  case SimdLevel::avx2:
-    return "avx2+fma";
-  default:
-    return "portable";
-  }
-}
 
 /// The bilinear weights of one shift-and-add row, the channel scale of the texel type folded in.
 struct RowWeights {
@@ -114,7 +51,7 @@ inline void shift_add_flat_portable(const C* a, const C* b, RowWeights w, const 
   shift_add_flat_body(a, b, w, rw, acc, m);
 }
 
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
 template <class C>
 MPR_TARGET_AVX2 inline void shift_add_flat_avx2(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
                                                 std::size_t m) noexcept {
@@ -131,7 +68,7 @@ MPR_TARGET_AVX512 inline void shift_add_flat_avx512(const C* a, const C* b, RowW
 /// `shift_add_flat_body` with the widest kernel `simd_level()` allows.
 template <class C>
 inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   switch (simd_level()) {
   case SimdLevel::avx512:
     return shift_add_flat_avx512(a, b, w, rw, acc, m);
@@ -205,7 +142,7 @@ inline void plane_rays_portable(const T* const (&o)[6], std::size_t n, const Pla
   plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
 }
 
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
 template <class T>
 MPR_TARGET_AVX2 inline void plane_rays_avx2(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f,
                                             const PlaneRays<T>& out, T* cos2) noexcept {
@@ -223,7 +160,7 @@ MPR_TARGET_AVX512 inline void plane_rays_avx512(const T* const (&o)[6], std::siz
 template <class T>
 inline void plane_rays(const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
                        T* cos2) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   switch (simd_level()) {
   case SimdLevel::avx512:
     return plane_rays_avx512(soa, n, f, out, cos2);
@@ -286,7 +223,7 @@ inline void prove_nearest_portable(const PlaneRays<T>& rays, std::size_t n, cons
   prove_nearest_body(rays, n, k, pass, scratch);
 }
 
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
 template <class T>
 MPR_TARGET_AVX2 inline void prove_nearest_avx2(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
                                                typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
@@ -305,7 +242,7 @@ MPR_TARGET_AVX512 inline void prove_nearest_avx512(const PlaneRays<T>& rays, std
 template <class T>
 inline void prove_nearest(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
                           typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   switch (simd_level()) {
   case SimdLevel::avx512:
     return prove_nearest_avx512(rays, n, k, pass, scratch);
@@ -333,7 +270,7 @@ inline void cylinder_weights_portable(const T* xu, const T* xv, const T* du, con
   }
 }
 
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
 // Written with intrinsics: with errno-setting sqrt (the default), compilers do not vectorise
 // std::sqrt, and this loop is mostly the square root.
 MPR_TARGET_AVX2 inline void cylinder_weights_avx2(const float* xu, const float* xv, const float* du, const float* dv,
@@ -357,7 +294,7 @@ MPR_TARGET_AVX2 inline void cylinder_weights_avx2(const float* xu, const float* 
 template <class T>
 inline void cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd, std::size_t n, T cu,
                              T cv, T inv_radius, float* w) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float>)
     if (simd_level() != SimdLevel::portable)
       return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
@@ -404,7 +341,7 @@ inline bool evenly_spaced_portable(const T* x, const T* y, const T* z, int n, T 
   return evenly_spaced_body(x, y, z, n, tolerance);
 }
 
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
 template <class T>
 MPR_TARGET_AVX2 inline bool evenly_spaced_avx2(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
   return evenly_spaced_body(x, y, z, n, tolerance);
@@ -418,7 +355,7 @@ MPR_TARGET_AVX512 inline bool evenly_spaced_avx512(const T* x, const T* y, const
 /// `evenly_spaced_body` with the widest kernel `simd_level()` allows.
 template <class T>
 inline bool evenly_spaced(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
-#if defined(MPR_LF_X86_KERNELS)
+#if defined(MPR_SIMD_X86)
   switch (simd_level()) {
   case SimdLevel::avx512:
     return evenly_spaced_avx512(x, y, z, n, tolerance);

@@ -434,8 +434,17 @@ private:
       float* ray_weight = scratch.ray_weight.data();
       std::fill(acc, acc + 3 * w, 0.0f);
       std::fill(weight, weight + w, 0.0f);
+      T row_lo_u = lo_u[0], row_hi_u = hi_u[0], row_lo_v = lo_v[0], row_hi_v = hi_v[0];
+      for (std::size_t g = 1; g < segments; ++g) {
+        row_lo_u = std::min(row_lo_u, lo_u[g]);
+        row_hi_u = std::max(row_hi_u, hi_u[g]);
+        row_lo_v = std::min(row_lo_v, lo_v[g]);
+        row_hi_v = std::max(row_hi_v, hi_v[g]);
+      }
       for (std::size_t k = 0; k < cameras_.size(); ++k) {
         const T cu = centre_u_[k], cv = centre_v_[k];
+        // Most cameras are out of reach of the whole row.
+        if (cu < row_lo_u - reach || cu > row_hi_u + reach || cv < row_lo_v - reach || cv > row_hi_v + reach) continue;
         std::size_t first = segments, last = 0;
         for (std::size_t g = 0; g < segments; ++g) {
           const T gu = std::max({lo_u[g] - cu, cu - hi_u[g], T(0)}), gv = std::max({lo_v[g] - cv, cv - hi_v[g], T(0)});
@@ -449,12 +458,11 @@ private:
         detail::cylinder_weights(scratch.xu.data() + b0, scratch.xv.data() + b0, scratch.du.data() + b0,
                                  scratch.dv.data() + b0, scratch.inv_dd.data() + b0, b1 - b0, cu, cv, inv_radius,
                                  ray_weight + b0);
-        std::size_t lo = b1, hi = b0;
-        for (std::size_t i = b0; i < b1; ++i)
-          if (ray_weight[i] > 0) {
-            lo = std::min(lo, i);
-            hi = i + 1;
-          }
+        // The rays the camera weighs: from the first to the last positive weight (a scan from
+        // each end, which stops at the cylinder's edge).
+        std::size_t lo = b0, hi = b1;
+        while (lo < hi && !(ray_weight[lo] > 0)) ++lo;
+        while (hi > lo && !(ray_weight[hi - 1] > 0)) --hi;
         if (lo >= hi) continue;
         add_weighted(cameras_[k], points + lo, hi - lo, even, acc + 3 * lo, weight + lo, ray_weight + lo);
       }
@@ -742,6 +750,16 @@ private:
     const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
     const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
     const texel_type* b = a + c.width;
+#if defined(__GNUC__) || defined(__clang__)
+    // The next output row reads row iy + 2 over about the same columns: ask for it now. Short
+    // runs (nearest camera, cylinder aperture) are too short for the hardware prefetcher to pick
+    // them up; on long ones (whole-row refocusing) it does, and the extra prefetches cost time.
+    if (iy + 2 < c.height && i_end - i_begin < 1024) {
+      const char* next = reinterpret_cast<const char*>(b + c.width + i_begin);
+      const char* end = reinterpret_cast<const char*>(b + c.width + i_end + 1);
+      for (; next < end; next += 64) __builtin_prefetch(next);
+    }
+#endif
     add_rows(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr, acc + 3 * i_begin,
              i_end - i_begin);
     if (ray_weight != nullptr) {

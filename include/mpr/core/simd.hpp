@@ -1,0 +1,76 @@
+#pragma once
+/// \file
+/// Run-time choice of instruction set for the few inner loops that are compiled more than once
+/// (light-field row kernels, the sRGB row encoder): the baseline of the build and, on x86 with
+/// GCC or Clang, AVX2+FMA and AVX-512 through `__attribute__((target))`, so that a default
+/// build with no `-march` flag still runs the widest kernels the CPU has. `simd_level()` picks
+/// them once; the environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`) can lower
+/// that choice, e.g. to compare kernels or to match a machine without AVX-512.
+
+#include <cstdlib>
+#include <cstring>
+
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+/// x86 with GCC/Clang: kernels also compiled for AVX2+FMA and AVX-512, chosen at run time.
+#define MPR_SIMD_X86 1
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
+#define MPR_RESTRICT __restrict__
+#else
+#define MPR_ALWAYS_INLINE inline
+#define MPR_RESTRICT
+#endif
+
+#if defined(MPR_SIMD_X86)
+#include <immintrin.h>
+#define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
+#if defined(__clang__)
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
+#else
+// GCC's generic tuning would use 256-bit vectors even here; the kernels are streaming loops
+// that gain from the full width.
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
+#endif
+#endif
+
+namespace mpr::detail {
+
+/// The instruction sets the kernels are compiled for, widest last.
+enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
+
+/// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
+[[nodiscard]] inline SimdLevel simd_level() noexcept {
+  static const SimdLevel level = [] {
+    SimdLevel best = SimdLevel::portable;
+#if defined(MPR_SIMD_X86)
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) best = SimdLevel::avx2;
+    if (best == SimdLevel::avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
+      best = SimdLevel::avx512;
+#endif
+    const char* limit = std::getenv("MPR_SIMD");
+    if (limit != nullptr) {
+      if (std::strcmp(limit, "portable") == 0) return SimdLevel::portable;
+      if (std::strcmp(limit, "avx2") == 0 && best == SimdLevel::avx512) return SimdLevel::avx2;
+    }
+    return best;
+  }();
+  return level;
+}
+
+/// The name of `simd_level()`: "avx512", "avx2+fma" or "portable" (the build's baseline, which
+/// is SSE2 on x86-64).
+[[nodiscard]] inline const char* simd_level_name() noexcept {
+  switch (simd_level()) {
+  case SimdLevel::avx512:
+    return "avx512";
+  case SimdLevel::avx2:
+    return "avx2+fma";
+  default:
+    return "portable";
+  }
+}
+
+} // namespace mpr::detail
