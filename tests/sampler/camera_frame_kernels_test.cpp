@@ -85,62 +85,37 @@ Kernel dispatched() {
   }
 }
 
+mpr::detail::SimdLevel level(Kernel k) {
+  switch (k) {
+  case Kernel::avx512:
+    return mpr::detail::SimdLevel::avx512;
+  case Kernel::avx2:
+    return mpr::detail::SimdLevel::avx2;
+  default:
+    return mpr::detail::SimdLevel::portable;
+  }
+}
+
 template <class C>
 void shift_add_with(Kernel k, const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) {
-  switch (k) {
-#if defined(MPR_SIMD_X86)
-  case Kernel::avx2:
-    return mpr::detail::shift_add_flat_avx2(a, b, w, rw, acc, m);
-  case Kernel::avx512:
-    return mpr::detail::shift_add_flat_avx512(a, b, w, rw, acc, m);
-#endif
-  default:
-    return mpr::detail::shift_add_flat_portable(a, b, w, rw, acc, m);
-  }
+  mpr::detail::shift_add_flat(a, b, w, rw, acc, m, level(k));
 }
 
 template <class T>
 void plane_rays_with(Kernel k, const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
                      T* cos2) {
-  switch (k) {
-#if defined(MPR_SIMD_X86)
-  case Kernel::avx2:
-    return mpr::detail::plane_rays_avx2(soa, n, f, out, cos2);
-  case Kernel::avx512:
-    return mpr::detail::plane_rays_avx512(soa, n, f, out, cos2);
-#endif
-  default:
-    return mpr::detail::plane_rays_portable(soa, n, f, out, cos2);
-  }
+  mpr::detail::plane_rays(soa, n, f, out, cos2, level(k));
 }
 
 template <class T>
 void prove_nearest_with(Kernel k, const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& c,
                         typename PlaneRays<T>::Flag* pass, T* scratch) {
-  switch (k) {
-#if defined(MPR_SIMD_X86)
-  case Kernel::avx2:
-    return mpr::detail::prove_nearest_avx2(rays, n, c, pass, scratch);
-  case Kernel::avx512:
-    return mpr::detail::prove_nearest_avx512(rays, n, c, pass, scratch);
-#endif
-  default:
-    return mpr::detail::prove_nearest_portable(rays, n, c, pass, scratch);
-  }
+  mpr::detail::prove_nearest(rays, n, c, pass, scratch, level(k));
 }
 
 template <class T>
 bool evenly_spaced_with(Kernel k, const T* x, const T* y, const T* z, int n, T tolerance) {
-  switch (k) {
-#if defined(MPR_SIMD_X86)
-  case Kernel::avx2:
-    return mpr::detail::evenly_spaced_avx2(x, y, z, n, tolerance);
-  case Kernel::avx512:
-    return mpr::detail::evenly_spaced_avx512(x, y, z, n, tolerance);
-#endif
-  default:
-    return mpr::detail::evenly_spaced_portable(x, y, z, n, tolerance);
-  }
+  return mpr::detail::evenly_spaced(x, y, z, n, tolerance, level(k));
 }
 
 template <class T>

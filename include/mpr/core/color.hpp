@@ -127,11 +127,14 @@ MPR_TARGET_AVX512 inline void linear_to_srgb8_row_avx512(const float* in, std::u
 #endif
 #endif
 
-/// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), vectorised where the CPU allows.
-inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m) noexcept {
+/// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), 16 at a time when `level` is
+/// AVX-512 (default: the widest this CPU runs).
+inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m,
+                                detail::SimdLevel level = detail::simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
-  if (detail::simd_level() == detail::SimdLevel::avx512) return detail::linear_to_srgb8_row_avx512(in, out, m);
+  if (level == detail::SimdLevel::avx512) return detail::linear_to_srgb8_row_avx512(in, out, m);
 #endif
+  (void)level;
   for (std::size_t j = 0; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
 }
 

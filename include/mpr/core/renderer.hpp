@@ -111,7 +111,7 @@ public:
       color_type colors[kBatch];
       for (int x0 = x_begin; x0 < x_end; x0 += kBatch) {
         const int n = std::min(kBatch, x_end - x0);
-        rays_of_row(region, y, x0, x0 + n, rays);
+        rays_of_row(region, y, x0, x0 + n, nullptr, rays);
         sampler_.sample_rays(std::span<const Ray<scalar_type>>(rays, static_cast<std::size_t>(n)),
                              std::span<color_type>(colors, static_cast<std::size_t>(n)));
         store_row(row + x0, colors, n);
@@ -135,16 +135,21 @@ public:
       const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
       thread_local std::vector<Ray<scalar_type>> rays;
       thread_local std::vector<color_type> colors;
+      thread_local std::vector<scalar_type> u_of_column;
       bool room = true;
       try {
         if (rays.size() < n) rays.resize(n);
         if (colors.size() < n) colors.resize(n);
+        if (u_of_column.size() < static_cast<std::size_t>(width)) u_of_column.resize(static_cast<std::size_t>(width));
       } catch (...) {
         room = false;
       }
       if (room) {
+        // u depends on the column only: one division per column for the whole tile.
+        for (int x = x_begin; x < x_end; ++x)
+          u_of_column[static_cast<std::size_t>(x - x_begin)] = region.column_to_u<scalar_type>(x);
         for (int y = y_begin; y < y_end; ++y)
-          rays_of_row(region, y, x_begin, x_end,
+          rays_of_row(region, y, x_begin, x_end, u_of_column.data(),
                       rays.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width));
         sampler_.sample_tile(std::span<const Ray<scalar_type>>(rays.data(), n), width,
                              std::span<color_type>(colors.data(), n));
@@ -163,13 +168,13 @@ public:
   void render(ImageView<Px> out, const Region& region, const RenderOptions& options = {}) const noexcept;
 
 private:
-  // rays[i] = the ray of pixel (x_begin + i, y).
-  // The same rays as `ray_at`, with the row's v (one division) computed once.
-  MPR_FLATTEN void rays_of_row(const Region& region, int y, int x_begin, int x_end,
+  // rays[i] = the ray of pixel (x_begin + i, y): the same rays as `ray_at`, with the row's v
+  // computed once and u taken from `u` (u[i] = region.column_to_u(x_begin + i)) when given.
+  MPR_FLATTEN void rays_of_row(const Region& region, int y, int x_begin, int x_end, const scalar_type* u,
                                Ray<scalar_type>* rays) const noexcept {
     const scalar_type v = region.row_to_v<scalar_type>(y);
     for (int x = x_begin; x < x_end; ++x) {
-      const Vec2<scalar_type> uv(region.column_to_u<scalar_type>(x), v);
+      const Vec2<scalar_type> uv(u != nullptr ? u[x - x_begin] : region.column_to_u<scalar_type>(x), v);
       rays[x - x_begin] = selector_.ray_at(Pixel{x, y}, uv, surface_.point_at(uv));
     }
   }

@@ -17,9 +17,12 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
+/// For the bodies handed to `run_at`: `[&]() MPR_INLINE_LAMBDA { ... }`.
+#define MPR_INLINE_LAMBDA __attribute__((always_inline))
 #define MPR_RESTRICT __restrict__
 #else
 #define MPR_ALWAYS_INLINE inline
+#define MPR_INLINE_LAMBDA
 #define MPR_RESTRICT
 #endif
 
@@ -71,6 +74,31 @@ enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
   default:
     return "portable";
   }
+}
+
+#if defined(MPR_SIMD_X86)
+template <class Body>
+MPR_TARGET_AVX2 void run_avx2(const Body& body) noexcept {
+  body();
+}
+template <class Body>
+MPR_TARGET_AVX512 void run_avx512(const Body& body) noexcept {
+  body();
+}
+#endif
+
+/// Calls `body()` compiled for `level`: the body (a lambda marked `MPR_INLINE_LAMBDA` whose
+/// callees are `MPR_ALWAYS_INLINE`) is inlined into a function built for that instruction set,
+/// so the compiler vectorises its loops at that width. One plain C++ body thus gives every
+/// variant of a kernel. Precondition: the CPU runs `level` (any level up to `simd_level()`).
+template <class Body>
+void run_at(SimdLevel level, const Body& body) noexcept {
+#if defined(MPR_SIMD_X86)
+  if (level == SimdLevel::avx512) return run_avx512(body);
+  if (level == SimdLevel::avx2) return run_avx2(body);
+#endif
+  (void)level;
+  body();
 }
 
 } // namespace mpr::detail

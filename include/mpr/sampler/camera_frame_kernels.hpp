@@ -45,40 +45,11 @@ MPR_ALWAYS_INLINE void shift_add_flat_body(const C* MPR_RESTRICT a, const C* MPR
   }
 }
 
+/// `shift_add_flat_body` compiled for `level` (default: the widest this CPU runs).
 template <class C>
-inline void shift_add_flat_portable(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
-                                    std::size_t m) noexcept {
-  shift_add_flat_body(a, b, w, rw, acc, m);
-}
-
-#if defined(MPR_SIMD_X86)
-template <class C>
-MPR_TARGET_AVX2 inline void shift_add_flat_avx2(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
-                                                std::size_t m) noexcept {
-  shift_add_flat_body(a, b, w, rw, acc, m);
-}
-
-template <class C>
-MPR_TARGET_AVX512 inline void shift_add_flat_avx512(const C* a, const C* b, RowWeights w, const float* rw, float* acc,
-                                                    std::size_t m) noexcept {
-  shift_add_flat_body(a, b, w, rw, acc, m);
-}
-#endif
-
-/// `shift_add_flat_body` with the widest kernel `simd_level()` allows.
-template <class C>
-inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) noexcept {
-#if defined(MPR_SIMD_X86)
-  switch (simd_level()) {
-  case SimdLevel::avx512:
-    return shift_add_flat_avx512(a, b, w, rw, acc, m);
-  case SimdLevel::avx2:
-    return shift_add_flat_avx2(a, b, w, rw, acc, m);
-  default:
-    break;
-  }
-#endif
-  shift_add_flat_portable(a, b, w, rw, acc, m);
+inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m,
+                           SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { shift_add_flat_body(a, b, w, rw, acc, m); });
 }
 
 /// The rays of one output row, seen from the plane of a planar camera array, structure of
@@ -136,41 +107,14 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
   }
 }
 
-template <class T>
-inline void plane_rays_portable(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
-                                T* cos2) noexcept {
-  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
-}
-
-#if defined(MPR_SIMD_X86)
-template <class T>
-MPR_TARGET_AVX2 inline void plane_rays_avx2(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f,
-                                            const PlaneRays<T>& out, T* cos2) noexcept {
-  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
-}
-
-template <class T>
-MPR_TARGET_AVX512 inline void plane_rays_avx512(const T* const (&o)[6], std::size_t n, const PlaneFrame<T>& f,
-                                                const PlaneRays<T>& out, T* cos2) noexcept {
-  plane_rays_body(o[0], o[1], o[2], o[3], o[4], o[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
-}
-#endif
-
-/// `plane_rays_body` with the widest kernel `simd_level()` allows; `soa` = {ox, oy, oz, dx, dy, dz}.
+/// `plane_rays_body` compiled for `level`; `soa` = {ox, oy, oz, dx, dy, dz}.
 template <class T>
 inline void plane_rays(const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
-                       T* cos2) noexcept {
-#if defined(MPR_SIMD_X86)
-  switch (simd_level()) {
-  case SimdLevel::avx512:
-    return plane_rays_avx512(soa, n, f, out, cos2);
-  case SimdLevel::avx2:
-    return plane_rays_avx2(soa, n, f, out, cos2);
-  default:
-    break;
-  }
-#endif
-  plane_rays_portable(soa, n, f, out, cos2);
+                       T* cos2, SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA {
+    plane_rays_body(soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd,
+                    out.ok, cos2);
+  });
 }
 
 /// Camera k of a planar array as the nearest-camera proof needs it: in-plane centre (cu, cv),
@@ -217,42 +161,11 @@ MPR_ALWAYS_INLINE void prove_nearest_body(const PlaneRays<T>& rays, std::size_t 
   }
 }
 
-template <class T>
-inline void prove_nearest_portable(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
-                                   typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
-  prove_nearest_body(rays, n, k, pass, scratch);
-}
-
-#if defined(MPR_SIMD_X86)
-template <class T>
-MPR_TARGET_AVX2 inline void prove_nearest_avx2(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
-                                               typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
-  prove_nearest_body(rays, n, k, pass, scratch);
-}
-
-template <class T>
-MPR_TARGET_AVX512 inline void prove_nearest_avx512(const PlaneRays<T>& rays, std::size_t n,
-                                                   const NearestCandidate<T>& k, typename PlaneRays<T>::Flag* pass,
-                                                   T* scratch) noexcept {
-  prove_nearest_body(rays, n, k, pass, scratch);
-}
-#endif
-
-/// `prove_nearest_body` with the widest kernel `simd_level()` allows.
+/// `prove_nearest_body` compiled for `level`.
 template <class T>
 inline void prove_nearest(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
-                          typename PlaneRays<T>::Flag* pass, T* scratch) noexcept {
-#if defined(MPR_SIMD_X86)
-  switch (simd_level()) {
-  case SimdLevel::avx512:
-    return prove_nearest_avx512(rays, n, k, pass, scratch);
-  case SimdLevel::avx2:
-    return prove_nearest_avx2(rays, n, k, pass, scratch);
-  default:
-    break;
-  }
-#endif
-  prove_nearest_portable(rays, n, k, pass, scratch);
+                          typename PlaneRays<T>::Flag* pass, T* scratch, SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { prove_nearest_body(rays, n, k, pass, scratch); });
 }
 
 /// w[i] = max(0, 1 - d_i / radius) for i in [0, n), d_i the distance from the in-plane centre
@@ -290,15 +203,15 @@ MPR_TARGET_AVX2 inline void cylinder_weights_avx2(const float* xu, const float* 
 }
 #endif
 
-/// `cylinder_weights_portable` with the AVX2 kernel where it runs (float only).
+/// `cylinder_weights_portable`, or the AVX2 kernel (float) when `level` allows.
 template <class T>
 inline void cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd, std::size_t n, T cu,
-                             T cv, T inv_radius, float* w) noexcept {
+                             T cv, T inv_radius, float* w, SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float>)
-    if (simd_level() != SimdLevel::portable)
-      return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+    if (level != SimdLevel::portable) return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
 #endif
+  (void)level;
   cylinder_weights_portable(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
 }
 
@@ -336,36 +249,13 @@ MPR_ALWAYS_INLINE bool evenly_spaced_body(const T* MPR_RESTRICT x, const T* MPR_
   return bad == 0;
 }
 
+/// `evenly_spaced_body` compiled for `level`.
 template <class T>
-inline bool evenly_spaced_portable(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
-  return evenly_spaced_body(x, y, z, n, tolerance);
-}
-
-#if defined(MPR_SIMD_X86)
-template <class T>
-MPR_TARGET_AVX2 inline bool evenly_spaced_avx2(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
-  return evenly_spaced_body(x, y, z, n, tolerance);
-}
-template <class T>
-MPR_TARGET_AVX512 inline bool evenly_spaced_avx512(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
-  return evenly_spaced_body(x, y, z, n, tolerance);
-}
-#endif
-
-/// `evenly_spaced_body` with the widest kernel `simd_level()` allows.
-template <class T>
-inline bool evenly_spaced(const T* x, const T* y, const T* z, int n, T tolerance) noexcept {
-#if defined(MPR_SIMD_X86)
-  switch (simd_level()) {
-  case SimdLevel::avx512:
-    return evenly_spaced_avx512(x, y, z, n, tolerance);
-  case SimdLevel::avx2:
-    return evenly_spaced_avx2(x, y, z, n, tolerance);
-  default:
-    break;
-  }
-#endif
-  return evenly_spaced_portable(x, y, z, n, tolerance);
+inline bool evenly_spaced(const T* x, const T* y, const T* z, int n, T tolerance,
+                          SimdLevel level = simd_level()) noexcept {
+  bool even = false;
+  run_at(level, [&]() MPR_INLINE_LAMBDA { even = evenly_spaced_body(x, y, z, n, tolerance); });
+  return even;
 }
 
 } // namespace mpr::detail
