@@ -24,7 +24,8 @@ TEMPLATE_TEST_CASE("CameraCentreIndex::nearest equals the brute-force choice", "
     int mismatches = 0;
     for (int q = 0; q < 3000; ++q) {
       const mpr::Vec3<T> o(static_cast<T>(5 * u(rng)), static_cast<T>(5 * u(rng)), static_cast<T>(5 + 3 * u(rng)));
-      const mpr::Vec3<T> d(static_cast<T>(0.5 * u(rng)), static_cast<T>(0.5 * u(rng)), static_cast<T>(1 + 0.2 * u(rng)));
+      const mpr::Vec3<T> d(static_cast<T>(0.5 * u(rng)), static_cast<T>(0.5 * u(rng)),
+                           static_cast<T>(1 + 0.2 * u(rng)));
       const int a = index.nearest(o, d), b = index.nearest_brute_force(o, d);
       if (a != b) ++mismatches;
       // within() finds exactly the centres a linear scan finds.
@@ -49,7 +50,7 @@ TEST_CASE("CameraCentreIndex handles empty sets, ties and degenerate lines", "[c
   CHECK(empty.nearest({0, 0, 0}, {0, 0, 1}) == -1);
   const std::vector<mpr::Vec3<double>> pair{{-1, 0, 0}, {1, 0, 0}, {1, 0, 0}};
   const mpr::CameraCentreIndex<double> index(pair);
-  CHECK(index.nearest({0, 0, 5}, {0, 0, 1}) == 0); // exact tie: lowest index
+  CHECK(index.nearest({0, 0, 5}, {0, 0, 1}) == 0);   // exact tie: lowest index
   CHECK(index.nearest({0.5, 0, 5}, {0, 0, 1}) == 1); // duplicate centres: lowest index
   CHECK(index.nearest({0, 0, 5}, {0, 0, 0}) == -1);
   CHECK(index.nearest({0, 0, 5}, {std::nan(""), 0, 1}) == -1);

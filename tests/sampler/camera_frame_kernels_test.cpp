@@ -383,11 +383,7 @@ std::vector<mpr::PinholeCamera<T>> array_cameras(int nx, int ny, double jitter, 
     for (int x = 0; x < nx; ++x) {
       const double cx = x - 0.5 * (nx - 1) + j(rng), cy = y - 0.5 * (ny - 1) + j(rng);
       const mpr::Vec3<T> c(static_cast<T>(cx), static_cast<T>(cy), static_cast<T>(tilt_x * cx + tilt_y * cy));
-      mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
-      K(0, 0) = K(1, 1) = static_cast<T>(focal);
-      K(0, 2) = static_cast<T>(0.5 * (width - 1));
-      K(1, 2) = static_cast<T>(0.5 * (height - 1));
-      cameras.emplace_back(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-c), width, height);
+      cameras.push_back(mpr_test::camera_at<T>(c, width, height, focal));
     }
   return cameras;
 }

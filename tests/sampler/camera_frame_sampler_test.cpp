@@ -16,11 +16,9 @@ using mpr_test::constant_colour;
 namespace {
 
 template <class T, class Interp>
-mpr::CameraFrameSampler<Interp, T, mpr::Color> make_sampler(const std::vector<mpr::PinholeCamera<T>>& cameras,
-                                                            std::vector<mpr::Image<mpr::Color>> images,
-                                                            Interp interp = {},
-                                                            typename mpr::CameraFrameSampler<Interp, T, mpr::Color>::Config
-                                                                config = {}) {
+mpr::CameraFrameSampler<Interp, T, mpr::Color>
+make_sampler(const std::vector<mpr::PinholeCamera<T>>& cameras, std::vector<mpr::Image<mpr::Color>> images,
+             Interp interp = {}, typename mpr::CameraFrameSampler<Interp, T, mpr::Color>::Config config = {}) {
   auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cameras, std::move(images));
   return mpr::CameraFrameSampler<Interp, T, mpr::Color>(frames, interp, config);
 }
@@ -252,26 +250,28 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
   const mpr::PinholeCamera<T> straight(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(-0.1), T(0.2), 0), 64, 48);
   const mpr::PlanarSurface<T> parallel = straight.image_plane(T(15));
   const auto sweep = [&](const mpr::PlanarSurface<T>& p) {
-    const auto d = [&](T u, T v) { return mpr::Vec3<T>(p.point_at({u, v}) - mpr::Vec3<T>(-1 + 2 * u, T(-0.5) + v, 0)); };
+    const auto d = [&](T u, T v) {
+      return mpr::Vec3<T>(p.point_at({u, v}) - mpr::Vec3<T>(-1 + 2 * u, T(-0.5) + v, 0));
+    };
     return mpr::GlcSelector<T>(p, d(0, 0), d(1, 0), d(0, 1));
   };
   for (const auto& [plane, glc] : {std::pair{tilted, view.glc_on(tilted)}, std::pair{parallel, sweep(parallel)}}) {
-  const auto compare = [&](const auto& sampler) {
-    const mpr::Renderer renderer(plane, glc, sampler);
-    mpr::Image<mpr::Rgb8> batch(64, 48);
-    renderer.render(batch.view(), region, mpr::RenderOptions{2});
-    int worst = 0;
-    for (int y = 0; y < 48; ++y)
-      for (int x = 0; x < 64; ++x) {
-        const mpr::Rgb8 one = mpr::to_rgb8(renderer.shade({x, y}, region));
-        const mpr::Rgb8 b = batch(x, y);
-        worst = std::max({worst, std::abs(one.r - b.r), std::abs(one.g - b.g), std::abs(one.b - b.b)});
-      }
-    CHECK(worst <= 1);
-  };
-  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
-  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
-  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{1.2}));
+    const auto compare = [&](const auto& sampler) {
+      const mpr::Renderer renderer(plane, glc, sampler);
+      mpr::Image<mpr::Rgb8> batch(64, 48);
+      renderer.render(batch.view(), region, mpr::RenderOptions{2});
+      int worst = 0;
+      for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+          const mpr::Rgb8 one = mpr::to_rgb8(renderer.shade({x, y}, region));
+          const mpr::Rgb8 b = batch(x, y);
+          worst = std::max({worst, std::abs(one.r - b.r), std::abs(one.g - b.g), std::abs(one.b - b.b)});
+        }
+      CHECK(worst <= 1);
+    };
+    compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+    compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+    compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{1.2}));
   }
 }
 

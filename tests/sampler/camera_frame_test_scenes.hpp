@@ -17,6 +17,17 @@ inline mpr::Color plane_texture(double x, double y) {
                     static_cast<float>(0.4 + 0.01 * (x - y)));
 }
 
+/// A camera at `centre` (R = I, looking along +z), `width` x `height` pixels, focal length
+/// `focal`, principal point at the image centre.
+template <class T>
+mpr::PinholeCamera<T> camera_at(const mpr::Vec3<T>& centre, int width, int height, double focal) {
+  mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+  K(0, 0) = K(1, 1) = static_cast<T>(focal);
+  K(0, 2) = static_cast<T>(0.5 * (width - 1));
+  K(1, 2) = static_cast<T>(0.5 * (height - 1));
+  return mpr::PinholeCamera<T>(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-centre), width, height);
+}
+
 /// `nx` x `ny` cameras (R = I, looking along +z) spaced `spacing` apart on the plane z = 0,
 /// centred on the origin, `width` x `height` pixels, focal length `focal`.
 template <class T>
@@ -24,13 +35,9 @@ std::vector<mpr::PinholeCamera<T>> grid_cameras(int nx, int ny, double spacing, 
   std::vector<mpr::PinholeCamera<T>> cameras;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const mpr::Vec3<T> c(static_cast<T>((i - 0.5 * (nx - 1)) * spacing), static_cast<T>((j - 0.5 * (ny - 1)) * spacing),
-                           T(0));
-      mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
-      K(0, 0) = K(1, 1) = static_cast<T>(focal);
-      K(0, 2) = static_cast<T>(0.5 * (width - 1));
-      K(1, 2) = static_cast<T>(0.5 * (height - 1));
-      cameras.emplace_back(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-c), width, height);
+      const mpr::Vec3<T> c(static_cast<T>((i - 0.5 * (nx - 1)) * spacing),
+                           static_cast<T>((j - 0.5 * (ny - 1)) * spacing), T(0));
+      cameras.push_back(camera_at<T>(c, width, height, focal));
     }
   return cameras;
 }

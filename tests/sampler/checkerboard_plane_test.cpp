@@ -9,15 +9,17 @@
 namespace {
 
 /// Distance from x to the nearest integer.
-template <class T> T to_grid(T x) { return std::abs(x - std::round(x)); }
+template <class T>
+T to_grid(T x) {
+  return std::abs(x - std::round(x));
+}
 
 } // namespace
 
 // A pinhole GLC through the analytic checkerboard must equal, pixel for pixel, the image obtained
 // independently by mapping each pixel centre through the inverse of the board-to-image
 // homography H = K [R | t] [cell_u cell_v origin; 0 0 1] (no rays, no plane intersection).
-TEMPLATE_TEST_CASE("pinhole GLC render matches the 3x4 projection of the checkerboard", "[sampler]", float,
-                   double) {
+TEMPLATE_TEST_CASE("pinhole GLC render matches the 3x4 projection of the checkerboard", "[sampler]", float, double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
   const int width = 160, height = 120;
@@ -94,8 +96,8 @@ TEMPLATE_TEST_CASE("pinhole GLC render matches the 3x4 projection of the checker
       INFO("pixel " << x << ", " << y << " board (" << a << ", " << b << ")");
       REQUIRE((image(x, y) == expected).all());
     }
-  CHECK(on_board > width * height / 4);       // the board fills a good part of the view
-  CHECK(near_edge < width * height / 100);    // and almost every pixel was decided
+  CHECK(on_board > width * height / 4);    // the board fills a good part of the view
+  CHECK(near_edge < width * height / 100); // and almost every pixel was decided
   CHECK(compared + near_edge == width * height);
 }
 

@@ -13,8 +13,8 @@ TEMPLATE_TEST_CASE("PinholeCamera projects and back-projects consistently", "[ca
   K << 500, 0, 319.5, 0, 510, 239.5, 0, 0, 1;
   const mpr::Mat3<T> R = Eigen::AngleAxis<T>(T(0.3), V(1, 2, 3).normalized()).toRotationMatrix();
   const V t(T(0.1), T(-0.2), T(4));
-  for (const auto distortion : {typename mpr::PinholeCamera<T>::Distortion{},
-                                typename mpr::PinholeCamera<T>::Distortion{T(-0.1), T(0.02)}}) {
+  for (const auto distortion :
+       {typename mpr::PinholeCamera<T>::Distortion{}, typename mpr::PinholeCamera<T>::Distortion{T(-0.1), T(0.02)}}) {
     const mpr::PinholeCamera<T> camera(K, R, t, 640, 480, distortion);
     CHECK((camera.camera_from_world(camera.centre())).norm() < tol);
     for (int i = 0; i < 9; ++i) {
@@ -56,7 +56,8 @@ TEMPLATE_TEST_CASE("PinholeCamera rejects malformed calibration", "[camera]", fl
   const mpr::Mat3<T> K = (mpr::Mat3<T>() << 500, 0, 320, 0, 500, 240, 0, 0, 1).finished();
   const mpr::Mat3<T> I = mpr::Mat3<T>::Identity();
   const V t(0, 0, 1);
-  CHECK_THROWS_WITH(mpr::PinholeCamera<T>(K, T(2) * I, t, 640, 480), Catch::Contains("R") && Catch::Contains("rotation"));
+  CHECK_THROWS_WITH(mpr::PinholeCamera<T>(K, T(2) * I, t, 640, 480),
+                    Catch::Contains("R") && Catch::Contains("rotation"));
   CHECK_THROWS_WITH(mpr::PinholeCamera<T>(K, V(1, 1, -1).asDiagonal(), t, 640, 480), Catch::Contains("reflection"));
   mpr::Mat3<T> singular = K;
   singular(1, 1) = 0;
@@ -67,6 +68,5 @@ TEMPLATE_TEST_CASE("PinholeCamera rejects malformed calibration", "[camera]", fl
   CHECK_THROWS_WITH(mpr::PinholeCamera<T>(K, I, V(0, std::numeric_limits<T>::quiet_NaN(), 0), 640, 480),
                     Catch::Contains("t"));
   CHECK_THROWS_WITH(mpr::PinholeCamera<T>(K, I, t, 0, 480), Catch::Contains("width"));
-  CHECK_THROWS_WITH(mpr::PinholeCamera<T>::look_at({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, T(1), 8, 8),
-                    Catch::Contains("up"));
+  CHECK_THROWS_WITH(mpr::PinholeCamera<T>::look_at({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, T(1), 8, 8), Catch::Contains("up"));
 }
