@@ -23,8 +23,8 @@ inline std::string machine_description() {
       break;
     }
   }
-  std::string text = "machine: " + cpu + ", " + std::to_string(std::thread::hardware_concurrency()) +
-                     " hardware threads\ncompiler: ";
+  std::string text =
+      "machine: " + cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads\ncompiler: ";
 #if defined(__clang__)
   text += "clang ";
 #elif defined(__GNUC__)
@@ -46,7 +46,8 @@ struct Timing {
 };
 
 /// Runs `fn` once to warm up, then `repeats` times, timing each run.
-template <class Fn> Timing time_repeated(int repeats, Fn&& fn) {
+template <class Fn>
+Timing time_repeated(int repeats, Fn&& fn) {
   fn();
   std::vector<double> seconds;
   for (int i = 0; i < repeats; ++i) {

@@ -48,12 +48,10 @@ int main(int argc, char** argv) {
       std::printf("| %-44s | %d | %7.2f (%.2f-%.2f) | %6.2f |\n", name, threads, t.median * 1e3, t.min * 1e3,
                   t.max * 1e3, rays / t.median * 1e-6);
     };
-    row("C++ Renderer<Planar, Glc, SceneSampler>", mpr_bench::time_repeated(repeats, [&] {
-          direct.render(a.view(), region, options);
-        }));
-    row("mpr-render: one std::visit (render_view)", mpr_bench::time_repeated(repeats, [&] {
-          mpr_cli::render_view(camera, sampler, b.view(), region, options);
-        }));
+    row("C++ Renderer<Planar, Glc, SceneSampler>",
+        mpr_bench::time_repeated(repeats, [&] { direct.render(a.view(), region, options); }));
+    row("mpr-render: one std::visit (render_view)",
+        mpr_bench::time_repeated(repeats, [&] { mpr_cli::render_view(camera, sampler, b.view(), region, options); }));
     row("mpr-render: whole frame (Job -> camera, sampler)", mpr_bench::time_repeated(repeats, [&] {
           const mpr_cli::CameraVariant<T> cam = mpr_cli::make_camera(job, loaded, params, 0, w, h);
           const mpr_cli::SamplerVariant<T> smp = mpr_cli::make_sampler(job, loaded, params, w, h);

@@ -62,13 +62,13 @@ double seconds_of(const std::chrono::steady_clock::time_point& start) {
 constexpr std::array<char, 9> kViews = {'A', 'B', 'C', 'D', 'E', 'F', 'G', 'H', 'I'};
 
 /// The gallery of examples/gallery.cpp: one 8 x 6 m image plane, nine GLC views of the classroom.
-template <class T> struct Gallery {
+template <class T>
+struct Gallery {
   mpr::PlanarSurface<T> plane;
   std::vector<mpr::GlcSelector<T>> views;
   int width, height;
 
-  explicit Gallery(int w)
-      : plane(make_plane()), width(w), height(w * 3 / 4) {
+  explicit Gallery(int w) : plane(make_plane()), width(w), height(w * 3 / 4) {
     for (const char id : kViews) views.push_back(mpr::glc::gallery_view(id, plane, mpr::Vec3<T>(0, T(1.6), -8), T(14)));
   }
   static mpr::PlanarSurface<T> make_plane() {
@@ -126,8 +126,8 @@ struct ArraySize {
 /// The synthetic workloads in scalar T: ray cast ground truth, then every array and policy.
 /// `arrays` and `all_policies` choose the methods; results keyed by method name.
 template <class T>
-std::map<std::string, Measured> run_synthetic(const Options& o, const std::vector<ArraySize>& arrays,
-                                              bool all_policies, std::vector<std::string>& order) {
+std::map<std::string, Measured> run_synthetic(const Options& o, const std::vector<ArraySize>& arrays, bool all_policies,
+                                              std::vector<std::string>& order) {
   using Scene = mpr::scene::Scene<T>;
   const char* scalar = sizeof(T) == 4 ? "float" : "double";
   const Gallery<T> g(o.quick ? 64 : 240);
@@ -138,8 +138,8 @@ std::map<std::string, Measured> run_synthetic(const Options& o, const std::vecto
   auto start = std::chrono::steady_clock::now();
   const mpr::SceneSampler<Scene, mpr::RayCast> caster(scene);
   Measured truth;
-  truth.row = {"classroom gallery (9 views)", "ray cast (reference)", "ray cast (BVH)", seconds_of(start), 0, 0,
-               0, 0, scalar};
+  truth.row = {
+      "classroom gallery (9 views)", "ray cast (reference)", "ray cast (BVH)", seconds_of(start), 0, 0, 0, 0, scalar};
   truth.row.render_s = render_gallery(g, caster, o, truth.sheet);
   fill_errors(truth, truth.sheet, gf);
   const mpr::Image<mpr::Rgb8> reference = truth.sheet;
@@ -166,7 +166,8 @@ std::map<std::string, Measured> run_synthetic(const Options& o, const std::vecto
       m.row = {"classroom gallery (9 views)", series, name + ", " + label, seconds_of(t0), 0, 0, 0, 0, scalar};
       m.row.render_s = render_gallery(g, sampler, o, m.sheet);
       fill_errors(m, reference, gf);
-      if (name == "nearest") std::printf("  [%s] %s: focal depth %.2f m\n", scalar, label, double(sampler.focal_depth()));
+      if (name == "nearest")
+        std::printf("  [%s] %s: focal depth %.2f m\n", scalar, label, double(sampler.focal_depth()));
       std::printf("  [%s] %-40s build %8.1f ms  render %8.2f ms/view  PSNR %6.2f dB  p99 %5.1f\n", scalar,
                   m.row.method.c_str(), 1e3 * m.row.build_s, 1e3 * m.row.render_s, m.row.psnr, m.row.p99);
       if (sizeof(T) == 4) order.push_back(m.row.method);
@@ -243,9 +244,9 @@ std::vector<Measured> run_leave_one_out(const Options& o, const std::string& dat
 std::string precision_row(const std::string& workload, const Measured& f, const Measured& d) {
   const mpr::ImageError diff = mpr::compare_images(f.sheet.view(), d.sheet.view());
   char line[512];
-  std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2f | %.2f | %.3f | %.0f | %.2f | %.2f |\n",
-                workload.c_str(), 1e3 * f.row.build_s, 1e3 * d.row.build_s, 1e3 * f.row.render_s,
-                1e3 * d.row.render_s, diff.rmse, diff.max, f.row.psnr, d.row.psnr);
+  std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2f | %.2f | %.3f | %.0f | %.2f | %.2f |\n", workload.c_str(),
+                1e3 * f.row.build_s, 1e3 * d.row.build_s, 1e3 * f.row.render_s, 1e3 * d.row.render_s, diff.rmse,
+                diff.max, f.row.psnr, d.row.psnr);
   return line;
 }
 
@@ -297,8 +298,8 @@ int main(int argc, char** argv) try {
 
   // Synthetic gallery, float: every method; double: a subset for the precision table.
   const std::vector<ArraySize> arrays =
-      o.quick ? std::vector<ArraySize>{{4, 3, 64}}
-              : std::vector<ArraySize>{{4, 3, 160}, {8, 6, 160}, {8, 6, 320}, {16, 12, 160}, {16, 12, 320}, {32, 24, 80}};
+      o.quick ? std::vector<ArraySize>{{4, 3, 64}} : std::vector<ArraySize>{{4, 3, 160},   {8, 6, 160},   {8, 6, 320},
+                                                                            {16, 12, 160}, {16, 12, 320}, {32, 24, 80}};
   const ArraySize precision_array = o.quick ? ArraySize{4, 3, 64} : ArraySize{8, 6, 320};
   std::printf("synthetic gallery (float):\n");
   std::vector<std::string> order, unused;
@@ -343,8 +344,8 @@ int main(int argc, char** argv) try {
         run_leave_one_out(o, name, temple.cast<double>(), mpr_loo::temple_setup<double>(), views);
     for (std::size_t p = 0; p < tf.size(); ++p) {
       rows.push_back(tf[p].row);
-      precision += precision_row("temple (times: mean of the views; difference: first view), " + tf[p].row.method,
-                                tf[p], td[p]);
+      precision +=
+          precision_row("temple (times: mean of the views; difference: first view), " + tf[p].row.method, tf[p], td[p]);
     }
   } else {
     real_note += "temple data not found under " + data.string() + ": skipped\n";
@@ -357,8 +358,8 @@ int main(int argc, char** argv) try {
     const auto t0 = std::chrono::steady_clock::now();
     const mpr::CameraFrameSet<float> chess = mpr::read_stanford_light_field<float>(chess_dir);
     std::printf("  loaded %zu views in %.1f s\n", chess.size(), seconds_of(t0));
-    const std::vector<Measured> cf = run_leave_one_out(o, "Stanford Chess, leave-one-out (3 views)", chess,
-                                                       mpr_loo::chess_setup<float>(), 3);
+    const std::vector<Measured> cf =
+        run_leave_one_out(o, "Stanford Chess, leave-one-out (3 views)", chess, mpr_loo::chess_setup<float>(), 3);
     for (const Measured& m : cf) rows.push_back(m.row);
   } else {
     real_note += "Stanford Chess not found under " + data.string() + ": skipped\n";
@@ -367,13 +368,17 @@ int main(int argc, char** argv) try {
 
   const std::string table = mpr_bench::markdown_table(rows);
   std::ofstream md(o.out / "error_vs_time.md");
-  md << "Command: `" << command << "`\n\n```\n" << machine << "\n```\n\n" << table << "\nPSNR per gallery view (dB):\n\n"
-     << per_view << "\nFloat against double:\n\n" << precision;
+  md << "Command: `" << command << "`\n\n```\n"
+     << machine << "\n```\n\n"
+     << table << "\nPSNR per gallery view (dB):\n\n"
+     << per_view << "\nFloat against double:\n\n"
+     << precision;
   if (!real_note.empty()) md << "\n" << real_note;
   mpr_bench::write_csv((o.out / "error_vs_time.csv").string(), rows);
   mpr_bench::write_svg((o.out / "error_vs_time.svg").string(), rows,
                        "mpr: PSNR against render time per view (Pareto front ringed)");
-  std::printf("\n%s\nPSNR per gallery view (dB):\n\n%s\nFloat against double:\n\n%s\ntotal %.1f s; wrote %s/error_vs_time.{md,csv,svg}\n",
+  std::printf("\n%s\nPSNR per gallery view (dB):\n\n%s\nFloat against double:\n\n%s\ntotal %.1f s; wrote "
+              "%s/error_vs_time.{md,csv,svg}\n",
               table.c_str(), per_view.c_str(), precision.c_str(), seconds_of(total_start), o.out.string().c_str());
   return 0;
 } catch (const std::exception& e) {

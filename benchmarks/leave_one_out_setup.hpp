@@ -22,7 +22,8 @@
 namespace mpr_loo {
 
 /// One leave-one-out data set.
-template <std::floating_point T> struct LooSetup {
+template <std::floating_point T>
+struct LooSetup {
   std::string name;
   std::vector<std::size_t> held_out;
   double cylinder_radius = 1;
@@ -30,20 +31,24 @@ template <std::floating_point T> struct LooSetup {
   std::function<T(const mpr::PinholeCamera<T>&)> depth_of;
 };
 
-template <std::floating_point T> LooSetup<T> chess_setup() {
+template <std::floating_point T>
+LooSetup<T> chess_setup() {
   return {"chess", {8, 24, 40}, 10.0, [](const mpr::PinholeCamera<T>&) { return T(820); }};
 }
 
-template <std::floating_point T> std::filesystem::path temple_par_file(const std::filesystem::path& data) {
+template <std::floating_point T>
+std::filesystem::path temple_par_file(const std::filesystem::path& data) {
   return data / "middlebury" / "templeSparseRing" / "templeSR_par.txt";
 }
 
-template <std::floating_point T> LooSetup<T> temple_setup() {
+template <std::floating_point T>
+LooSetup<T> temple_setup() {
   // The centre of the bounding box in the data set's README.
   const mpr::Vec3<T> target(T(0.5 * (-0.073568 + 0.028855)), T(0.5 * (0.021728 + 0.181892)),
                             T(0.5 * (-0.012445 + 0.062736)));
-  return {"temple", {3, 7, 13}, 0.3,
-          [target](const mpr::PinholeCamera<T>& c) { return c.forward().dot(target - c.centre()); }};
+  return {"temple", {3, 7, 13}, 0.3, [target](const mpr::PinholeCamera<T>& c) {
+            return c.forward().dot(target - c.centre());
+          }};
 }
 
 /// The renderer of a held-out view: the perspective GLC of `held` on its image plane at `depth`,

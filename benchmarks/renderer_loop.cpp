@@ -29,7 +29,8 @@ void virtual_render(mpr::ImageView<mpr::Color> out, const VirtualRegion<T>& regi
   });
 }
 
-template <class T> void run(const char* scalar, int size, int repeats) {
+template <class T>
+void run(const char* scalar, int size, int repeats) {
   const mpr::PlanarSurface<T> plane({-1, -1, 1}, {2, 0, 0}, {0, 2, 0});
   const mpr::Vec3<T> eye(0, 0, 0);
   const mpr::GlcSelector<T> glc(plane, plane.point_at({0, 0}) - eye, plane.point_at({1, 0}) - eye,
@@ -42,9 +43,8 @@ template <class T> void run(const char* scalar, int size, int repeats) {
   mpr::Image<mpr::Color> a(size, size), b(size, size);
   const double rays = double(size) * size;
   for (int threads : {1, 2}) {
-    const mpr_bench::Timing s = mpr_bench::time_repeated(repeats, [&] {
-      renderer.render(a.view(), region, mpr::RenderOptions{threads});
-    });
+    const mpr_bench::Timing s =
+        mpr_bench::time_repeated(repeats, [&] { renderer.render(a.view(), region, mpr::RenderOptions{threads}); });
     const mpr_bench::Timing v = mpr_bench::time_repeated(repeats, [&] {
       virtual_render<T>(b.view(), *policies.region, *policies.surface, *policies.selector, *policies.sampler, threads);
     });
@@ -65,8 +65,8 @@ int main(int argc, char** argv) {
   const int size = quick ? 64 : 500;
   const int repeats = quick ? 2 : 31;
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  std::printf("renderer loop, %dx%d rays, trivial sampler, median of %d runs (min-max in brackets)\n\n", size,
-              size, repeats);
+  std::printf("renderer loop, %dx%d rays, trivial sampler, median of %d runs (min-max in brackets)\n\n", size, size,
+              repeats);
   std::printf("| scalar | threads | static Mrays/s | virtual Mrays/s | static speed-up |\n");
   std::printf("|---|---|---|---|---|\n");
   run<float>("float", size, repeats);

@@ -4,24 +4,28 @@
 namespace mpr_bench {
 namespace {
 
-template <class T> struct RegionImpl : VirtualRegion<T> {
+template <class T>
+struct RegionImpl : VirtualRegion<T> {
   mpr::Region region;
   explicit RegionImpl(mpr::Region r) : region(r) {}
   mpr::Vec2<T> pixel_to_uv(mpr::Pixel px) const override { return region.pixel_to_uv<T>(px); }
 };
-template <class T> struct SurfaceImpl : VirtualSurface<T> {
+template <class T>
+struct SurfaceImpl : VirtualSurface<T> {
   mpr::PlanarSurface<T> plane;
   explicit SurfaceImpl(mpr::PlanarSurface<T> p) : plane(p) {}
   mpr::Vec3<T> point_at(const mpr::Vec2<T>& uv) const override { return plane.point_at(uv); }
 };
-template <class T> struct SelectorImpl : VirtualSelector<T> {
+template <class T>
+struct SelectorImpl : VirtualSelector<T> {
   mpr::GlcSelector<T> glc;
   explicit SelectorImpl(mpr::GlcSelector<T> g) : glc(g) {}
   mpr::Ray<T> ray_at(mpr::Pixel px, const mpr::Vec2<T>& uv, const mpr::Vec3<T>& point) const override {
     return glc.ray_at(px, uv, point);
   }
 };
-template <class T> struct SamplerImpl : VirtualSampler<T> {
+template <class T>
+struct SamplerImpl : VirtualSampler<T> {
   mpr::Color sample(const mpr::Ray<T>& ray) const override { return DirectionColor<T>{}.sample(ray); }
 };
 

@@ -16,14 +16,14 @@ namespace mpr_bench {
 
 /// One measured method on one data set.
 struct ReportRow {
-  std::string dataset;  ///< e.g. "gallery G (cross-slit)" or "chess leave-one-out"
-  std::string series;   ///< method family, one plot series, e.g. "synthetic aperture"
-  std::string method;   ///< full method description, e.g. "SA 7x7 cams 320x240"
-  double build_s = 0;   ///< one-off preparation time (BVH, virtual camera array), seconds
-  double render_s = 0;  ///< render time per view, seconds (median)
-  double rmse = 0;      ///< 8-bit code units
-  double psnr = 0;      ///< dB
-  double p99 = 0;       ///< 99th percentile per-pixel error, 8-bit code units
+  std::string dataset; ///< e.g. "gallery G (cross-slit)" or "chess leave-one-out"
+  std::string series;  ///< method family, one plot series, e.g. "synthetic aperture"
+  std::string method;  ///< full method description, e.g. "SA 7x7 cams 320x240"
+  double build_s = 0;  ///< one-off preparation time (BVH, virtual camera array), seconds
+  double render_s = 0; ///< render time per view, seconds (median)
+  double rmse = 0;     ///< 8-bit code units
+  double psnr = 0;     ///< dB
+  double p99 = 0;      ///< 99th percentile per-pixel error, 8-bit code units
   std::string scalar = "float";
 };
 
@@ -61,8 +61,8 @@ inline void write_csv(const std::string& path, const std::vector<ReportRow>& row
     const ReportRow& r = rows[i];
     out << '"' << r.dataset << "\",\"" << r.series << "\",\"" << r.method << "\"," << r.scalar << ','
         << format_number(r.build_s, "%.6g") << ',' << format_number(r.render_s, "%.6g") << ','
-        << format_number(r.rmse, "%.6g") << ',' << format_number(r.psnr, "%.6g") << ','
-        << format_number(r.p99, "%.6g") << ',' << (front[i] ? 1 : 0) << '\n';
+        << format_number(r.rmse, "%.6g") << ',' << format_number(r.psnr, "%.6g") << ',' << format_number(r.p99, "%.6g")
+        << ',' << (front[i] ? 1 : 0) << '\n';
   }
 }
 
@@ -74,8 +74,7 @@ inline std::string markdown_table(const std::vector<ReportRow>& rows) {
     const ReportRow& r = rows[i];
     t += "| " + r.dataset + " | " + r.method + " | " + r.scalar + " | " + format_number(r.build_s * 1e3, "%.1f") +
          " | " + format_number(r.render_s * 1e3, "%.2f") + " | " + format_number(r.rmse, "%.2f") + " | " +
-         format_number(r.psnr, "%.2f") + " | " + format_number(r.p99, "%.1f") + " | " + (front[i] ? "*" : "") +
-         " |\n";
+         format_number(r.psnr, "%.2f") + " | " + format_number(r.p99, "%.1f") + " | " + (front[i] ? "*" : "") + " |\n";
   }
   return t;
 }
@@ -133,7 +132,8 @@ inline void write_svg(const std::string& path, const std::vector<ReportRow>& row
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const ReportRow& r = rows[i];
       if (r.dataset != datasets[d] || !(r.render_s > 0) || !std::isfinite(r.psnr)) continue;
-      const std::size_t s = static_cast<std::size_t>(std::find(series.begin(), series.end(), r.series) - series.begin());
+      const std::size_t s =
+          static_cast<std::size_t>(std::find(series.begin(), series.end(), r.series) - series.begin());
       out << "<circle cx='" << px(r.render_s) << "' cy='" << py(r.psnr) << "' r='4' fill='" << palette[s % 8]
           << "'><title>" << r.method << ": " << format_number(r.psnr, "%.2f") << " dB, "
           << format_number(r.render_s * 1e3, "%.2f") << " ms</title></circle>\n";

@@ -49,9 +49,8 @@ void run(const char* view, const char* output, const std::shared_ptr<const mpr::
   mpr::Image<Px> image(size, size);
   const double rays = double(size) * size;
   for (int threads : {1, 2}) {
-    const mpr_bench::Timing t = mpr_bench::time_repeated(repeats, [&] {
-      renderer.render(image.view(), mpr::Region(0, 0, size, size), mpr::RenderOptions{threads});
-    });
+    const mpr_bench::Timing t = mpr_bench::time_repeated(
+        repeats, [&] { renderer.render(image.view(), mpr::Region(0, 0, size, size), mpr::RenderOptions{threads}); });
     std::printf("| %-12s | %-12s | %d | %6.2f (%.2f-%.2f) | %7.1f |\n", view, output, threads, rays / t.median * 1e-6,
                 rays / t.max * 1e-6, rays / t.min * 1e-6, t.median * 1e3);
   }

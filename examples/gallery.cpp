@@ -6,8 +6,8 @@
 // (identical to view A up to edge pixels).
 //
 // usage: mpr-gallery [--width N] [--threads N] [OUTPUT_FOLDER]   (defaults: 480, all, mpr-gallery-output)
-#include <mpr/glc.hpp>
 #include "example_args.hpp"
+#include <mpr/glc.hpp>
 
 #include <mpr/mpr.hpp>
 #include <mpr/sampler/pinhole_camera.hpp>
@@ -64,9 +64,11 @@ int main(int argc, char** argv) try {
   const Vec3 scene_centre(0, 1.6f, -8);
   const T scene_scale = 14;
 
-  using R = mpr::Renderer<mpr::PlanarSurface<T>, mpr::GlcSelector<T>, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>>;
+  using R =
+      mpr::Renderer<mpr::PlanarSurface<T>, mpr::GlcSelector<T>, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>>;
   std::vector<R> renderers;
-  for (const auto& v : kViews) renderers.emplace_back(plane, mpr::glc::gallery_view(v.first, plane, scene_centre, scene_scale), sampler);
+  for (const auto& v : kViews)
+    renderers.emplace_back(plane, mpr::glc::gallery_view(v.first, plane, scene_centre, scene_scale), sampler);
 
   const mpr::RenderOptions options{threads};
   mpr::Image<mpr::Rgb8> view_a;
@@ -84,7 +86,8 @@ int main(int argc, char** argv) try {
   const auto region = [&](int k) { return mpr::Region((k % 3) * width, (k / 3) * height, width, height); };
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     mpr::render(sheet.view(), options, mpr::view(region(static_cast<int>(I)), renderers[I])...);
-  }(std::make_index_sequence<9>{});
+  }
+  (std::make_index_sequence<9>{});
   // Thin separators between the views.
   for (int y = 0; y < sheet.height(); ++y)
     for (int x = 0; x < sheet.width(); ++x)

@@ -3,8 +3,8 @@
 // rectified (ICCV 2005) so that the board's central 12 x 12 square fills each tile.
 //
 // usage: glc_gallery_checker [--size N] [OUTPUT_FOLDER]   (defaults: 240, glc-gallery-output)
-#include <mpr/glc.hpp>
 #include "example_args.hpp"
+#include <mpr/glc.hpp>
 
 #include <mpr/mpr.hpp>
 

@@ -54,7 +54,8 @@ double ssim(const mpr::Image<mpr::Rgb8>& a, const mpr::Image<mpr::Rgb8>& b) {
     for (int x = r; x < w - r; ++x) {
       double s[5];
       for (int k = 0; k < 5; ++k)
-        s[k] = (at(k, x + r + 1, y + r + 1) - at(k, x - r, y + r + 1) - at(k, x + r + 1, y - r) + at(k, x - r, y - r)) / n;
+        s[k] =
+            (at(k, x + r + 1, y + r + 1) - at(k, x - r, y + r + 1) - at(k, x + r + 1, y - r) + at(k, x - r, y - r)) / n;
       const double va = s[2] - s[0] * s[0], vb = s[3] - s[1] * s[1], cov = s[4] - s[0] * s[1];
       sum += ((2 * s[0] * s[1] + c1) * (2 * cov + c2)) / ((s[0] * s[0] + s[1] * s[1] + c1) * (va + vb + c2));
       ++count;
@@ -91,13 +92,15 @@ void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>
     const mpr::PinholeCamera<T>& held = all.camera(k);
     const T depth = setup.depth_of(held);
     const std::string view = mpr_loo::view_name(all.name(k));
-    rows.push_back(evaluate(set, view, "nearest", mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(others), held, depth,
-                            all.image(k), out));
-    rows.push_back(evaluate(set, view, "cylinder",
-                            mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>(others, mpr::CylinderAperture{radius}),
-                            held, depth, all.image(k), out));
-    rows.push_back(evaluate(set, view, "synthetic_aperture", mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(others),
-                            held, depth, all.image(k), out));
+    rows.push_back(evaluate(set, view, "nearest", mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(others), held,
+                            depth, all.image(k), out));
+    rows.push_back(
+        evaluate(set, view, "cylinder",
+                 mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>(others, mpr::CylinderAperture{radius}), held,
+                 depth, all.image(k), out));
+    rows.push_back(evaluate(set, view, "synthetic_aperture",
+                            mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(others), held, depth, all.image(k),
+                            out));
   }
 }
 

@@ -27,8 +27,8 @@ inline std::filesystem::path data_dir(const char* argument) {
 /// (the board spans about z = 700 to 950).
 inline std::shared_ptr<const mpr::CameraFrameSet<T>> load_chess(const std::filesystem::path& data) {
   const auto start = std::chrono::steady_clock::now();
-  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-      mpr::read_stanford_light_field<T>(data / "stanford" / "chess"));
+  auto frames =
+      std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_stanford_light_field<T>(data / "stanford" / "chess"));
   std::printf("loaded %zu Chess views in %.2f s\n", frames->size(),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return frames;
@@ -61,7 +61,8 @@ inline std::filesystem::path output_dir(int argc, char** argv) {
 
 inline void report(const std::filesystem::path& path) { std::printf("wrote %s\n", path.string().c_str()); }
 
-template <class Fn> double seconds(Fn&& fn) {
+template <class Fn>
+double seconds(Fn&& fn) {
   const auto start = std::chrono::steady_clock::now();
   fn();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -35,8 +35,8 @@ int main(int argc, char** argv) try {
   const mpr::PlanarSurface<T> plane = centre.image_plane(zf);
   const int w = centre.width(), h = centre.height();
 
-  const auto save = [&](const char* name, const mpr::PlanarSurface<T>& surface, const mpr::GlcSelector<T>& glc, int width,
-                        int height) {
+  const auto save = [&](const char* name, const mpr::PlanarSurface<T>& surface, const mpr::GlcSelector<T>& glc,
+                        int width, int height) {
     const mpr::Renderer renderer(surface, glc, sampler);
     mpr::Image<mpr::Rgb8> image(width, height);
     renderer.render(image.view(), mpr::Region(0, 0, width, height));
@@ -54,8 +54,8 @@ int main(int argc, char** argv) try {
               static_cast<double>(A * zf / (A - W)), static_cast<double>(zf));
 
   // Pushbroom: a focal-plane strip exactly as wide as the swept aperture.
-  const mpr::PlanarSurface<T> strip = mpr::PlanarSurface<T>::centred(mpr::Vec3<T>(0, 0, zf), mpr::Vec3<T>(A, 0, 0),
-                                                                     plane.height_vector());
+  const mpr::PlanarSurface<T> strip =
+      mpr::PlanarSurface<T>::centred(mpr::Vec3<T>(0, 0, zf), mpr::Vec3<T>(A, 0, 0), plane.height_vector());
   save("pushbroom.png", strip, two_plane_glc(strip, left, right, left), 8 * static_cast<int>(A * w / W + 1), h);
   return 0;
 } catch (const std::exception& e) {

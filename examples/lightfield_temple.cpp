@@ -22,7 +22,8 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(out);
   const auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
       mpr::read_par_file<T>(data / "middlebury" / "templeSparseRing" / "templeSR_par.txt"));
-  if (a + 1 >= frames->size()) throw mpr::argument_error("VIEW_A", "must be below " + std::to_string(frames->size() - 1));
+  if (a + 1 >= frames->size())
+    throw mpr::argument_error("VIEW_A", "must be below " + std::to_string(frames->size() - 1));
   const mpr::PinholeCamera<T>& ca = frames->camera(a);
   const mpr::PinholeCamera<T>& cb = frames->camera(a + 1);
   // Centre of the bounding box given in the data set's README.txt.

@@ -6,21 +6,25 @@
 
 namespace {
 
-template <class T> struct ConstantSurface {
+template <class T>
+struct ConstantSurface {
   using scalar_type = T;
   mpr::Vec3<T> point_at(const mpr::Vec2<T>&) const noexcept { return mpr::Vec3<T>::Zero(); }
 };
-template <class T> struct AlongZ {
+template <class T>
+struct AlongZ {
   using scalar_type = T;
   mpr::Ray<T> ray_at(mpr::Pixel, const mpr::Vec2<T>&, const mpr::Vec3<T>& p) const noexcept {
     return {p, mpr::Vec3<T>::UnitZ()};
   }
 };
-template <class T> struct Black {
+template <class T>
+struct Black {
   using scalar_type = T;
   mpr::Color sample(const mpr::Ray<T>&) const noexcept { return mpr::Color::Zero(); }
 };
-template <class T> struct Depth { // declares its own colour type
+template <class T>
+struct Depth { // declares its own colour type
   using scalar_type = T;
   using color_type = float;
   float sample(const mpr::Ray<T>& r) const noexcept { return static_cast<float>(r.origin.z()); }
@@ -65,7 +69,9 @@ struct SamplerWrongColour { // declares float but returns Color
 };
 
 template <class Su, class Se, class Sa>
-concept RendererAccepts = requires { typename mpr::Renderer<Su, Se, Sa>; };
+concept RendererAccepts = requires {
+  typename mpr::Renderer<Su, Se, Sa>;
+};
 
 } // namespace
 
@@ -98,8 +104,8 @@ TEST_CASE("malformed policies are rejected", "[concepts]") {
 TEST_CASE("policies must agree on the scalar type", "[concepts]") {
   STATIC_REQUIRE(RendererAccepts<ConstantSurface<double>, AlongZ<double>, Black<double>>);
   STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<ConstantSurface<float>, AlongZ<double>, Black<double>>);
-  STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
-                                               mpr::CheckerboardPlane<float>>);
+  STATIC_REQUIRE_FALSE(
+      mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>, mpr::CheckerboardPlane<float>>);
   STATIC_REQUIRE_FALSE(RendererAccepts<mpr::PlanarSurface<float>, mpr::GlcSelector<double>, Black<double>>);
   STATIC_REQUIRE_FALSE(RendererAccepts<NoPointAt, AlongZ<double>, Black<double>>);
 }

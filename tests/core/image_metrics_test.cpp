@@ -29,7 +29,8 @@ TEST_CASE("compare_images: RMSE, PSNR and percentiles", "[metrics]") {
   mask(4, 7) = 0;
   mask(0, 0) = 0;
   CHECK(mpr::compare_images(a.view(), b.view(), mpr::ImageView<const std::uint8_t>(mask.view())).rmse == 0);
-  CHECK_THROWS_WITH(mpr::compare_images(a.view(), mpr::Image<mpr::Rgb8>(9, 10).view()), Catch::Contains("sizes differ"));
+  CHECK_THROWS_WITH(mpr::compare_images(a.view(), mpr::Image<mpr::Rgb8>(9, 10).view()),
+                    Catch::Contains("sizes differ"));
   const mpr::Image<std::uint8_t> none(10, 10, 0);
   CHECK_THROWS_WITH(mpr::compare_images(a.view(), b.view(), mpr::ImageView<const std::uint8_t>(none.view())),
                     Catch::Contains("mask"));

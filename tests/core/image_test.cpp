@@ -33,8 +33,8 @@ TEST_CASE("ImageView subviews share storage and clip", "[image]") {
 TEST_CASE("convert_image maps every pixel", "[image]") {
   mpr::Image<int> image(3, 2, 1);
   image(2, 1) = 5;
-  const mpr::Image<double> doubled = mpr::convert_image<double>(
-      mpr::ImageView<const int>(image.view()), [](int v) { return 2.0 * v; });
+  const mpr::Image<double> doubled =
+      mpr::convert_image<double>(mpr::ImageView<const int>(image.view()), [](int v) { return 2.0 * v; });
   CHECK(doubled(2, 1) == 10.0);
   CHECK(doubled(0, 0) == 2.0);
 }

@@ -57,9 +57,8 @@ TEST_CASE("the image is identical for 1, 2 and 7 threads", "[renderer]") {
   renderer.render(two.view(), region, {2});
   renderer.render(seven.view(), region, {7});
   // The std::thread back end directly (the OpenMP one is used by default when available).
-  mpr::detail::parallel_rows_std(0, 67, 2, [&](int y) noexcept {
-    renderer.render_row(threads_std.view(), region, y, 0, 101);
-  });
+  mpr::detail::parallel_rows_std(0, 67, 2,
+                                 [&](int y) noexcept { renderer.render_row(threads_std.view(), region, y, 0, 101); });
   CHECK(one == two);
   CHECK(one == seven);
   CHECK(one == threads_std);
@@ -93,8 +92,8 @@ TEST_CASE("a region partly outside the image renders only the overlap", "[render
 }
 
 TEST_CASE("several views of different types render into one image in one call", "[renderer]") {
-  const auto left = make_renderer();        // double, Color
-  const auto right = constant_renderer(5);  // float, float colour
+  const auto left = make_renderer();       // double, Color
+  const auto right = constant_renderer(5); // float, float colour
   const auto top = constant_renderer(9);
   mpr::Image<float> image(60, 20, -1.0f);
   mpr::render(image.view(), mpr::RenderOptions{2}, mpr::view(mpr::Region(0, 0, 30, 20), left),

@@ -15,7 +15,8 @@ TEST_CASE("PNG round trip preserves 8-bit pixels, strided views included", "[io]
   mpr::Image<mpr::Rgb8> image(37, 11);
   for (int y = 0; y < 11; ++y)
     for (int x = 0; x < 37; ++x)
-      image(x, y) = {static_cast<std::uint8_t>(7 * x), static_cast<std::uint8_t>(23 * y), static_cast<std::uint8_t>(x ^ y)};
+      image(x, y) = {static_cast<std::uint8_t>(7 * x), static_cast<std::uint8_t>(23 * y),
+                     static_cast<std::uint8_t>(x ^ y)};
   const auto path = temp_path("roundtrip.png");
   mpr::write_png(path, image);
   CHECK(mpr::read_rgb8(path) == image);

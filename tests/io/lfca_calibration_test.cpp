@@ -43,8 +43,7 @@ TEST_CASE("rq_decompose splits M into K R", "[lfca_calibration]") {
   }
 }
 
-TEST_CASE("LFCA positions + homographies give cameras that see the reference plane through H",
-          "[lfca_calibration]") {
+TEST_CASE("LFCA positions + homographies give cameras that see the reference plane through H", "[lfca_calibration]") {
   const mpr_test::TempFolder dir;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);

@@ -15,7 +15,8 @@ std::vector<mpr::PinholeCamera<double>> ring_cameras() {
   std::vector<mpr::PinholeCamera<double>> cams;
   for (int k = 0; k < 2; ++k) {
     const double a = 0.7 * k + 0.1;
-    cams.push_back(mpr::PinholeCamera<double>::look_at({std::cos(a), 0.2, std::sin(a)}, {0, 0, 0}, {0, -1, 0}, 0.8, 6, 4));
+    cams.push_back(
+        mpr::PinholeCamera<double>::look_at({std::cos(a), 0.2, std::sin(a)}, {0, 0, 0}, {0, -1, 0}, 0.8, 6, 4));
   }
   return cams;
 }
@@ -33,7 +34,8 @@ TEST_CASE("_par.txt writer and reader round-trip cameras and images", "[par_file
   const auto cams = ring_cameras();
   const std::vector<std::string> names{"a0001.png", "a0002.png"};
   std::vector<mpr::Image<mpr::Rgb8>> imgs;
-  for (int k = 0; k < 2; ++k) imgs.push_back(mpr_test::write_test_png(dir / names[static_cast<std::size_t>(k)], 6, 4, k));
+  for (int k = 0; k < 2; ++k)
+    imgs.push_back(mpr_test::write_test_png(dir / names[static_cast<std::size_t>(k)], 6, 4, k));
   mpr::write_par_file<double>(dir / "a_par.txt", names, cams);
   const auto frames = mpr::read_par_file<double>(dir / "a_par.txt");
   REQUIRE(frames.size() == 2);
@@ -66,8 +68,9 @@ TEST_CASE("_par.txt writer rejects what the format cannot hold", "[par_file]") {
   std::vector<mpr::PinholeCamera<double>> distorted{mpr::PinholeCamera<double>(
       cams[0].K(), cams[0].R(), cams[0].t(), 6, 4, mpr::PinholeCamera<double>::Distortion{0.1, 0})};
   CHECK_THROWS_AS(mpr::write_par_file<double>(dir / "p.txt", one, distorted), mpr::argument_error);
-  CHECK_THROWS_AS(mpr::write_par_file<double>(dir / "no-such-folder" / "p.txt", std::vector<std::string>{"a.png", "b.png"}, cams),
-                  mpr::io_error);
+  CHECK_THROWS_AS(
+      mpr::write_par_file<double>(dir / "no-such-folder" / "p.txt", std::vector<std::string>{"a.png", "b.png"}, cams),
+      mpr::io_error);
 }
 
 TEST_CASE("_par.txt reader names the file and line of every error", "[par_file]") {
@@ -100,10 +103,12 @@ TEST_CASE("_par.txt reader names the file and line of every error", "[par_file]"
     expect_error("1 2\n" + par_line("a.png"), 1, "expected 1 fields");
   }
   SECTION("fields and numbers") {
-    expect_error("2\n" + par_line("a.png") + "b.png 10 0 2.5 0 10 1.5 0 0 1 1 0 0 0 1 0 0 0 1 0 0\n", 3, "expected 22 fields");
+    expect_error("2\n" + par_line("a.png") + "b.png 10 0 2.5 0 10 1.5 0 0 1 1 0 0 0 1 0 0 0 1 0 0\n", 3,
+                 "expected 22 fields");
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 1O 1.5 0 0 1"), 2, "field 6 ('1O')");
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 1", "0 0 nan"), 2, "field 22");
-    expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 1", "0 0 2x"), 2, "not a finite number");
+    expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 1", "0 0 2x"), 2,
+                 "not a finite number");
   }
   SECTION("geometry") {
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 2"), 2, "not a rotation");
@@ -136,7 +141,8 @@ TEST_CASE("real data: Middlebury temple and dino rings load", "[par_file][real_d
   const auto frames = mpr::read_par_file<double>(temple);
   REQUIRE(frames.size() == 16);
   // The bounding-box centre of the temple (README.txt) projects near the image centre of every view.
-  const mpr::Vec3<double> centre(0.5 * (-0.073568 + 0.028855), 0.5 * (0.021728 + 0.181892), 0.5 * (-0.012445 + 0.062736));
+  const mpr::Vec3<double> centre(0.5 * (-0.073568 + 0.028855), 0.5 * (0.021728 + 0.181892),
+                                 0.5 * (-0.012445 + 0.062736));
   for (std::size_t k = 0; k < frames.size(); ++k) {
     CHECK(frames.image(k).width() == 640);
     CHECK(frames.image(k).height() == 480);

@@ -48,8 +48,10 @@ TEST_CASE("Stanford folder: planar array with zero disparity on the reference pl
   CHECK(frames.camera(5).centre().isApprox(mpr::Vec3<double>(10, -5, 0)));
   options.negate_x = true;
   options.negate_y = true;
-  CHECK(mpr::read_stanford_light_field<double>(dir.path(), options).camera(0).centre().isApprox(
-      mpr::Vec3<double>(10, -5, 0)));
+  CHECK(mpr::read_stanford_light_field<double>(dir.path(), options)
+            .camera(0)
+            .centre()
+            .isApprox(mpr::Vec3<double>(10, -5, 0)));
   options.negate_x = false;
   options.negate_y = false;
   // A point of the reference plane has the same pixel in every view; a nearer point moves

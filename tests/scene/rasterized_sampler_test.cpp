@@ -13,11 +13,14 @@
 
 namespace {
 
-template <class T> using Scene = mpr::scene::Scene<T>;
-template <class T, class I> using RasterSampler = mpr::SceneSampler<Scene<T>, mpr::Rasterized<I>>;
+template <class T>
+using Scene = mpr::scene::Scene<T>;
+template <class T, class I>
+using RasterSampler = mpr::SceneSampler<Scene<T>, mpr::Rasterized<I>>;
 
 // A pinhole view of the classroom from behind the plane, and its image plane at depth 1.
-template <class T> mpr::PinholeCamera<T> view_camera(int w, int h) {
+template <class T>
+mpr::PinholeCamera<T> view_camera(int w, int h) {
   return mpr::PinholeCamera<T>::look_at(mpr::Vec3<T>(0.3, 2.2, 4.5), mpr::Vec3<T>(0, 1.3, -8), mpr::Vec3<T>(0, 1, 0),
                                         T(1.0), w, h);
 }
@@ -44,9 +47,9 @@ TEST_CASE("rasterized scene sampler: concepts and types", "[scene][rasterized]")
   STATIC_REQUIRE(std::is_same_v<RasterSampler<double, mpr::NearestCamera>::scalar_type, double>);
   STATIC_REQUIRE(std::is_same_v<RasterSampler<float, mpr::NearestCamera>::frame_sampler_type,
                                 mpr::CameraFrameSampler<mpr::NearestCamera, float, mpr::Rgb8>>);
-  STATIC_REQUIRE(std::is_same_v<mpr::SceneSampler<Scene<float>, mpr::Rasterized<mpr::NearestCamera, mpr::Color>>::
-                                    frame_set_type,
-                                mpr::CameraFrameSet<float, mpr::Color>>);
+  STATIC_REQUIRE(
+      std::is_same_v<mpr::SceneSampler<Scene<float>, mpr::Rasterized<mpr::NearestCamera, mpr::Color>>::frame_set_type,
+                     mpr::CameraFrameSet<float, mpr::Color>>);
   // Needs a scene and a plane: no default construction; the policy tag carries only the
   // interpolation's parameters.
   STATIC_REQUIRE_FALSE(std::is_default_constructible_v<RasterSampler<float, mpr::NearestCamera>>);
@@ -206,10 +209,9 @@ TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and sa
     CHECK(same);
   }
   // The reloaded data set, sampled with the same policy and focal depth, renders the same view.
-  const RasterSampler<T, mpr::CylinderAperture> again(mpr::scene::VirtualArray<T, mpr::Rgb8>{reloaded,
-                                                                                             sampler.focal_depth()},
-                                                      scene.background(), config.filter,
-                                                      mpr::Rasterized<mpr::CylinderAperture>{{0.2}});
+  const RasterSampler<T, mpr::CylinderAperture> again(
+      mpr::scene::VirtualArray<T, mpr::Rgb8>{reloaded, sampler.focal_depth()}, scene.background(), config.filter,
+      mpr::Rasterized<mpr::CylinderAperture>{{0.2}});
   const mpr::Image<mpr::Rgb8> a = render_view(view, sampler), b = render_view(view, again);
   const mpr::ImageError e = mpr::compare_images(a.view(), b.view());
   CHECK(e.max <= 1.0); // identical frames; cameras equal to 17 digits (float: to rounding)

@@ -12,7 +12,8 @@ namespace {
 
 /// A camera at the origin looking along +z with focal length `f` pixels and the principal point
 /// at pixel (0, 0): the world point (X, Y, 1) projects to pixel (f X, f Y).
-template <class T> mpr::PinholeCamera<T> simple_camera(T f, int w, int h) {
+template <class T>
+mpr::PinholeCamera<T> simple_camera(T f, int w, int h) {
   mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
   K(0, 0) = f;
   K(1, 1) = f;
@@ -20,7 +21,8 @@ template <class T> mpr::PinholeCamera<T> simple_camera(T f, int w, int h) {
 }
 
 /// A triangle in the plane z = 1 whose vertices project to the given pixel coordinates (f = 8).
-template <class T> mpr::scene::Mesh<T> pixel_triangle(T x0, T y0, T x1, T y1, T x2, T y2) {
+template <class T>
+mpr::scene::Mesh<T> pixel_triangle(T x0, T y0, T x1, T y1, T x2, T y2) {
   mpr::scene::Mesh<T> m;
   m.positions = {{x0 / 8, y0 / 8, 1}, {x1 / 8, y1 / 8, 1}, {x2 / 8, y2 / 8, 1}};
   m.triangles = {{0, 1, 2}};
@@ -148,9 +150,9 @@ TEMPLATE_TEST_CASE("perspective-correct interpolation matches the ray caster", "
   const auto camera = mpr::PinholeCamera<T>::look_at(V(0, 0, 0), V(0, 0, 1), V(0, 1, 0), T(1.0), w, h);
   const auto r = mpr::scene::rasterize(*scene, camera, {.threads = 1});
   const auto plane = camera.image_plane(T(1));
-  const mpr::Renderer caster(plane, camera.glc_on(plane),
-                             mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(
-                                 std::shared_ptr<const mpr::scene::Scene<T>>(scene)));
+  const mpr::Renderer caster(
+      plane, camera.glc_on(plane),
+      mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(std::shared_ptr<const mpr::scene::Scene<T>>(scene)));
   mpr::Image<mpr::Color> cast(w, h);
   caster.render(cast.view(), mpr::Region(0, 0, w, h), {1});
   int compared = 0;

@@ -11,7 +11,8 @@
 
 namespace {
 
-template <class T> mpr::scene::Mesh<T> one_triangle() {
+template <class T>
+mpr::scene::Mesh<T> one_triangle() {
   mpr::scene::Mesh<T> m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   m.triangles = {{0, 1, 2}};
@@ -20,7 +21,8 @@ template <class T> mpr::scene::Mesh<T> one_triangle() {
 
 /// Every directed edge of a closed, consistently oriented surface appears exactly once, and its
 /// reverse exactly once (positions compared by value, since builders duplicate vertices).
-template <class T> bool closed_and_consistent(const mpr::scene::Scene<T>& scene) {
+template <class T>
+bool closed_and_consistent(const mpr::scene::Scene<T>& scene) {
   std::map<std::array<T, 6>, int> edges;
   for (const auto& t : scene.triangles())
     for (int j = 0; j < 3; ++j) {
@@ -36,7 +38,8 @@ template <class T> bool closed_and_consistent(const mpr::scene::Scene<T>& scene)
   return true;
 }
 
-template <class T> bool outward(const mpr::scene::Scene<T>& scene, const mpr::Vec3<T>& centre) {
+template <class T>
+bool outward(const mpr::scene::Scene<T>& scene, const mpr::Vec3<T>& centre) {
   for (const auto& t : scene.triangles()) {
     const mpr::Vec3<T> centroid = (t.p[0] + t.p[1] + t.p[2]) / T(3);
     if (!(t.normal.dot(centroid - centre) > 0)) return false;
@@ -125,7 +128,8 @@ TEMPLATE_TEST_CASE("Scene::add rejects bad meshes with clear errors", "[scene][b
     CHECK_THROWS_WITH(s.add(m), Catch::Contains("texture 0"));
   }
   SECTION("textured mesh without uvs") {
-    m.texture = s.add_texture(mpr::scene::Texture(mpr::scene::checker_image(2, 2, mpr::Color(1, 1, 1), mpr::Color(0, 0, 0))));
+    m.texture =
+        s.add_texture(mpr::scene::Texture(mpr::scene::checker_image(2, 2, mpr::Color(1, 1, 1), mpr::Color(0, 0, 0))));
     CHECK_THROWS_WITH(s.add(m), Catch::Contains("uv"));
   }
   CHECK(s.empty()); // nothing half-added

@@ -8,10 +8,14 @@
 
 namespace {
 
-template <class T> constexpr T relative_tolerance() { return std::is_same_v<T, float> ? T(1e-5) : T(1e-12); }
+template <class T>
+constexpr T relative_tolerance() {
+  return std::is_same_v<T, float> ? T(1e-5) : T(1e-12);
+}
 
 /// Distance from `p` to the line of `ray`, computed in double.
-template <class T> double distance_to_line(const mpr::Ray<T>& ray, const mpr::Vec3<double>& p) {
+template <class T>
+double distance_to_line(const mpr::Ray<T>& ray, const mpr::Vec3<double>& p) {
   const mpr::Vec3<double> o = ray.origin.template cast<double>(), d = ray.direction.template cast<double>();
   return (p - o).cross(d).norm() / d.norm();
 }

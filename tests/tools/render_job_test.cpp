@@ -46,7 +46,8 @@ Image noise_image(int w, int h, unsigned seed) {
 }
 
 /// The classroom image plane of the tool's defaults (centre 0,3.1,3 looking at 0,1.6,-8; 8 m wide).
-template <class T> mpr::PlanarSurface<T> classroom_plane(int w, int h) {
+template <class T>
+mpr::PlanarSurface<T> classroom_plane(int w, int h) {
   const mpr::Vec3<T> centre(T(0), T(3.1), T(3)), look(T(0), T(1.6), T(-8));
   const mpr::Vec3<T> forward = (look - centre).normalized();
   const mpr::Vec3<T> right = forward.cross(mpr::Vec3<T>::UnitY()).normalized();
@@ -195,9 +196,9 @@ TEST_CASE("mpr-render: OBJ render equals the C++ API", "[tools]") {
     out << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 0 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
   }
   const int w = 20, h = 16;
-  const std::vector<Image> frames = mpr_cli::render_frames(job_of({"--obj", obj.string(), "--size", "20x16", "--plane-centre",
-                                                                   "0,0,3", "--look-at", "0,0,0", "--plane-size", "3,2.4",
-                                                                   "--view", "pinhole:0,0,5"}));
+  const std::vector<Image> frames =
+      mpr_cli::render_frames(job_of({"--obj", obj.string(), "--size", "20x16", "--plane-centre", "0,0,3", "--look-at",
+                                     "0,0,0", "--plane-size", "3,2.4", "--view", "pinhole:0,0,5"}));
   REQUIRE(frames.size() == 1);
   mpr::scene::Scene<T> scene;
   mpr::scene::add_obj(scene, obj);
@@ -323,8 +324,8 @@ TEST_CASE("mpr-render: LFCA light field equals the C++ API", "[tools]") {
       std::ofstream(dir / (id + ".homography.txt")) << "1 0 " << 0.5 * i << "\n0 1 0\n0 0 1\n";
     }
   }
-  const std::vector<Image> frames = mpr_cli::render_frames(job_of({"--lfca", (dir / "positions.txt").string(), "--interp",
-                                                                   "nearest", "--focal-depth", "800", "--double"}));
+  const std::vector<Image> frames = mpr_cli::render_frames(
+      job_of({"--lfca", (dir / "positions.txt").string(), "--interp", "nearest", "--focal-depth", "800", "--double"}));
   REQUIRE(frames.size() == 1);
   using D = double;
   const auto set = std::make_shared<const mpr::CameraFrameSet<D>>(mpr::read_lfca<D>(dir / "positions.txt"));
@@ -336,7 +337,8 @@ TEST_CASE("mpr-render: LFCA light field equals the C++ API", "[tools]") {
   K(1, 2) = D(0.5) * (ch - 1);
   const mpr::PinholeCamera<D> ref(K, mpr::Mat3<D>::Identity(), mpr::Vec3<D>(-mean), cw, ch);
   const mpr::PlanarSurface<D> plane = ref.image_plane(800);
-  CHECK(identical(frames[0], direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::NearestCamera, D>(set), cw, ch)));
+  CHECK(identical(frames[0],
+                  direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::NearestCamera, D>(set), cw, ch)));
   std::filesystem::remove_all(dir);
 }
 
@@ -365,8 +367,9 @@ TEST_CASE("mpr-render: --rectify plane keeps the untilted framing", "[tools]") {
 TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API", "[tools]") {
   using T = float;
   const int w = 32, h = 24;
-  const std::vector<Image> frames = mpr_cli::render_frames(job_of(
-      {"--size", "32x24", "--view", "A", "--raster", "3x2", "--interp", "cylinder", "--radius", "2", "--focal-depth", "9"}));
+  const std::vector<Image> frames =
+      mpr_cli::render_frames(job_of({"--size", "32x24", "--view", "A", "--raster", "3x2", "--interp", "cylinder",
+                                     "--radius", "2", "--focal-depth", "9"}));
   REQUIRE(frames.size() == 1);
   const mpr::scene::Scene<T> scene = mpr::scenes::classroom<T>();
   const mpr::PlanarSurface<T> plane = classroom_plane<T>(w, h);
@@ -376,8 +379,8 @@ TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API",
   config.focal_depth = T(9);
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>> sampler(
       scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{2}});
-  CHECK(identical(frames[0], direct(plane, mpr::glc::gallery_view('A', plane, mpr::Vec3<T>(0, 1.6f, -8), T(14)),
-                                    sampler, w, h)));
+  CHECK(identical(frames[0],
+                  direct(plane, mpr::glc::gallery_view('A', plane, mpr::Vec3<T>(0, 1.6f, -8), T(14)), sampler, w, h)));
   CHECK_THROWS_AS(job_of({"--raster", "3x2", "--stanford", "/nonexistent"}), mpr::error);
   CHECK_THROWS_AS(job_of({"--focal-depth", "9"}), mpr::argument_error); // scene without --raster
 }

@@ -19,9 +19,9 @@ namespace mpr_cli {
 
 /// One documented option.
 struct OptionSpec {
-  std::string name;   ///< without the leading dashes
-  std::string value;  ///< placeholder for the value, empty for a flag
-  std::string help;   ///< one or two sentences
+  std::string name;  ///< without the leading dashes
+  std::string value; ///< placeholder for the value, empty for a flag
+  std::string help;  ///< one or two sentences
   std::string example;
 };
 
@@ -51,7 +51,8 @@ inline ParsedArgs parse_args(int argc, const char* const* argv, const std::vecto
   ParsedArgs parsed;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
-    if (arg.rfind("--", 0) != 0) throw mpr::argument_error(arg, "unexpected argument (options start with --; see --help)");
+    if (arg.rfind("--", 0) != 0)
+      throw mpr::argument_error(arg, "unexpected argument (options start with --; see --help)");
     std::string name = arg.substr(2), value;
     bool inline_value = false;
     if (const auto eq = name.find('='); eq != std::string::npos) {

@@ -10,10 +10,10 @@
 
 #include <array>
 #include <cmath>
-#include <tuple>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace mpr_cli {
@@ -41,22 +41,22 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  Track radius{10};                   ///< cylinder aperture radius
-  std::optional<Track> focal_depth;   ///< light fields: depth of the focal (image) plane
-  double reference_depth = 1000;      ///< Stanford / LFCA: depth of the rectified reference plane
-  double position_scale = 1;          ///< Stanford / LFCA: world units per stored position unit
-  std::optional<int> camera;          ///< light fields: the reference camera (index)
+  Track radius{10};                 ///< cylinder aperture radius
+  std::optional<Track> focal_depth; ///< light fields: depth of the focal (image) plane
+  double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
+  double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
+  std::optional<int> camera;        ///< light fields: the reference camera (index)
   // Surface.
   std::optional<mpr::Vec3<double>> plane_centre, look_at;
   std::optional<std::pair<double, double>> plane_size;
   mpr::Vec3<double> up{0, 1, 0};
-  Track tilt_x{0}, tilt_y{0}; ///< degrees, about the plane's width / height direction
+  Track tilt_x{0}, tilt_y{0};                              ///< degrees, about the plane's width / height direction
   std::optional<std::array<mpr::Vec3<double>, 4>> rectify; ///< scene quad that fills the output
   bool rectify_to_plane = false; ///< `--rectify plane`: the untilted plane's corners fill the output
   // Selector helpers.
   std::optional<mpr::Vec3<double>> scene_centre;
   std::optional<double> scene_scale;
-  std::optional<std::string> morph_to; ///< second view spec of a morph
+  std::optional<std::string> morph_to;          ///< second view spec of a morph
   Track morph = Track::parse("0:1", "--morph"); ///< morph weight (0: the view, 1: morph_to)
 };
 
@@ -88,7 +88,8 @@ inline const std::vector<OptionSpec>& options() {
        "--par data/templeSR/templeSR_par.txt"},
       {"stanford", "FOLDER", "Sampler: a Stanford light-field archive folder of out_RR_CC_Y_X.png images.",
        "--stanford data/stanford/chess"},
-      {"lfca", "POSITIONS.txt", "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
+      {"lfca", "POSITIONS.txt",
+       "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
        "--lfca rig/positions.txt"},
       {"interp", "nearest|synthetic|cylinder",
        "Light-field interpolation: nearest camera, full synthetic aperture, or cylinder aperture of --radius "
@@ -103,10 +104,12 @@ inline const std::vector<OptionSpec>& options() {
        "--reference-depth 1000"},
       {"position-scale", "S", "Stanford/LFCA: world units per stored camera-position unit (default 1).",
        "--position-scale 1"},
-      {"camera", "K", "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
-                      "the middle camera for _par.txt).",
+      {"camera", "K",
+       "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
+       "the middle camera for _par.txt).",
        "--camera 3"},
-      {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).", "--plane-centre 0,3.1,3"},
+      {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).",
+       "--plane-centre 0,3.1,3"},
       {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).", "--look-at 0,1.6,-8"},
       {"plane-size", "W,H", "Extent of the image plane in world units.", "--plane-size 8,6"},
       {"up", "X,Y,Z", "Up direction of the image plane (default 0,1,0).", "--up 0,1,0"},
@@ -221,8 +224,8 @@ inline Job make_job(const ParsedArgs& args) {
   input("stanford", SamplerKind::stanford);
   input("lfca", SamplerKind::lfca);
   if (samplers > 1) throw mpr::argument_error("--scene/--obj/--par/--stanford/--lfca", "choose one sampler");
-  const bool light_field = job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford ||
-                           job.sampler == SamplerKind::lfca;
+  const bool light_field =
+      job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford || job.sampler == SamplerKind::lfca;
   const auto lf_only = [&](const char* name) {
     if (args.has(name) && !light_field)
       throw mpr::argument_error(std::string("--") + name, "applies to light fields (--par, --stanford, --lfca) only");
@@ -241,14 +244,17 @@ inline Job make_job(const ParsedArgs& args) {
     if (!(job.obj_scale > 0)) throw mpr::argument_error("--obj-scale", "must be positive");
   }
   if (const auto v = args.get("interp")) {
-    if (*v == "nearest") job.interpolation = Interpolation::nearest;
-    else if (*v == "synthetic") job.interpolation = Interpolation::synthetic;
-    else if (*v == "cylinder") job.interpolation = Interpolation::cylinder;
-    else throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic or cylinder");
+    if (*v == "nearest")
+      job.interpolation = Interpolation::nearest;
+    else if (*v == "synthetic")
+      job.interpolation = Interpolation::synthetic;
+    else if (*v == "cylinder")
+      job.interpolation = Interpolation::cylinder;
+    else
+      throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic or cylinder");
   }
   if (const auto v = args.get("radius")) {
-    if (job.interpolation != Interpolation::cylinder)
-      throw mpr::argument_error("--radius", "needs --interp cylinder");
+    if (job.interpolation != Interpolation::cylinder) throw mpr::argument_error("--radius", "needs --interp cylinder");
     job.radius = parse_track(*v, "--radius");
     for (const Track::Key& k : job.radius.keys())
       if (!(k.value > 0)) throw mpr::argument_error("--radius", "must be positive");
@@ -280,7 +286,8 @@ inline Job make_job(const ParsedArgs& args) {
   }
   if ((job.plane_centre || job.look_at || job.plane_size) && !(job.plane_centre && job.look_at && job.plane_size))
     throw mpr::argument_error("--plane-centre", "give --plane-centre, --look-at and --plane-size together");
-  if (light_field && job.plane_centre) throw mpr::argument_error("--plane-centre", "light fields use --focal-depth and --camera");
+  if (light_field && job.plane_centre)
+    throw mpr::argument_error("--plane-centre", "light fields use --focal-depth and --camera");
   if (const auto v = args.get("tilt-x")) job.tilt_x = parse_track(*v, "--tilt-x");
   if (const auto v = args.get("tilt-y")) job.tilt_y = parse_track(*v, "--tilt-y");
   for (const Track* t : {&job.tilt_x, &job.tilt_y})

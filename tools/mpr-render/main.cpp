@@ -15,7 +15,8 @@
 namespace {
 
 void print_help() {
-  std::printf("usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field to PNG.\n\n");
+  std::printf(
+      "usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field to PNG.\n\n");
   for (const mpr_cli::OptionSpec& s : mpr_cli::options()) {
     std::string head = "--" + s.name + (s.value.empty() ? "" : " " + s.value);
     std::printf("  %s\n      %s\n      e.g. %s\n", head.c_str(), s.help.c_str(), s.example.c_str());

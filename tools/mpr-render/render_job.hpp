@@ -28,13 +28,15 @@
 namespace mpr_cli {
 
 /// A GLC view on an image plane (no rectification).
-template <std::floating_point T> struct PlanarCamera {
+template <std::floating_point T>
+struct PlanarCamera {
   mpr::PlanarSurface<T> surface;
   mpr::GlcSelector<T> selector;
 };
 
 /// The surface+selector pair of one view: planar, or rectified through a homography.
-template <std::floating_point T> using CameraVariant = std::variant<PlanarCamera<T>, mpr::glc::Rectified<T>>;
+template <std::floating_point T>
+using CameraVariant = std::variant<PlanarCamera<T>, mpr::glc::Rectified<T>>;
 
 template <std::floating_point T>
 using SamplerVariant =
@@ -57,7 +59,8 @@ void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sample
 }
 
 /// The data of a job, loaded once for all frames.
-template <std::floating_point T> struct Loaded {
+template <std::floating_point T>
+struct Loaded {
   std::shared_ptr<const mpr::scene::Scene<T>> scene;
   std::optional<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>> scene_sampler;
   std::shared_ptr<const mpr::CameraFrameSet<T>> frames;
@@ -79,7 +82,8 @@ inline mpr::PlanarArrayOptions array_options(const Job& job) {
 
 /// The virtual camera at the centre of a rectified planar array: frame 0's intrinsics with the
 /// principal point at the image centre, R = I, centre at the mean camera centre.
-template <std::floating_point T> mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) {
+template <std::floating_point T>
+mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) {
   mpr::Vec3<T> mean = mpr::Vec3<T>::Zero();
   for (std::size_t i = 0; i < frames.size(); ++i) mean += frames.camera(i).centre();
   mean /= static_cast<T>(frames.size());
@@ -93,7 +97,8 @@ template <std::floating_point T> mpr::PinholeCamera<T> array_centre_camera(const
 } // namespace detail
 
 /// Loads the sampler's data (scene, OBJ or light field) and its default framing.
-template <std::floating_point T> Loaded<T> load(const Job& job) {
+template <std::floating_point T>
+Loaded<T> load(const Job& job) {
   Loaded<T> l;
   switch (job.sampler) {
   case SamplerKind::scene:
@@ -176,7 +181,8 @@ inline FrameParams frame_params(const Job& job, double default_focal_depth, doub
 }
 
 /// The output size of one view.
-template <std::floating_point T> std::pair<int, int> view_size(const Job& job, const Loaded<T>& l) {
+template <std::floating_point T>
+std::pair<int, int> view_size(const Job& job, const Loaded<T>& l) {
   if (!job.size_given && l.reference) return {l.reference->width(), l.reference->height()};
   return {job.width, job.height};
 }
@@ -190,8 +196,8 @@ mpr::PlanarSurface<T> base_plane(const Job& job, const Loaded<T>& l, const Frame
   const V look = (job.look_at ? *job.look_at : l.look_at).template cast<T>();
   const V up = job.up.template cast<T>();
   const T w = static_cast<T>(job.plane_size ? job.plane_size->first : l.plane_width);
-  const T h = job.plane_size ? static_cast<T>(job.plane_size->second)
-                             : w * static_cast<T>(height) / static_cast<T>(width);
+  const T h =
+      job.plane_size ? static_cast<T>(job.plane_size->second) : w * static_cast<T>(height) / static_cast<T>(width);
   if (!((look - centre).norm() > 0)) throw mpr::argument_error("--look-at", "equals the plane centre");
   const V forward = (look - centre).normalized();
   const V side = forward.cross(up);
@@ -201,7 +207,8 @@ mpr::PlanarSurface<T> base_plane(const Job& job, const Loaded<T>& l, const Frame
   return mpr::PlanarSurface<T>::centred(centre, w * right, h * down);
 }
 
-template <std::floating_point T> mpr::PlanarSurface<T> frame_plane(const mpr::PlanarSurface<T>& base, const FrameParams& p) {
+template <std::floating_point T>
+mpr::PlanarSurface<T> frame_plane(const mpr::PlanarSurface<T>& base, const FrameParams& p) {
   if (p.tilt_x == 0 && p.tilt_y == 0) return base;
   constexpr double deg = std::numbers::pi / 180;
   return base.tilted(static_cast<T>(p.tilt_x * deg), static_cast<T>(p.tilt_y * deg));
@@ -218,7 +225,8 @@ inline std::string nested(const std::exception& e) {
 }
 
 inline std::string normalized_name(std::string s) {
-  for (char& c : s) c = (c == ' ' || c == '-' || c == ',') ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (char& c : s)
+    c = (c == ' ' || c == '-' || c == ',') ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   std::string out;
   for (char c : s)
     if (!(c == '_' && !out.empty() && out.back() == '_')) out += c;
@@ -246,8 +254,9 @@ inline char gallery_letter(const std::string& spec) {
 
 /// The GLC of a view spec (see view_help()) on `plane`. Throws argument_error naming `option`.
 template <std::floating_point T>
-mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& option, const mpr::PlanarSurface<T>& plane,
-                                  const Job& job, const Loaded<T>& l, const FrameParams& p) {
+mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& option,
+                                  const mpr::PlanarSurface<T>& plane, const Job& job, const Loaded<T>& l,
+                                  const FrameParams& p) {
   using V = mpr::Vec3<T>;
   try {
     if (spec == "default") {
@@ -428,9 +437,9 @@ void print_camera(std::ostream& out, const std::string& spec, const CameraVarian
                   static_cast<double>(v.z()));
     return std::string(buf);
   };
-  const mpr::PlanarSurface<T>& plane =
-      std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).surface
-                                                      : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
+  const mpr::PlanarSurface<T>& plane = std::holds_alternative<PlanarCamera<T>>(camera)
+                                           ? std::get<PlanarCamera<T>>(camera).surface
+                                           : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
   const mpr::GlcSelector<T>& glc = std::holds_alternative<PlanarCamera<T>>(camera)
                                        ? std::get<PlanarCamera<T>>(camera).selector
                                        : std::get<mpr::glc::Rectified<T>>(camera).selector.selector();
@@ -450,7 +459,8 @@ void print_camera(std::ostream& out, const std::string& spec, const CameraVarian
 /// Called with each finished frame (index from 0, and the frame count).
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
 
-template <std::floating_point T> void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
+template <std::floating_point T>
+void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
   const Loaded<T> l = load<T>(job);
   const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
@@ -480,7 +490,8 @@ inline void run(const Job& job, const FrameSink& sink, std::ostream* info = null
 /// All frames in memory (tests).
 inline std::vector<mpr::Image<mpr::Rgb8>> render_frames(const Job& job, std::ostream* info = nullptr) {
   std::vector<mpr::Image<mpr::Rgb8>> frames;
-  run(job, [&](int, int, const mpr::Image<mpr::Rgb8>& image) { frames.push_back(image); }, info);
+  run(
+      job, [&](int, int, const mpr::Image<mpr::Rgb8>& image) { frames.push_back(image); }, info);
   return frames;
 }
 

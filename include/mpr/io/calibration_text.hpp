@@ -67,8 +67,7 @@ struct TextLine {
   long value = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
   if (ec != std::errc() || end != s.data() + s.size() || value < 0)
-    throw io_error(path.string(), "field " + std::to_string(field + 1) + " ('" + s + "') is not a count",
-                   line.number);
+    throw io_error(path.string(), "field " + std::to_string(field + 1) + " ('" + s + "') is not a count", line.number);
   return value;
 }
 

@@ -50,7 +50,8 @@ namespace detail {
 
 /// RQ decomposition of a non-singular 3x3 matrix up to a positive or negative scale:
 /// `M ~ K R` with K upper triangular, positive diagonal, K(2,2) = 1, and R a rotation.
-template <std::floating_point T> void rq_decompose(const Mat3<T>& M_in, Mat3<T>& K, Mat3<T>& R) {
+template <std::floating_point T>
+void rq_decompose(const Mat3<T>& M_in, Mat3<T>& K, Mat3<T>& R) {
   Mat3<T> M = M_in;
   if (M.determinant() < 0) M = -M;
   Mat3<T> flip = Mat3<T>::Zero();
@@ -87,7 +88,8 @@ template <std::floating_point T = double>
     for (const std::string& id : ids)
       if (id == line.fields[0]) throw io_error(positions_file.string(), "duplicate camera id " + id, line.number);
     ids.push_back(line.fields[0]);
-    positions.emplace_back(detail::parse_number(positions_file, line, 1), detail::parse_number(positions_file, line, 2));
+    positions.emplace_back(detail::parse_number(positions_file, line, 1),
+                           detail::parse_number(positions_file, line, 2));
   }
   const std::vector<Vec3<T>> centres = planar_array_centres<T>(positions, options.array);
   std::vector<PinholeCamera<T>> cameras;
@@ -105,8 +107,8 @@ template <std::floating_point T = double>
         h.push_back(detail::parse_number(h_path, line, k));
       }
     if (h.size() != 9)
-      throw io_error(h_path.string(), "expected 9 numbers (a 3x3 row-major homography), found " +
-                                          std::to_string(h.size()));
+      throw io_error(h_path.string(),
+                     "expected 9 numbers (a 3x3 row-major homography), found " + std::to_string(h.size()));
     Mat3<double> H;
     for (int k = 0; k < 9; ++k) H(k / 3, k % 3) = h[static_cast<std::size_t>(k)];
     const double scale = H.cwiseAbs().maxCoeff();
@@ -124,7 +126,8 @@ template <std::floating_point T = double>
                                               std::to_string(images[0].width()) + "x" +
                                               std::to_string(images[0].height()));
     const Vec3<double> C = centres[i].template cast<double>();
-    const PinholeCamera<double> rectified = planar_array_camera<double>(C, image.width(), image.height(), options.array);
+    const PinholeCamera<double> rectified =
+        planar_array_camera<double>(C, image.width(), image.height(), options.array);
     const Mat3<double> M = H.inverse() * rectified.K();
     Mat3<double> K, R;
     rq_decompose(M, K, R);

@@ -25,7 +25,8 @@
 namespace mpr {
 
 /// One line of a `_par.txt` file.
-template <std::floating_point T> struct ParEntry {
+template <std::floating_point T>
+struct ParEntry {
   std::string image_name;
   Mat3<T> K;
   Mat3<T> R;

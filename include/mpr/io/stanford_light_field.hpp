@@ -98,11 +98,10 @@ template <std::floating_point T = double>
   for (std::size_t i = 0; i < entries.size(); ++i) {
     Image<Rgb8> image = read_rgb8(entries[i].path);
     if (!images.empty() && (image.width() != images[0].width() || image.height() != images[0].height()))
-      throw io_error(entries[i].path.string(), "image is " + std::to_string(image.width()) + "x" +
-                                                   std::to_string(image.height()) + ", " +
-                                                   entries[0].path.filename().string() + " is " +
-                                                   std::to_string(images[0].width()) + "x" +
-                                                   std::to_string(images[0].height()));
+      throw io_error(entries[i].path.string(),
+                     "image is " + std::to_string(image.width()) + "x" + std::to_string(image.height()) + ", " +
+                         entries[0].path.filename().string() + " is " + std::to_string(images[0].width()) + "x" +
+                         std::to_string(images[0].height()));
     cameras.push_back(planar_array_camera<T>(centres[i], image.width(), image.height(), options));
     images.push_back(std::move(image));
     names.push_back(entries[i].path.filename().string());

@@ -13,7 +13,8 @@
 ///   student in a distinct colour; a teacher's desk in front of the board;
 /// - 8 columns (cylinders), 4 along each side.
 /// Floor and walls are single quads: their boxes are flat slabs, cheap for the BVH (cutting them
-/// into 1 m cells measured 6% more instructions per ray). About 17 800 triangles; nothing random, so every build is identical.
+/// into 1 m cells measured 6% more instructions per ray). About 17 800 triangles; nothing random, so every build is
+/// identical.
 
 #include <mpr/core/color.hpp>
 #include <mpr/scene/scene.hpp>
@@ -64,7 +65,8 @@ inline Color hue(float h) {
 } // namespace detail
 
 /// The classroom demo scene (see the file comment).
-template <std::floating_point T = float> [[nodiscard]] scene::Scene<T> classroom() {
+template <std::floating_point T = float>
+[[nodiscard]] scene::Scene<T> classroom() {
   using scene::box;
   using scene::cylinder;
   using scene::quad;

@@ -143,7 +143,8 @@ inline bool validate_obj(const std::filesystem::path& path) {
 /// On error the scene may already hold some of the file's meshes.
 template <std::floating_point T>
 std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const ObjOptions& options = {}) {
-  if (!std::isfinite(options.scale) || !(options.scale > 0)) throw argument_error("scale", "must be positive and finite");
+  if (!std::isfinite(options.scale) || !(options.scale > 0))
+    throw argument_error("scale", "must be positive and finite");
   const bool vertex_colours = detail::validate_obj(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -177,7 +178,8 @@ std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const Ob
                                    scale * static_cast<T>(attrib.vertices[3 * v + 1]),
                                    scale * static_cast<T>(attrib.vertices[3 * v + 2]));
           if (vertex_colours && 3 * v + 2 < attrib.colors.size())
-            m.colors.emplace_back(static_cast<float>(attrib.colors[3 * v]), static_cast<float>(attrib.colors[3 * v + 1]),
+            m.colors.emplace_back(static_cast<float>(attrib.colors[3 * v]),
+                                  static_cast<float>(attrib.colors[3 * v + 1]),
                                   static_cast<float>(attrib.colors[3 * v + 2]));
           if (index.texcoord_index >= 0) {
             const std::size_t t = static_cast<std::size_t>(index.texcoord_index);
@@ -211,7 +213,8 @@ std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const Ob
         try {
           texels = read_linear(image);
         } catch (const io_error& e) {
-          throw io_error(image.string(), "texture of material '" + mat.name + "' in " + path.string() + ": " + e.what());
+          throw io_error(image.string(),
+                         "texture of material '" + mat.name + "' in " + path.string() + ": " + e.what());
         }
         mesh.texture = scene.add_texture(Texture(std::move(texels)));
       }

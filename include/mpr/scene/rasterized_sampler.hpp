@@ -57,7 +57,8 @@ namespace mpr {
 /// its frames with `Interpolation` (`NearestCamera`, `SyntheticAperture` or `CylinderAperture`).
 /// Frames are stored as `Px`: 8-bit sRGB `Rgb8` (the default; what `write_virtual_array` writes,
 /// so a reloaded data set samples identically) or linear `Color` (no quantisation).
-template <class Interpolation = NearestCamera, class Px = Rgb8> struct Rasterized {
+template <class Interpolation = NearestCamera, class Px = Rgb8>
+struct Rasterized {
   /// The interpolation policy's parameters (e.g. the cylinder radius, world units).
   Interpolation interpolation{};
 };
@@ -73,7 +74,8 @@ namespace scene {
 /// to the width vector). Camera (c, r) -- frame index `r * columns + c` -- has image x along the
 /// width vector, image y along the (orthogonalised) height vector, square pixels, the principal
 /// point at the image centre and a horizontal field of view of `horizontal_fov` radians.
-template <std::floating_point T> struct VirtualArrayConfig {
+template <std::floating_point T>
+struct VirtualArrayConfig {
   int columns = 8;
   int rows = 6;
   /// World units between neighbouring cameras, along both axes; 0 spreads the grid over the
@@ -103,7 +105,7 @@ template <std::floating_point T> struct VirtualArrayConfig {
 /// degenerate plane.
 template <std::floating_point T>
 [[nodiscard]] std::vector<PinholeCamera<T>> virtual_array_cameras(const PlanarSurface<T>& plane,
-                                                                   const VirtualArrayConfig<T>& config) {
+                                                                  const VirtualArrayConfig<T>& config) {
   if (config.columns < 1 || config.columns > 4096) throw argument_error("columns", "must be in 1..4096");
   if (config.rows < 1 || config.rows > 4096) throw argument_error("rows", "must be in 1..4096");
   if (config.width < 1 || config.width > 16384) throw argument_error("width", "must be in 1..16384");
@@ -151,7 +153,8 @@ template <std::floating_point T>
 }
 
 /// The frames of a virtual array and the focal depth chosen for it.
-template <std::floating_point T, class Px> struct VirtualArray {
+template <std::floating_point T, class Px>
+struct VirtualArray {
   CameraFrameSet<T, Px> frames;
   /// See `VirtualArrayConfig::focal_depth`.
   T focal_depth = 0;
@@ -248,8 +251,7 @@ public:
   /// Samples an already rasterized (or reloaded) array.
   SceneSampler(scene::VirtualArray<T, Px> array, const Color& background, PixelFilter filter = PixelFilter::bilinear,
                Rasterized<Interpolation, Px> policy = {})
-      : focal_depth_(array.focal_depth),
-        frames_(std::make_shared<const frame_set_type>(std::move(array.frames))),
+      : focal_depth_(array.focal_depth), frames_(std::make_shared<const frame_set_type>(std::move(array.frames))),
         sampler_(frames_, policy.interpolation, make_config(array.focal_depth, background, filter)) {}
 
   [[nodiscard]] const frame_set_type& frames() const noexcept { return *frames_; }

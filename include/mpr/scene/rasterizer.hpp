@@ -60,7 +60,8 @@ constexpr int kSubpixelBits = 8;
 constexpr std::int64_t kSubpixel = std::int64_t{1} << kSubpixelBits;
 constexpr double kGuard = 4096.0;
 
-template <class T> struct ClipVertex {
+template <class T>
+struct ClipVertex {
   T X, Y, W; // homogeneous pixel coordinates
 };
 
@@ -78,9 +79,9 @@ struct PlaneEquation {
 
 struct ScreenTriangle {
   std::array<std::int64_t, 3> x, y; // fixed point, 1/256 pixel
-  std::int64_t area;                 // > 0
-  int x0, y0, x1, y1;                // inclusive pixel bounding box, clipped to the image
-  std::uint32_t plane;               // index into the plane equations
+  std::int64_t area;                // > 0
+  int x0, y0, x1, y1;               // inclusive pixel bounding box, clipped to the image
+  std::uint32_t plane;              // index into the plane equations
   std::uint32_t triangle;
   bool front;
 };
@@ -154,13 +155,15 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       const T Y = K(1, 1) * c.y() + K(1, 2) * c.z();
       poly[0][j] = {X, Y, c.z()};
       if (c.z() >= near) all_near_out = false;
-      const bool in = c.z() >= near && X >= -guard * c.z() && X <= gx1 * c.z() && Y >= -guard * c.z() && Y <= gy1 * c.z();
+      const bool in =
+          c.z() >= near && X >= -guard * c.z() && X <= gx1 * c.z() && Y >= -guard * c.z() && Y <= gy1 * c.z();
       all_inside = all_inside && in;
     }
     if (all_near_out) continue;
     int cur = 0;
     if (!all_inside) {
-      const T clip_planes[5][4] = {{0, 0, 1, -near}, {1, 0, guard, 0}, {-1, 0, gx1, 0}, {0, 1, guard, 0}, {0, -1, gy1, 0}};
+      const T clip_planes[5][4] = {
+          {0, 0, 1, -near}, {1, 0, guard, 0}, {-1, 0, gx1, 0}, {0, 1, guard, 0}, {0, -1, gy1, 0}};
       for (const auto& pl : clip_planes) {
         n = detail::clip_polygon(poly[cur], n, poly[1 - cur], pl[0], pl[1], pl[2], pl[3]);
         cur = 1 - cur;
@@ -177,10 +180,18 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       const double nn = n.squaredNorm();
       const double d = n.dot(c0);
       if (!(nn > 0) || d == 0 || !std::isfinite(d)) continue; // seen edge-on: covers no area
-      const Eigen::Vector3d abc = K_inverse.transpose() * n; // n . (K^-1 (x, y, 1))
+      const Eigen::Vector3d abc = K_inverse.transpose() * n;  // n . (K^-1 (x, y, 1))
       const Eigen::Vector3d g1 = e2.cross(n) / nn, g2 = n.cross(e1) / nn;
-      planes.push_back({abc.x(), abc.y(), abc.z(), d, abc.x() / d, abc.y() / d, abc.z() / d,
-                        {c0.x(), c0.y(), c0.z()}, {g1.x(), g1.y(), g1.z()}, {g2.x(), g2.y(), g2.z()}});
+      planes.push_back({abc.x(),
+                        abc.y(),
+                        abc.z(),
+                        d,
+                        abc.x() / d,
+                        abc.y() / d,
+                        abc.z() / d,
+                        {c0.x(), c0.y(), c0.z()},
+                        {g1.x(), g1.y(), g1.z()},
+                        {g2.x(), g2.y(), g2.z()}});
     }
     const std::uint32_t plane_index = static_cast<std::uint32_t>(planes.size() - 1);
     // Project and snap every polygon vertex, then fan-triangulate.
@@ -195,8 +206,8 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
     }
     for (int k = 1; k + 1 < n; ++k) {
       int idx[3] = {0, k, k + 1};
-      std::int64_t area = (fx[idx[1]] - fx[idx[0]]) * (fy[idx[2]] - fy[idx[0]]) -
-                          (fy[idx[1]] - fy[idx[0]]) * (fx[idx[2]] - fx[idx[0]]);
+      std::int64_t area =
+          (fx[idx[1]] - fx[idx[0]]) * (fy[idx[2]] - fy[idx[0]]) - (fy[idx[1]] - fy[idx[0]]) * (fx[idx[2]] - fx[idx[0]]);
       if (area == 0) continue;
       if (area < 0) {
         std::swap(idx[1], idx[2]);
@@ -214,8 +225,10 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
         maxy = std::max(maxy, s.y[j]);
       }
       // Pixel centres at integers: the first centre >= min and the last <= max.
-      const std::int64_t px0 = -detail::floor_div(-minx, detail::kSubpixel), px1 = detail::floor_div(maxx, detail::kSubpixel);
-      const std::int64_t py0 = -detail::floor_div(-miny, detail::kSubpixel), py1 = detail::floor_div(maxy, detail::kSubpixel);
+      const std::int64_t px0 = -detail::floor_div(-minx, detail::kSubpixel),
+                         px1 = detail::floor_div(maxx, detail::kSubpixel);
+      const std::int64_t py0 = -detail::floor_div(-miny, detail::kSubpixel),
+                         py1 = detail::floor_div(maxy, detail::kSubpixel);
       s.x0 = static_cast<int>(std::max<std::int64_t>(px0, 0));
       s.x1 = static_cast<int>(std::min<std::int64_t>(px1, width - 1));
       s.y0 = static_cast<int>(std::max<std::int64_t>(py0, 0));

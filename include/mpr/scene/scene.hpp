@@ -29,7 +29,8 @@ namespace mpr::scene {
 /// `texture` names a texture of the scene (index into `Scene::textures()`), ignored otherwise.
 /// Triangles are counter-clockwise seen from the side their normal points to (right-handed:
 /// normal = (p1 - p0) x (p2 - p0)); both sides are lit (two-sided Lambert).
-template <std::floating_point T> struct Mesh {
+template <std::floating_point T>
+struct Mesh {
   std::vector<Vec3<T>> positions;
   std::vector<Color> colors;
   std::vector<Vec2<T>> uvs;
@@ -40,7 +41,8 @@ template <std::floating_point T> struct Mesh {
 };
 
 /// One triangle of a scene, ready for rendering. `normal` is the unit geometric normal.
-template <std::floating_point T> struct Triangle {
+template <std::floating_point T>
+struct Triangle {
   std::array<Vec3<T>, 3> p;
   Vec3<T> normal;
   std::array<Color, 3> color;
@@ -55,7 +57,8 @@ template <std::floating_point T> struct Triangle {
 /// Ambient + one directional light, Lambert: colour = albedo * (ambient + diffuse * max(0, n.l)),
 /// with n the normal on the viewer's side of the triangle and l the unit direction *towards*
 /// the light.
-template <std::floating_point T> struct Lighting {
+template <std::floating_point T>
+struct Lighting {
   Color ambient{0.35f, 0.35f, 0.38f};
   Color diffuse{0.70f, 0.68f, 0.62f};
   /// Direction towards the light (need not be unit length; must be finite and non-zero).
@@ -69,7 +72,8 @@ template <std::floating_point T> struct Lighting {
 /// textured mesh without uvs throw `argument_error` naming the mesh and the element.
 /// *Degenerate* triangles (zero area within rounding, including repeated indices) are skipped and
 /// counted in `degenerate_skipped()`: they cover no area, so dropping them changes no image.
-template <std::floating_point T> class Scene {
+template <std::floating_point T>
+class Scene {
 public:
   using scalar_type = T;
 
@@ -88,7 +92,8 @@ public:
     if (mesh.triangles.empty()) throw argument_error(name, "has no triangles");
     if (n > std::numeric_limits<std::uint32_t>::max()) throw argument_error(name, "too many vertices");
     for (std::size_t i = 0; i < n; ++i)
-      if (!mesh.positions[i].allFinite()) throw argument_error(name, "position " + std::to_string(i) + " is not finite");
+      if (!mesh.positions[i].allFinite())
+        throw argument_error(name, "position " + std::to_string(i) + " is not finite");
     if (!mesh.colors.empty() && mesh.colors.size() != n)
       throw argument_error(name, "colors has " + std::to_string(mesh.colors.size()) + " entries for " +
                                      std::to_string(n) + " positions");

@@ -16,10 +16,12 @@
 namespace mpr::scene {
 
 namespace detail {
-template <class T> void require_finite(const Vec3<T>& v, const char* name) {
+template <class T>
+void require_finite(const Vec3<T>& v, const char* name) {
   if (!v.allFinite()) throw argument_error(name, "not finite");
 }
-template <class T> std::uint32_t push(Mesh<T>& m, const Vec3<T>& p, const Vec2<T>& uv = Vec2<T>::Zero()) {
+template <class T>
+std::uint32_t push(Mesh<T>& m, const Vec3<T>& p, const Vec2<T>& uv = Vec2<T>::Zero()) {
   m.positions.push_back(p);
   m.uvs.push_back(uv);
   return static_cast<std::uint32_t>(m.positions.size() - 1);
@@ -69,20 +71,22 @@ template <std::floating_point T>
 
 /// The axis-aligned box [lo, hi], 12 triangles, each face with uv (0,0)-(1,1).
 /// Throws `argument_error("hi", ...)` unless hi > lo in every coordinate.
-template <std::floating_point T> [[nodiscard]] Mesh<T> box(const Vec3<T>& lo, const Vec3<T>& hi, const Color& color) {
+template <std::floating_point T>
+[[nodiscard]] Mesh<T> box(const Vec3<T>& lo, const Vec3<T>& hi, const Color& color) {
   detail::require_finite(lo, "lo");
   detail::require_finite(hi, "hi");
-  if (!(hi.x() > lo.x() && hi.y() > lo.y() && hi.z() > lo.z())) throw argument_error("hi", "must exceed lo in x, y and z");
+  if (!(hi.x() > lo.x() && hi.y() > lo.y() && hi.z() > lo.z()))
+    throw argument_error("hi", "must exceed lo in x, y and z");
   const Vec3<T> d = hi - lo;
   const Vec3<T> X(d.x(), 0, 0), Y(0, d.y(), 0), Z(0, 0, d.z());
   Mesh<T> m;
   m.color = color;
   detail::append_quad(m, Vec3<T>(hi.x(), lo.y(), lo.z()), Y, Z, T(1), T(1)); // +x
-  detail::append_quad(m, lo, Z, Y, T(1), T(1));                                // -x
+  detail::append_quad(m, lo, Z, Y, T(1), T(1));                              // -x
   detail::append_quad(m, Vec3<T>(lo.x(), hi.y(), lo.z()), Z, X, T(1), T(1)); // +y
-  detail::append_quad(m, lo, X, Z, T(1), T(1));                                // -y
+  detail::append_quad(m, lo, X, Z, T(1), T(1));                              // -y
   detail::append_quad(m, Vec3<T>(lo.x(), lo.y(), hi.z()), X, Y, T(1), T(1)); // +z
-  detail::append_quad(m, lo, Y, X, T(1), T(1));                                // -z
+  detail::append_quad(m, lo, Y, X, T(1), T(1));                              // -z
   return m;
 }
 
@@ -103,7 +107,7 @@ template <std::floating_point T>
       const T phi = 2 * std::numbers::pi_v<T> * static_cast<T>(j % slices) / static_cast<T>(slices);
       const Vec3<T> dir(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
       const Vec3<T> p = (i == 0 || i == stacks) ? Vec3<T>(centre + radius * Vec3<T>(0, i == 0 ? 1 : -1, 0))
-                                                 : Vec3<T>(centre + radius * dir);
+                                                : Vec3<T>(centre + radius * dir);
       detail::push(m, p, Vec2<T>(static_cast<T>(j) / slices, 1 - static_cast<T>(i) / stacks));
     }
   }
