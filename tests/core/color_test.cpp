@@ -53,6 +53,18 @@ TEST_CASE("PixelTraits store colours in each pixel type", "[color]") {
   STATIC_REQUIRE(mpr::StorableAs<mpr::Rgb8, mpr::Color>);
   STATIC_REQUIRE(mpr::StorableAs<float, float>);
   STATIC_REQUIRE_FALSE(mpr::StorableAs<mpr::Rgb8, float>);
+  // The row form (used by the renderer for whole rows) stores what from_color stores, pixel by
+  // pixel, and nothing past the end.
+  std::vector<mpr::Color> row;
+  for (int i = 0; i < 37; ++i)
+    row.emplace_back(static_cast<float>(i) / 36.0f, 1.0f - static_cast<float>(i) / 40.0f,
+                     static_cast<float>(i % 5) * 0.3f - 0.2f);
+  std::vector<mpr::Rgb8> out(row.size() + 1, mpr::Rgb8{7, 7, 7});
+  mpr::PixelTraits<mpr::Rgb8>::from_colors(row.data(), out.data(), row.size());
+  int wrong = 0;
+  for (std::size_t i = 0; i < row.size(); ++i) wrong += out[i] == mpr::to_rgb8(row[i]) ? 0 : 1;
+  CHECK(wrong == 0);
+  CHECK(out.back() == mpr::Rgb8{7, 7, 7});
 }
 
 TEST_CASE("linear_to_srgb8_row gives the per-channel codes bit for bit", "[color]") {

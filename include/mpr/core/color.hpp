@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -152,14 +153,22 @@ inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t 
 }
 
 /// Converts what a sampler returns into a stored pixel. Specialise it (or add `from_color`
-/// overloads) to store another pixel type or to accept a sampler's own colour type.
+/// overloads) to store another pixel type or to accept a sampler's own colour type. A
+/// specialisation may also offer `from_colors(const C*, Px*, std::size_t n)`, the same
+/// conversion for n pixels at once, which the renderer then uses for whole rows.
 template <class Px>
 struct PixelTraits;
 
-/// 8-bit sRGB pixels: linear colour is encoded with `to_rgb8`.
+/// 8-bit sRGB pixels: linear colour is encoded with `to_rgb8`; a whole row at once with
+/// `linear_to_srgb8_row` (the same codes, vectorised).
 template <>
 struct PixelTraits<Rgb8> {
   [[nodiscard]] static Rgb8 from_color(const Color& c) noexcept { return to_rgb8(c); }
+  static void from_colors(const Color* colors, Rgb8* out, std::size_t n) noexcept {
+    // Both are packed channel triples: one flat conversion of 3n channels.
+    static_assert(sizeof(Rgb8) == 3 && sizeof(Color) == 3 * sizeof(float));
+    if (n > 0) linear_to_srgb8_row(colors[0].data(), &out[0].r, 3 * n);
+  }
 };
 
 /// Linear float pixels: stored unchanged (no clamping, so HDR values survive).

@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <span>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -182,11 +181,8 @@ private:
   // row[i] = colors[i] stored as Px, for i in [0, n).
   template <class Px>
   MPR_FLATTEN static void store_row(Px* row, const color_type* colors, int n) noexcept {
-    if constexpr (std::is_same_v<Px, Rgb8> && std::is_same_v<color_type, Color>) {
-      // Both are packed channel triples: one flat conversion (vectorised) of 3n channels, the
-      // same codes as `to_rgb8` per pixel.
-      static_assert(sizeof(Rgb8) == 3 && sizeof(Color) == 3 * sizeof(float));
-      if (n > 0) linear_to_srgb8_row(colors[0].data(), &row[0].r, 3 * static_cast<std::size_t>(n));
+    if constexpr (requires { PixelTraits<Px>::from_colors(colors, row, std::size_t{}); }) {
+      PixelTraits<Px>::from_colors(colors, row, static_cast<std::size_t>(n));
     } else {
       for (int i = 0; i < n; ++i) row[i] = PixelTraits<Px>::from_color(colors[i]);
     }

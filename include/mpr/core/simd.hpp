@@ -44,6 +44,9 @@ namespace mpr::detail {
 enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
 
 /// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
+/// `MPR_SIMD` only ever lowers the choice: `avx512` (or `avx2` on a CPU without AVX-512) and any
+/// other value leave it as detected. It is read on the render path, which must not throw, so an
+/// unrecognised value is not an error; `simd_level_name()` tells what was chosen.
 [[nodiscard]] inline SimdLevel simd_level() noexcept {
   static const SimdLevel level = [] {
     SimdLevel best = SimdLevel::portable;
