@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace lf_example {
 
@@ -57,6 +58,22 @@ inline std::filesystem::path output_dir(int argc, char** argv) {
   const std::filesystem::path out = argc > 2 ? argv[2] : "lightfield-output";
   std::filesystem::create_directories(out);
   return out;
+}
+
+/// What every Chess example starts from: the output folder, the 49 frames and the refocusing
+/// camera at the array centre. Arguments: [DATA_DIR] [OUTPUT_FOLDER].
+struct ChessExample {
+  std::filesystem::path out;
+  std::shared_ptr<const mpr::CameraFrameSet<T>> frames;
+  mpr::PinholeCamera<T> centre;
+};
+
+inline ChessExample open_chess(int argc, char** argv) {
+  const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
+  std::filesystem::path out = output_dir(argc, argv);
+  auto frames = load_chess(data);
+  const mpr::PinholeCamera<T> centre = array_centre_camera(frames->camera(0));
+  return {std::move(out), std::move(frames), centre};
 }
 
 inline void report(const std::filesystem::path& path) { std::printf("wrote %s\n", path.string().c_str()); }

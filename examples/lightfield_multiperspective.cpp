@@ -21,10 +21,7 @@
 using namespace lf_example;
 
 int main(int argc, char** argv) try {
-  const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
-  const std::filesystem::path out = output_dir(argc, argv);
-  const auto frames = load_chess(data);
-  const mpr::PinholeCamera<T> centre = array_centre_camera(frames->camera(0));
+  const auto [out, frames, centre] = open_chess(argc, argv);
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> sampler(frames, mpr::CylinderAperture{6.0});
 
   // Half the array width along x (centres run from about -16 to +16).
