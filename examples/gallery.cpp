@@ -10,7 +10,7 @@
 #include <mpr/glc.hpp>
 
 #include <mpr/mpr.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/scene.hpp>
 
 #include <array>

@@ -5,9 +5,9 @@
 
 #include <mpr/io/lfca_calibration.hpp>
 #include <mpr/io/par_file.hpp>
-#include <mpr/io/planar_camera_array.hpp>
+#include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/io/stanford_light_field.hpp>
-#include <mpr/sampler/camera_frame_index.hpp>
-#include <mpr/sampler/camera_frame_interpolation.hpp>
-#include <mpr/sampler/camera_frame_sampler.hpp>
-#include <mpr/sampler/camera_frame_set.hpp>
+#include <mpr/lightfield/camera_index.hpp>
+#include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/frame_sampler.hpp>
+#include <mpr/lightfield/frame_set.hpp>

@@ -17,7 +17,7 @@
 #include <mpr/glc.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/lightfield.hpp>
-#include <mpr/sampler/checkerboard_plane.hpp>
+#include <mpr/scene/checkerboard_plane.hpp>
 #include <mpr/scene.hpp>
 #include <mpr/selector/glc_selector.hpp>
 #include <mpr/surface/planar_surface.hpp>

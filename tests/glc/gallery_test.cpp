@@ -4,7 +4,7 @@
 #include <mpr/core/renderer.hpp>
 #include <mpr/glc/gallery.hpp>
 #include <mpr/glc/rectify.hpp>
-#include <mpr/sampler/checkerboard_plane.hpp>
+#include <mpr/scene/checkerboard_plane.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -3,7 +3,7 @@
 #include <mpr/core/concepts.hpp>
 #include <mpr/glc/cameras.hpp>
 #include <mpr/glc/rectify.hpp>
-#include <mpr/sampler/checkerboard_plane.hpp>
+#include <mpr/scene/checkerboard_plane.hpp>
 
 #include <catch2/catch.hpp>
 

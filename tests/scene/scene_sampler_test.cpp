@@ -1,5 +1,5 @@
 #include <mpr/mpr.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/scene.hpp>
 
 #include <catch2/catch.hpp>

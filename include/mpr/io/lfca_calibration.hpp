@@ -16,8 +16,8 @@
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
 #include <mpr/io/image_io.hpp>
-#include <mpr/io/planar_camera_array.hpp>
-#include <mpr/sampler/camera_frame_set.hpp>
+#include <mpr/camera/planar_camera_array.hpp>
+#include <mpr/lightfield/frame_set.hpp>
 
 #include <Eigen/LU>
 #include <Eigen/QR>

@@ -13,8 +13,8 @@
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
 #include <mpr/io/image_io.hpp>
-#include <mpr/sampler/camera_frame_set.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/lightfield/frame_set.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 
 #include <cstdio>
 #include <filesystem>

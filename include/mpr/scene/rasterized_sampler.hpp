@@ -30,10 +30,10 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/io/par_file.hpp>
-#include <mpr/sampler/camera_frame_interpolation.hpp>
-#include <mpr/sampler/camera_frame_sampler.hpp>
-#include <mpr/sampler/camera_frame_set.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/frame_sampler.hpp>
+#include <mpr/lightfield/frame_set.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/scene/rasterizer.hpp>
 #include <mpr/scene/scene.hpp>
 #include <mpr/scene/scene_sampler.hpp>

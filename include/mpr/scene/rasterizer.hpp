@@ -25,7 +25,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/scene/scene.hpp>
 
 #include <algorithm>

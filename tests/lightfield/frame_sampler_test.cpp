@@ -1,4 +1,4 @@
-#include "sampler/camera_frame_test_scenes.hpp"
+#include "lightfield/frame_test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
-#include "sampler/camera_frame_test_scenes.hpp"
+#include "lightfield/frame_test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <mpr/sampler/camera_frame_set.hpp>
+#include <mpr/lightfield/frame_set.hpp>
 
 #include <cmath>
 #include <type_traits>

@@ -6,7 +6,7 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 
 #include <array>
 #include <cmath>

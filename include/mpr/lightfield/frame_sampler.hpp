@@ -9,10 +9,10 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/sampler/camera_frame_index.hpp>
-#include <mpr/sampler/camera_frame_interpolation.hpp>
-#include <mpr/sampler/camera_frame_kernels.hpp>
-#include <mpr/sampler/camera_frame_set.hpp>
+#include <mpr/lightfield/camera_index.hpp>
+#include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/frame_set.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

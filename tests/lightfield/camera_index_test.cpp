@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include <mpr/sampler/camera_frame_index.hpp>
+#include <mpr/lightfield/camera_index.hpp>
 
 #include <random>
 #include <vector>

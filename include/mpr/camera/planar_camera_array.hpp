@@ -17,7 +17,7 @@
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 
 #include <cmath>
 #include <span>

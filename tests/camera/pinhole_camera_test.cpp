@@ -1,4 +1,4 @@
-#include <mpr/sampler/pinhole_camera.hpp>
+#include <mpr/camera/pinhole_camera.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -2,13 +2,13 @@
 // one and against a long-double reference, on many lengths (vector bodies and tails) and on
 // edge inputs; then the row paths of CameraFrameSampler that use them (nearest camera and
 // cylinder aperture on planar arrays) against brute force and against per-pixel `sample`.
-#include "sampler/camera_frame_test_scenes.hpp"
+#include "lightfield/frame_test_scenes.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <mpr/lightfield.hpp>
 #include <mpr/mpr.hpp>
-#include <mpr/sampler/camera_frame_kernels.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
 
 #include <algorithm>
 #include <cmath>
