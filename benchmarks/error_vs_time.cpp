@@ -133,7 +133,7 @@ std::map<std::string, Measured> run_synthetic(const Options& o, const std::vecto
   const Gallery<T> g(o.quick ? 64 : 240);
   const Gallery<float> gf(g.width);
   std::map<std::string, Measured> out;
-  const auto scene = std::make_shared<const Scene>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const Scene>(mpr::scene::classroom<T>());
 
   auto start = std::chrono::steady_clock::now();
   const mpr::SceneSampler<Scene, mpr::RayCast> caster(scene);

@@ -56,7 +56,7 @@ LooSetup<T> temple_setup() {
 template <std::floating_point T, class Sampler>
 auto held_out_renderer(const Sampler& sampler, const mpr::PinholeCamera<T>& held, T depth) {
   const mpr::PlanarSurface<T> plane = held.image_plane(depth);
-  return mpr::Renderer(plane, held.glc_on(plane), sampler);
+  return mpr::Renderer(plane, mpr::pinhole_glc(held, plane), sampler);
 }
 
 /// A short view name: the file name without extension, "out_RR_CC" for Stanford files.

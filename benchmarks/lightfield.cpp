@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
   for (int threads : {1, 2})
     for (const T z : {T(1000), T(820)}) {
       const mpr::PlanarSurface<T> p = centre.image_plane(z);
-      const mpr::GlcSelector<T> g = centre.glc_on(p);
+      const mpr::GlcSelector<T> g = mpr::pinhole_glc(centre, p);
       const std::string at = " z=" + std::to_string(static_cast<int>(z));
       measure(("Chess synthetic aperture" + at).c_str(), p, g, chess_full, centre.width(), centre.height(), threads,
               repeats, z == 1000 && threads == 2);

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   const int width = quick ? 160 : 640, height = quick ? 120 : 480;
   const int repeats = quick ? 1 : 51;
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  const auto scene = mpr::scenes::classroom<T>();
+  const auto scene = mpr::scene::classroom<T>();
   const V eye(0, 3.1f, 3.0f);
   const auto camera = mpr::PinholeCamera<T>::look_at(eye, V(0, 1.6f, -8), V(0, 1, 0), T(1.1), width, height);
   std::printf("classroom: %zu triangles, %dx%d, median of %d runs (min-max in brackets)\n\n", scene.size(), width,

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   const int size = quick ? 64 : 1000;
   const int repeats = quick ? 1 : 9;
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const mpr_bench::Timing build = mpr_bench::time_repeated(quick ? 1 : 9, [&] { mpr::scene::Bvh<T> bvh(*scene); });
   const mpr::scene::Bvh<T> bvh(*scene);
   std::printf("classroom: %zu triangles (%zu textured), BVH %zu nodes, depth %d, build %.1f ms (%.1f-%.1f), float\n\n",

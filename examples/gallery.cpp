@@ -9,8 +9,8 @@
 #include "example_args.hpp"
 #include <mpr/glc.hpp>
 
-#include <mpr/mpr.hpp>
 #include <mpr/camera/pinhole_camera.hpp>
+#include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
 
 #include <array>
@@ -49,7 +49,7 @@ int main(int argc, char** argv) try {
   const int height = width * 3 / 4;
 
   const auto start = std::chrono::steady_clock::now();
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
   std::printf("classroom: %zu triangles, BVH built in %.1f ms\n", scene->size(),
               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

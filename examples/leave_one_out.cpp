@@ -1,6 +1,6 @@
 // leave_one_out: accuracy of the camera-frame sampler on real data. Each held-out view is
 // rendered from the remaining views with every interpolation policy, through the perspective
-// GLC of the held-out camera (PinholeCamera::image_plane + glc_on) focused on one plane, and
+// GLC of the held-out camera (PinholeCamera::image_plane + mpr::pinhole_glc) focused on one plane, and
 // compared with the captured image: PSNR over all pixels of the 8-bit sRGB images, SSIM on
 // 8-bit luma (7x7 uniform windows, C1 = (0.01 * 255)^2, C2 = (0.03 * 255)^2), and the render
 // time (median of 3, all hardware threads). Prints a Markdown table.

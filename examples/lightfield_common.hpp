@@ -35,15 +35,6 @@ inline std::shared_ptr<const mpr::CameraFrameSet<T>> load_chess(const std::files
   return frames;
 }
 
-/// The virtual camera at the centre of a rectified planar array (the origin, R = I) with the
-/// intrinsics of frame `like` shifted back to the image centre.
-inline mpr::PinholeCamera<T> array_centre_camera(const mpr::PinholeCamera<T>& like) {
-  mpr::Mat3<T> K = like.K();
-  K(0, 2) = T(0.5) * static_cast<T>(like.width() - 1);
-  K(1, 2) = T(0.5) * static_cast<T>(like.height() - 1);
-  return mpr::PinholeCamera<T>(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), like.width(), like.height());
-}
-
 /// The GLC whose ray at uv runs from the camera-plane point `s(uv)` (z = 0) to the focal-plane
 /// point `plane.point_at(uv)`, with s affine in uv: s(u, v) = s00 + u (s10 - s00) + v (s01 - s00).
 /// Both planes parallel (the two-plane parametrisation of Yu & McMillan 2004).
@@ -72,7 +63,8 @@ inline ChessExample open_chess(int argc, char** argv) {
   const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
   std::filesystem::path out = output_dir(argc, argv);
   auto frames = load_chess(data);
-  const mpr::PinholeCamera<T> centre = array_centre_camera(frames->camera(0));
+  const mpr::PinholeCamera<T> centre =
+      mpr::planar_array_reference_camera(frames->camera(0), mpr::Vec3<T>(mpr::Vec3<T>::Zero()));
   return {std::move(out), std::move(frames), centre};
 }
 

@@ -32,7 +32,7 @@ int main(int argc, char** argv) try {
   mpr::Image<mpr::Rgb8> montage(3 * tw, static_cast<int>(depths.size()) * th);
   for (std::size_t i = 0; i < depths.size(); ++i) {
     const mpr::PlanarSurface<T> plane = centre.image_plane(depths[i]);
-    const mpr::GlcSelector<T> glc = centre.glc_on(plane);
+    const mpr::GlcSelector<T> glc = mpr::pinhole_glc(centre, plane);
     const mpr::Renderer r_nearest(plane, glc, nearest);
     const mpr::Renderer r_full(plane, glc, full);
     const mpr::Renderer r_cylinder(plane, glc, cylinder);
@@ -45,7 +45,7 @@ int main(int argc, char** argv) try {
 
   for (const T depth : {T(720), T(880)}) {
     const mpr::PlanarSurface<T> plane = centre.image_plane(depth);
-    const mpr::GlcSelector<T> glc = centre.glc_on(plane);
+    const mpr::GlcSelector<T> glc = mpr::pinhole_glc(centre, plane);
     const mpr::Region region(0, 0, w, h);
     mpr::Image<mpr::Rgb8> image(w, h);
     const auto save = [&](const char* name, const auto& sampler) {

@@ -40,7 +40,7 @@ int main(int argc, char** argv) try {
               static_cast<double>((ca.centre() - cb.centre()).norm()));
 
   const mpr::PlanarSurface<T> plane = novel.image_plane(distance);
-  const mpr::GlcSelector<T> glc = novel.glc_on(plane);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(novel, plane);
   const mpr::CameraFrameSampler<mpr::NearestCamera, T> nearest(frames);
   const T radius = (ca.centre() - cb.centre()).norm();
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> cylinder(frames, mpr::CylinderAperture{radius});

@@ -15,7 +15,7 @@ using namespace lf_example;
 int main(int argc, char** argv) try {
   const auto [out, frames, centre] = open_chess(argc, argv);
   const mpr::PlanarSurface<T> focal = centre.image_plane(T(820));
-  const mpr::Renderer chess(focal, centre.glc_on(focal),
+  const mpr::Renderer chess(focal, mpr::pinhole_glc(centre, focal),
                             mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{10.0}));
 
   // The synthetic scene: a board on the ground plane y = 0 seen from above and in front.
@@ -26,7 +26,7 @@ int main(int argc, char** argv) try {
   const auto eye_camera = mpr::PinholeCamera<T>::look_at(mpr::Vec3<T>(0, 5, -9), mpr::Vec3<T>(0, 0, 0),
                                                          mpr::Vec3<T>(0, 1, 0), T(0.9), 700, 400);
   const mpr::PlanarSurface<T> plane = eye_camera.image_plane(T(8));
-  const mpr::Renderer synthetic(plane, eye_camera.glc_on(plane), mpr::CheckerboardPlane<T>(board));
+  const mpr::Renderer synthetic(plane, mpr::pinhole_glc(eye_camera, plane), mpr::CheckerboardPlane<T>(board));
 
   mpr::Image<mpr::Rgb8> image(1400, 400);
   mpr::render(image.view(), mpr::RenderOptions{}, mpr::view(mpr::Region(0, 0, 700, 400), chess),

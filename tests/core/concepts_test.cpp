@@ -117,3 +117,36 @@ TEST_CASE("stateless policies take no bytes", "[concepts]") {
   STATIC_REQUIRE(sizeof(mpr::Renderer<ConstantSurface<double>, mpr::GlcSelector<double>, Black<double>>) ==
                  sizeof(mpr::GlcSelector<double>));
 }
+
+namespace {
+template <class T>
+struct BlackRows : Black<T> {
+  void sample_rays(std::span<const mpr::Ray<T>>, std::span<mpr::Color> out) const noexcept {
+    for (mpr::Color& c : out) c = mpr::Color::Zero();
+  }
+};
+template <class T>
+struct BlackTiles : Black<T> {
+  void sample_tile(std::span<const mpr::Ray<T>>, int, std::span<mpr::Color> out) const noexcept {
+    for (mpr::Color& c : out) c = mpr::Color::Zero();
+  }
+};
+template <class T>
+struct ThrowingRows : Black<T> { // not noexcept: not a batch sampler
+  void sample_rays(std::span<const mpr::Ray<T>>, std::span<mpr::Color>) const {}
+};
+} // namespace
+
+TEMPLATE_TEST_CASE("optional batch and tile interfaces are detected from core/concepts.hpp", "[concepts]", float,
+                   double) {
+  using T = TestType;
+  STATIC_REQUIRE(mpr::BatchRaySampler<BlackRows<T>>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<BlackRows<T>>);
+  STATIC_REQUIRE(mpr::TileRaySampler<BlackTiles<T>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<BlackTiles<T>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<Black<T>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<ThrowingRows<T>>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<Depth<T>>);
+  STATIC_REQUIRE(mpr::kBatchRays == 256);
+  STATIC_REQUIRE(mpr::kTileRows == 8);
+}

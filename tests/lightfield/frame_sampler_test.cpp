@@ -202,7 +202,7 @@ TEMPLATE_TEST_CASE("refocusing on the scene plane reproduces a held-out view", "
   auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cams, images)->without(5);
   auto shared = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(std::move(frames));
   const mpr::PlanarSurface<T> plane = held.image_plane(static_cast<T>(depth));
-  const mpr::GlcSelector<T> glc = held.glc_on(plane);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(held, plane);
   const mpr::Region region(0, 0, held.width(), held.height());
   const auto check_policy = [&](const auto& sampler, float tolerance) {
     const mpr::Renderer renderer(plane, glc, sampler);
@@ -255,7 +255,8 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
     };
     return mpr::GlcSelector<T>(p, d(0, 0), d(1, 0), d(0, 1));
   };
-  for (const auto& [plane, glc] : {std::pair{tilted, view.glc_on(tilted)}, std::pair{parallel, sweep(parallel)}}) {
+  for (const auto& [plane, glc] :
+       {std::pair{tilted, mpr::pinhole_glc(view, tilted)}, std::pair{parallel, sweep(parallel)}}) {
     const auto compare = [&](const auto& sampler) {
       const mpr::Renderer renderer(plane, glc, sampler);
       mpr::Image<mpr::Rgb8> batch(64, 48);
@@ -298,7 +299,7 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   mpr::Mat3<T> K = cams[0].K();
   const mpr::PinholeCamera<T> straight(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), 300, 19);
   const mpr::PlanarSurface<T> plane = straight.image_plane(T(12));
-  const mpr::GlcSelector<T> glc = straight.glc_on(plane);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(straight, plane);
   const mpr::Region region(3, 1, 300, 19);
   const auto compare = [&](const auto& sampler) {
     const mpr::Renderer renderer(plane, glc, sampler);

@@ -7,8 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/lightfield.hpp>
-#include <mpr/mpr.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/mpr.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -26,7 +26,7 @@
 namespace {
 
 using mpr::detail::NearestCandidate;
-using mpr::detail::PlaneFrame;
+using mpr::detail::PlaneAxes;
 using mpr::detail::PlaneRays;
 using mpr::detail::RowWeights;
 using LD = long double;
@@ -102,7 +102,7 @@ void shift_add_with(Kernel k, const C* a, const C* b, RowWeights w, const float*
 }
 
 template <class T>
-void plane_rays_with(Kernel k, const T* const (&soa)[6], std::size_t n, const PlaneFrame<T>& f, const PlaneRays<T>& out,
+void plane_rays_with(Kernel k, const T* const (&soa)[6], std::size_t n, const PlaneAxes<T>& f, const PlaneRays<T>& out,
                      T* cos2) {
   mpr::detail::plane_rays(soa, n, f, out, cos2, level(k));
 }
@@ -130,7 +130,7 @@ mpr::Vec3<LD> ld(const mpr::Vec3<T>& v) {
 
 // A random orthonormal frame (normal, two in-plane axes) around a random point.
 template <class T>
-PlaneFrame<T> random_frame(std::mt19937_64& rng) {
+PlaneAxes<T> random_frame(std::mt19937_64& rng) {
   std::normal_distribution<double> g(0, 1);
   const mpr::Vec3<double> n = mpr::Vec3<double>(g(rng), g(rng), g(rng)).normalized();
   const mpr::Vec3<double> u = n.cross(mpr::Vec3<double>(g(rng), g(rng), g(rng))).normalized();
@@ -141,15 +141,15 @@ PlaneFrame<T> random_frame(std::mt19937_64& rng) {
 }
 
 template <class T>
-mpr::Vec3<T> normal_of(const PlaneFrame<T>& f) {
+mpr::Vec3<T> normal_of(const PlaneAxes<T>& f) {
   return {f.nx, f.ny, f.nz};
 }
 template <class T>
-mpr::Vec3<T> u_of(const PlaneFrame<T>& f) {
+mpr::Vec3<T> u_of(const PlaneAxes<T>& f) {
   return {f.ux, f.uy, f.uz};
 }
 template <class T>
-mpr::Vec3<T> v_of(const PlaneFrame<T>& f) {
+mpr::Vec3<T> v_of(const PlaneAxes<T>& f) {
   return {f.vx, f.vy, f.vz};
 }
 
@@ -198,7 +198,7 @@ struct PlaneOut {
 };
 
 template <class T>
-void run_plane_rays(Kernel k, const RayArrays<T>& rays, std::size_t n, const PlaneFrame<T>& f, PlaneOut<T>& out) {
+void run_plane_rays(Kernel k, const RayArrays<T>& rays, std::size_t n, const PlaneAxes<T>& f, PlaneOut<T>& out) {
   const T* const soa[6] = {rays.soa[0].data(), rays.soa[1].data(), rays.soa[2].data(),
                            rays.soa[3].data(), rays.soa[4].data(), rays.soa[5].data()};
   plane_rays_with(k, soa, n, f, out.rays(), out.cos2.data());
@@ -207,7 +207,7 @@ void run_plane_rays(Kernel k, const RayArrays<T>& rays, std::size_t n, const Pla
 // Edge rays for `plane_rays`; returns the ok flag it must produce (1, 0) or -1 where that depends
 // on the scalar type in a way checked elsewhere.
 template <class T>
-int edge_ray(int which, const PlaneFrame<T>& f, std::mt19937_64& rng, mpr::Vec3<T>& o, mpr::Vec3<T>& d) {
+int edge_ray(int which, const PlaneAxes<T>& f, std::mt19937_64& rng, mpr::Vec3<T>& o, mpr::Vec3<T>& d) {
   constexpr bool is_float = std::is_same_v<T, float>;
   const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -327,7 +327,7 @@ struct PlanarArray {
   [[nodiscard]] std::size_t size() const { return cu.size(); }
 
   // Camera i in world coordinates (frame coordinates of the rays: relative to the frame point).
-  [[nodiscard]] mpr::Vec3<LD> centre(std::size_t i, const PlaneFrame<T>& f) const {
+  [[nodiscard]] mpr::Vec3<LD> centre(std::size_t i, const PlaneAxes<T>& f) const {
     return static_cast<LD>(cu[i]) * ld(u_of(f)) + static_cast<LD>(cv[i]) * ld(v_of(f));
   }
 
@@ -349,7 +349,7 @@ struct Nearest {
 };
 
 template <class T>
-Nearest brute_force_ld(const PlanarArray<T>& array, const PlaneFrame<T>& f, const mpr::Vec3<T>& o,
+Nearest brute_force_ld(const PlanarArray<T>& array, const PlaneAxes<T>& f, const mpr::Vec3<T>& o,
                        const mpr::Vec3<T>& d) {
   Nearest out;
   out.best = out.second = std::numeric_limits<LD>::infinity();
@@ -577,7 +577,7 @@ TEMPLATE_TEST_CASE("plane_rays: every variant finds the plane crossing of the po
     if (++failures <= 8) FAIL_CHECK(what);
   };
   for (int trial = 0; trial < 4; ++trial) {
-    const PlaneFrame<T> f = random_frame<T>(rng);
+    const PlaneAxes<T> f = random_frame<T>(rng);
     const mpr::Vec3<LD> n = ld(normal_of(f)), u = ld(u_of(f)), v = ld(v_of(f));
     for (const std::size_t len : kLengths) {
       RayArrays<T> rays(len);
@@ -655,7 +655,7 @@ TEMPLATE_TEST_CASE("plane_rays: every variant finds the plane crossing of the po
   // keeps them (edge_ray's expectations), checked above. The dispatching entry point equals
   // the variant simd_level() names, bit for bit.
   {
-    const PlaneFrame<T> f = random_frame<T>(rng);
+    const PlaneAxes<T> f = random_frame<T>(rng);
     const std::size_t len = 77;
     RayArrays<T> rays(len);
     for (std::size_t i = 0; i < len; ++i) {
@@ -688,7 +688,7 @@ TEMPLATE_TEST_CASE("prove_nearest: every variant agrees with the portable proof,
     if (++failures <= 8) FAIL_CHECK(what);
   };
   for (int layout = 0; layout < 3; ++layout) {
-    const PlaneFrame<T> f = random_frame<T>(rng);
+    const PlaneAxes<T> f = random_frame<T>(rng);
     const mpr::Vec3<T> n = normal_of(f), u = u_of(f), v = v_of(f);
     const PlanarArray<T> array(9, 7, layout == 0 ? 0.0 : 0.3, rng);
     for (const std::size_t len : kLengths)
@@ -790,7 +790,7 @@ TEMPLATE_TEST_CASE("cylinder_weights: the linear falloff 1 - d / r, the AVX2 ker
   const auto fail = [&](const std::string& what) {
     if (++failures <= 8) FAIL_CHECK(what);
   };
-  const PlaneFrame<T> f = random_frame<T>(rng);
+  const PlaneAxes<T> f = random_frame<T>(rng);
   const mpr::Vec3<T> n = normal_of(f), u = u_of(f), v = v_of(f);
   for (const double radius : {0.3, 1.2, 3.0})
     for (const std::size_t len : kLengths)
@@ -883,9 +883,9 @@ TEMPLATE_TEST_CASE("the nearest-camera tile path shows exactly the brute-force n
       mpr::Vec3<T>(T(-0.4), T(0.3), T(-3)), mpr::Vec3<T>(T(0.5), 0, 8), mpr::Vec3<T>(0, -1, 0), T(0.8), W, H);
   const mpr::PlanarSurface<T> tilted = oblique.image_plane(T(11)).tilted(T(0.3), T(0.2));
   const std::vector<std::pair<mpr::PlanarSurface<T>, mpr::GlcSelector<T>>> views{
-      {front, eye.glc_on(front)},
+      {front, mpr::pinhole_glc(eye, front)},
       {flat, sweep_glc(flat, T(-4.5), T(9), T(-3.5), T(7))},
-      {tilted, oblique.glc_on(tilted)}};
+      {tilted, mpr::pinhole_glc(oblique, tilted)}};
   long pixels = 0, ties = 0, background = 0;
   for (const Layout& layout : layouts) {
     const auto cams = array_cameras<T>(7, 5, layout.jitter, layout.tilt_x, layout.tilt_y, 24, 16, 6.0, 77);

@@ -120,7 +120,7 @@ TEMPLATE_TEST_CASE("hit parameter, barycentrics and degenerate rays", "[scene][b
 }
 
 TEST_CASE("the classroom BVH is shallow enough for the traversal stack", "[scene][bvh]") {
-  const auto scene = mpr::scenes::classroom<float>();
+  const auto scene = mpr::scene::classroom<float>();
   const mpr::scene::Bvh<float> bvh(scene);
   CHECK(scene.size() > 10000);
   CHECK(bvh.triangle_count() == scene.size());
@@ -297,7 +297,7 @@ TEMPLATE_TEST_CASE("the 4-wide tree holds every triangle once and its SIMD query
                    "[scene][bvh][simd]", float, double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
-  const auto scene = mpr::scenes::classroom<T>();
+  const auto scene = mpr::scene::classroom<T>();
   const mpr::scene::Bvh<T> bvh(scene);
   std::vector<int> seen(scene.size(), 0);
   for (const auto& block : bvh.triangle_blocks()) {

@@ -28,7 +28,7 @@ mpr::PinholeCamera<T> view_camera(int w, int h) {
 template <class T, class Sampler>
 mpr::Image<mpr::Rgb8> render_view(const mpr::PinholeCamera<T>& camera, const Sampler& sampler) {
   const mpr::PlanarSurface<T> plane = camera.image_plane(T(1));
-  const mpr::Renderer renderer(plane, camera.glc_on(plane), sampler);
+  const mpr::Renderer renderer(plane, mpr::pinhole_glc(camera, plane), sampler);
   mpr::Image<mpr::Rgb8> image(camera.width(), camera.height());
   renderer.render(image.view(), mpr::Region(0, 0, camera.width(), camera.height()), {2});
   return image;
@@ -39,6 +39,25 @@ std::filesystem::path temp_folder(const std::string& name) {
 }
 
 } // namespace
+
+// An interpolation with only the per-ray path (the wrapper must then not claim batch or tile).
+struct OnlyPerRay {
+  template <class T, class Px>
+  [[nodiscard]] mpr::Color sample(const mpr::FrameTable<T, Px>& table, const mpr::Ray<T>& ray) const noexcept {
+    return table.camera_color(table.index().nearest(ray.origin, ray.direction), table.point_of(ray));
+  }
+};
+
+TEST_CASE("rasterized scene sampler forwards exactly the interfaces of its frame sampler", "[scene][rasterized]") {
+  STATIC_REQUIRE(mpr::TileRaySampler<RasterSampler<float, mpr::NearestCamera>>);
+  STATIC_REQUIRE(mpr::TileRaySampler<RasterSampler<double, mpr::SyntheticAperture>>);
+  STATIC_REQUIRE(mpr::TileRaySampler<RasterSampler<float, mpr::CylinderAperture>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<RasterSampler<double, mpr::NearestCamera>>);
+  STATIC_REQUIRE(mpr::RaySampler<RasterSampler<float, OnlyPerRay>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<mpr::CameraFrameSampler<OnlyPerRay, float>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<RasterSampler<float, OnlyPerRay>>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<RasterSampler<float, OnlyPerRay>>);
+}
 
 TEST_CASE("rasterized scene sampler: concepts and types", "[scene][rasterized]") {
   STATIC_REQUIRE(mpr::RaySampler<RasterSampler<float, mpr::NearestCamera>>);
@@ -109,7 +128,7 @@ TEMPLATE_TEST_CASE("virtual array cameras: grid, spacing, orientation, bad input
 TEMPLATE_TEST_CASE("a view from one virtual camera's position equals that camera's frame (nearest camera)",
                    "[scene][rasterized]", float, double) {
   using T = TestType;
-  const Scene<T> scene = mpr::scenes::classroom<T>();
+  const Scene<T> scene = mpr::scene::classroom<T>();
   const mpr::PinholeCamera<T> view = view_camera<T>(64, 48);
   mpr::scene::VirtualArrayConfig<T> config;
   config.columns = 4;
@@ -138,7 +157,7 @@ TEMPLATE_TEST_CASE("a view from one virtual camera's position equals that camera
 
 TEST_CASE("a rasterized array converges to the ray-cast image as it gets denser", "[scene][rasterized]") {
   using T = float;
-  const auto scene = std::make_shared<const Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const Scene<T>>(mpr::scene::classroom<T>());
   const mpr::PinholeCamera<T> view = view_camera<T>(96, 72);
   const mpr::Image<mpr::Rgb8> truth = render_view(view, mpr::SceneSampler<Scene<T>, mpr::RayCast>(scene));
   // The array lies in the view's image plane, one metre in front of its eye.
@@ -176,7 +195,7 @@ TEST_CASE("a rasterized array converges to the ray-cast image as it gets denser"
 TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and samples identically",
                    "[scene][rasterized][io]", float, double) {
   using T = TestType;
-  const Scene<T> scene = mpr::scenes::classroom<T>();
+  const Scene<T> scene = mpr::scene::classroom<T>();
   const mpr::PinholeCamera<T> view = view_camera<T>(48, 36);
   mpr::scene::VirtualArrayConfig<T> config;
   config.columns = 3;
@@ -189,7 +208,7 @@ TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and sa
                                                         mpr::Rasterized<mpr::CylinderAperture>{{0.2}});
   const std::filesystem::path folder = temp_folder(sizeof(T) == 4 ? "float" : "double");
   std::filesystem::remove_all(folder);
-  const std::filesystem::path par = sampler.write(folder, "classroom");
+  const std::filesystem::path par = mpr::write_frame_set(folder, "classroom", sampler.frames());
   CHECK(par.filename() == "classroom_par.txt");
   REQUIRE(std::filesystem::exists(folder / "cam_001_002.png"));
 
@@ -217,7 +236,7 @@ TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and sa
   CHECK(e.max <= 1.0); // identical frames; cameras equal to 17 digits (float: to rounding)
 
   // Bad stems and unwritable folders are reported.
-  CHECK_THROWS_AS(sampler.write(folder, "a b"), mpr::argument_error);
-  CHECK_THROWS_AS(sampler.write(folder / "cam_000_000.png" / "sub", "x"), mpr::io_error);
+  CHECK_THROWS_AS(mpr::write_frame_set(folder, "a b", sampler.frames()), mpr::argument_error);
+  CHECK_THROWS_AS(mpr::write_frame_set(folder / "cam_000_000.png" / "sub", "x", sampler.frames()), mpr::io_error);
   std::filesystem::remove_all(folder);
 }

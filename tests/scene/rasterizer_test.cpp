@@ -1,5 +1,5 @@
-#include <mpr/mpr.hpp>
 #include <mpr/camera/pinhole_camera.hpp>
+#include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
 
 #include <catch2/catch.hpp>
@@ -151,7 +151,7 @@ TEMPLATE_TEST_CASE("perspective-correct interpolation matches the ray caster", "
   const auto r = mpr::scene::rasterize(*scene, camera, {.threads = 1});
   const auto plane = camera.image_plane(T(1));
   const mpr::Renderer caster(
-      plane, camera.glc_on(plane),
+      plane, mpr::pinhole_glc(camera, plane),
       mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(std::shared_ptr<const mpr::scene::Scene<T>>(scene)));
   mpr::Image<mpr::Color> cast(w, h);
   caster.render(cast.view(), mpr::Region(0, 0, w, h), {1});
@@ -169,7 +169,7 @@ TEMPLATE_TEST_CASE("perspective-correct interpolation matches the ray caster", "
 }
 
 TEST_CASE("the rasterized image does not depend on threads or tile size", "[scene][raster]") {
-  const auto scene = mpr::scenes::classroom<float>();
+  const auto scene = mpr::scene::classroom<float>();
   const auto camera = mpr::PinholeCamera<float>::look_at({2, 1.6f, 4}, {-1, 1, -10}, {0, 1, 0}, 1.1f, 120, 90);
   const auto a = mpr::scene::rasterize(scene, camera, {.threads = 1, .tile = 32});
   const auto b = mpr::scene::rasterize(scene, camera, {.threads = 3, .tile = 16});
@@ -181,7 +181,7 @@ TEST_CASE("the rasterized image does not depend on threads or tile size", "[scen
 }
 
 TEST_CASE("rasterize rejects bad buffers, cameras and options", "[scene][raster][bad_input]") {
-  const auto scene = mpr::scenes::classroom<float>();
+  const auto scene = mpr::scene::classroom<float>();
   const auto camera = simple_camera<float>(8, 16, 16);
   mpr::Image<mpr::Color> color(16, 16), small(8, 16);
   mpr::Image<float> depth(16, 16);

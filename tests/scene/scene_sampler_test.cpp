@@ -1,5 +1,5 @@
-#include <mpr/mpr.hpp>
 #include <mpr/camera/pinhole_camera.hpp>
+#include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
 
 #include <catch2/catch.hpp>
@@ -26,13 +26,13 @@ TEMPLATE_TEST_CASE("rasterizer and ray caster agree on a pinhole view of the cla
                    double) {
   using T = TestType;
   const int w = 160, h = 120;
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const auto camera = classroom_camera<T>(w, h);
   const mpr::scene::RasterImage raster = mpr::scene::rasterize(*scene, camera, {.threads = 2});
 
   const T plane_depth = T(0.5);
   const mpr::PlanarSurface<T> plane = camera.image_plane(plane_depth);
-  const mpr::GlcSelector<T> glc = camera.glc_on(plane);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(camera, plane);
   const mpr::Region region(0, 0, w, h);
   const mpr::Renderer color_renderer(plane, glc, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(scene));
   const mpr::Renderer depth_renderer(plane, glc,
@@ -129,7 +129,7 @@ TEMPLATE_TEST_CASE("the batch ray cast (sample_rays, closest_hits) equals the pe
   using Depth = mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>;
   STATIC_REQUIRE(mpr::BatchRaySampler<Color>);
   STATIC_REQUIRE(mpr::BatchRaySampler<Depth>);
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const Color color(scene);
   const Depth depth(scene);
   // A camera's rays (coherent) with degenerate ones mixed in: zero and NaN directions, which

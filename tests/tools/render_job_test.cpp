@@ -149,7 +149,7 @@ TEMPLATE_TEST_CASE("mpr-render: classroom render equals the C++ API", "[tools]",
   const std::vector<Image> frames = mpr_cli::render_frames(job_of(args), &info);
   REQUIRE(frames.size() == 1);
 
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
   const mpr::PlanarSurface<T> plane = classroom_plane<T>(w, h);
   const mpr::GlcSelector<T> glc = mpr::glc::gallery_view('G', plane, mpr::Vec3<T>(T(0), T(1.6), T(-8)), T(14));
@@ -170,7 +170,7 @@ TEST_CASE("mpr-render: layout, rectification and --print-camera", "[tools]") {
   CHECK(info.str().find("view C: orthographic (rectified)") != std::string::npos);
   CHECK(info.str().find("centre:") != std::string::npos);
 
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
   const mpr::PlanarSurface<T> plane = classroom_plane<T>(w, h);
   const std::array<mpr::Vec3<T>, 4> wall = {mpr::Vec3<T>(-4.4f, 5.4f, -14), mpr::Vec3<T>(4.4f, 5.4f, -14),
@@ -240,8 +240,9 @@ TEST_CASE("mpr-render: _par.txt light field equals the C++ API", "[tools]") {
     const mpr::PlanarSurface<T> plane = ref.image_plane(2);
     const Image expected =
         interp == "nearest"
-            ? direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::NearestCamera, T>(set), cw, ch)
-            : direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(set), cw, ch);
+            ? direct(plane, mpr::pinhole_glc(ref, plane), mpr::CameraFrameSampler<mpr::NearestCamera, T>(set), cw, ch)
+            : direct(plane, mpr::pinhole_glc(ref, plane), mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(set), cw,
+                     ch);
     INFO(interp);
     CHECK(identical(frames[0], expected));
   }
@@ -270,8 +271,8 @@ TEST_CASE("mpr-render: Stanford folder light field equals the C++ API", "[tools]
   const mpr::PinholeCamera<T> ref(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-mean), cw, ch);
   const mpr::PlanarSurface<T> plane = ref.image_plane(900);
   const Image expected =
-      direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::CylinderAperture, T>(set, mpr::CylinderAperture{6}),
-             cw, ch);
+      direct(plane, mpr::pinhole_glc(ref, plane),
+             mpr::CameraFrameSampler<mpr::CylinderAperture, T>(set, mpr::CylinderAperture{6}), cw, ch);
   CHECK(identical(frames[0], expected));
   std::filesystem::remove_all(dir);
 }
@@ -279,7 +280,7 @@ TEST_CASE("mpr-render: Stanford folder light field equals the C++ API", "[tools]
 TEST_CASE("mpr-render: a 3-frame animation (tilt sweep and GLC morph)", "[tools]") {
   using T = float;
   const int w = 24, h = 18;
-  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
   const mpr::Vec3<T> aim(0, 1.6f, -8);
 
@@ -337,8 +338,8 @@ TEST_CASE("mpr-render: LFCA light field equals the C++ API", "[tools]") {
   K(1, 2) = D(0.5) * (ch - 1);
   const mpr::PinholeCamera<D> ref(K, mpr::Mat3<D>::Identity(), mpr::Vec3<D>(-mean), cw, ch);
   const mpr::PlanarSurface<D> plane = ref.image_plane(800);
-  CHECK(identical(frames[0],
-                  direct(plane, ref.glc_on(plane), mpr::CameraFrameSampler<mpr::NearestCamera, D>(set), cw, ch)));
+  CHECK(identical(frames[0], direct(plane, mpr::pinhole_glc(ref, plane),
+                                    mpr::CameraFrameSampler<mpr::NearestCamera, D>(set), cw, ch)));
   std::filesystem::remove_all(dir);
 }
 
@@ -371,7 +372,7 @@ TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API",
       mpr_cli::render_frames(job_of({"--size", "32x24", "--view", "A", "--raster", "3x2", "--interp", "cylinder",
                                      "--radius", "2", "--focal-depth", "9"}));
   REQUIRE(frames.size() == 1);
-  const mpr::scene::Scene<T> scene = mpr::scenes::classroom<T>();
+  const mpr::scene::Scene<T> scene = mpr::scene::classroom<T>();
   const mpr::PlanarSurface<T> plane = classroom_plane<T>(w, h);
   mpr::scene::VirtualArrayConfig<T> config;
   config.columns = 3;

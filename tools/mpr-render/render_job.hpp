@@ -87,11 +87,7 @@ mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) 
   mpr::Vec3<T> mean = mpr::Vec3<T>::Zero();
   for (std::size_t i = 0; i < frames.size(); ++i) mean += frames.camera(i).centre();
   mean /= static_cast<T>(frames.size());
-  const mpr::PinholeCamera<T>& like = frames.camera(0);
-  mpr::Mat3<T> K = like.K();
-  K(0, 2) = T(0.5) * static_cast<T>(like.width() - 1);
-  K(1, 2) = T(0.5) * static_cast<T>(like.height() - 1);
-  return mpr::PinholeCamera<T>(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-mean), like.width(), like.height());
+  return mpr::planar_array_reference_camera(frames.camera(0), mean);
 }
 
 } // namespace detail
@@ -102,7 +98,7 @@ Loaded<T> load(const Job& job) {
   Loaded<T> l;
   switch (job.sampler) {
   case SamplerKind::scene:
-    l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scenes::classroom<T>());
+    l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
     break;
   case SamplerKind::obj: {
 #ifdef MPR_HAVE_TINYOBJLOADER
@@ -260,7 +256,7 @@ mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& op
   using V = mpr::Vec3<T>;
   try {
     if (spec == "default") {
-      if (l.reference) return l.reference->glc_on(plane);
+      if (l.reference) return mpr::pinhole_glc(*l.reference, plane);
       return make_selector<T>("A", option, plane, job, l, p);
     }
     if (const char letter = detail::gallery_letter(spec); letter != 0) {
@@ -363,14 +359,9 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
     for (std::size_t i = 0; i < 4; ++i) {
       const mpr::Vec3<T> o = base.point_at(corners[i]);
       const mpr::Vec3<T> d = base_glc.direction_at(corners[i]);
-      const T along = d.dot(plane.normal());
-      if (!(std::abs(along) > T(1e-6) * d.norm()))
+      if (!(std::abs(d.dot(plane.normal())) > T(1e-6) * d.norm()))
         throw mpr::argument_error("--rectify", "a corner ray runs parallel to the tilted plane");
-      const mpr::Vec3<T> x = o + (plane.origin() - o).dot(plane.normal()) / along * d - plane.origin();
-      const mpr::Vec3<T>& a = plane.width_vector();
-      const mpr::Vec3<T>& b = plane.height_vector();
-      const T aa = a.dot(a), ab = a.dot(b), bb = b.dot(b), det = aa * bb - ab * ab;
-      target[i] = mpr::Vec2<T>((bb * a.dot(x) - ab * b.dot(x)) / det, (aa * b.dot(x) - ab * a.dot(x)) / det);
+      target[i] = plane.uv_of(plane.plane().crossing(mpr::Ray<T>{o, d}));
     }
     try {
       return mpr::glc::rectify(plane, glc, target);

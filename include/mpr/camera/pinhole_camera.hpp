@@ -7,7 +7,6 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/selector/glc_selector.hpp>
 #include <mpr/surface/planar_surface.hpp>
 
 #include <cmath>
@@ -165,12 +164,6 @@ public:
     const T w = static_cast<T>(width_) - T(0.5), hgt = static_cast<T>(height_) - T(0.5);
     const Vec3<T> origin = at(T(-0.5), T(-0.5));
     return PlanarSurface<T>(origin, Vec3<T>(at(w, T(-0.5)) - origin), Vec3<T>(at(T(-0.5), hgt) - origin));
-  }
-
-  /// The GLC of this pinhole on `plane` (corner rays through the centre).
-  [[nodiscard]] GlcSelector<T> glc_on(const PlanarSurface<T>& plane) const {
-    return GlcSelector<T>(plane, Vec3<T>(plane.point_at({0, 0}) - centre_), Vec3<T>(plane.point_at({1, 0}) - centre_),
-                          Vec3<T>(plane.point_at({0, 1}) - centre_));
   }
 
 private:

@@ -15,9 +15,9 @@
 /// positions (whatever their unit) world units, put the reference plane 1000 units away and use
 /// a focal length equal to the image width.
 
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/camera/pinhole_camera.hpp>
 
 #include <cmath>
 #include <span>
@@ -85,6 +85,17 @@ template <std::floating_point T>
   K(0, 2) = static_cast<T>(0.5 * (width - 1) + f * static_cast<double>(centre.x()) / z0);
   K(1, 2) = static_cast<T>(0.5 * (height - 1) + f * static_cast<double>(centre.y()) / z0);
   return PinholeCamera<T>(K, Mat3<T>::Identity(), Vec3<T>(-centre), width, height);
+}
+
+/// A virtual camera of a rectified planar array at `centre` (R = I, looking along +z) with the
+/// intrinsics of the array camera `like` but the principal point at the image centre: the
+/// reference view of the array, e.g. at its middle (the mean centre).
+template <std::floating_point T>
+[[nodiscard]] PinholeCamera<T> planar_array_reference_camera(const PinholeCamera<T>& like, const Vec3<T>& centre) {
+  Mat3<T> K = like.K();
+  K(0, 2) = T(0.5) * static_cast<T>(like.width() - 1);
+  K(1, 2) = T(0.5) * static_cast<T>(like.height() - 1);
+  return PinholeCamera<T>(K, Mat3<T>::Identity(), Vec3<T>(-centre), like.width(), like.height());
 }
 
 } // namespace mpr

@@ -10,9 +10,14 @@
 #include <mpr/core/vec.hpp>
 
 #include <concepts>
+#include <cstddef>
+#include <span>
 #include <type_traits>
 
 namespace mpr {
+
+// (clang-format 14 would spell the return-type requirements "noexcept->".)
+// clang-format off
 
 /// `P` declares a floating-point `scalar_type`.
 template <class P>
@@ -24,8 +29,7 @@ concept HasScalar = requires {
 /// Image surface: `point_at(uv)` is the point of the manifold where the ray of `uv` starts.
 template <class S>
 concept ImageSurface = HasScalar<S> && requires(const S& s, const Vec2<typename S::scalar_type>& uv) {
-  { s.point_at(uv) }
-  noexcept->std::same_as<Vec3<typename S::scalar_type>>;
+  { s.point_at(uv) } noexcept -> std::same_as<Vec3<typename S::scalar_type>>;
 };
 
 /// Ray selector: `ray_at(pixel, uv, point)` is the ray shown at `pixel` (region coordinates
@@ -33,8 +37,7 @@ concept ImageSurface = HasScalar<S> && requires(const S& s, const Vec2<typename 
 template <class R>
 concept RaySelector = HasScalar<R> && requires(const R& r, Pixel px, const Vec2<typename R::scalar_type>& uv,
                                                const Vec3<typename R::scalar_type>& point) {
-  { r.ray_at(px, uv, point) }
-  noexcept->std::same_as<Ray<typename R::scalar_type>>;
+  { r.ray_at(px, uv, point) } noexcept -> std::same_as<Ray<typename R::scalar_type>>;
 };
 
 namespace detail {
@@ -56,9 +59,39 @@ using sampler_color_t = typename detail::SamplerColor<M>::type;
 /// Ray sampler: `sample(ray)` is the colour the data set shows along `ray`.
 template <class M>
 concept RaySampler = HasScalar<M> && requires(const M& m, const Ray<typename M::scalar_type>& ray) {
-  { m.sample(ray) }
-  noexcept->std::same_as<sampler_color_t<M>>;
+  { m.sample(ray) } noexcept -> std::same_as<sampler_color_t<M>>;
 };
+
+/// Optional batch interface of a ray sampler: `sample_rays(rays, out)` writes the colour of
+/// every ray of a span (equal lengths), the same colours as `sample` per ray, but free to walk
+/// its data in a better order (e.g. cameras in the outer loop). `Renderer::render_row` uses it
+/// when present, on chunks of one row; `sample(ray)` stays the contract.
+template <class M>
+concept BatchRaySampler = RaySampler<M> &&
+    requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays, std::span<sampler_color_t<M>> out) {
+  { m.sample_rays(rays, out) } noexcept;
+};
+
+/// Optional tile interface of a ray sampler: `sample_tile(rays, width, out)` gets the rays of
+/// `rays.size() / width` consecutive image rows of `width` pixels each (row-major, one pixel
+/// after the other; precondition: `width > 0`, `rays.size()` a multiple of it and equal to
+/// `out.size()`) and writes the colour of every ray, the same colours as `sample` per ray (to
+/// rounding), but free to walk its data once per tile (e.g. each camera's image rows once for
+/// several output rows, which share most of them). `mpr::render` then hands each thread whole
+/// tiles of `kTileRows` rows (fixed, so the image is still the same for every thread count);
+/// `sample(ray)` stays the contract.
+template <class M>
+concept TileRaySampler = RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
+                                                   int width, std::span<sampler_color_t<M>> out) {
+  { m.sample_tile(rays, width, out) } noexcept;
+};
+
+/// Rays per call of a `BatchRaySampler`'s `sample_rays` from the renderer (at most), and the
+/// chunk the light-field batch paths work in.
+inline constexpr std::size_t kBatchRays = 256;
+
+/// Rows per tile for `TileRaySampler`s (fixed, so an image is the same for every thread count).
+inline constexpr int kTileRows = 8;
 
 /// A surface, selector and sampler that can be composed: each satisfies its concept and all
 /// three use the same scalar type.
@@ -66,5 +99,7 @@ template <class Surface, class Selector, class Sampler>
 concept ComposablePolicies = ImageSurface<Surface> && RaySelector<Selector> && RaySampler<Sampler> &&
     std::same_as<typename Surface::scalar_type, typename Selector::scalar_type> &&
     std::same_as<typename Surface::scalar_type, typename Sampler::scalar_type>;
+
+// clang-format on
 
 } // namespace mpr

@@ -25,35 +25,6 @@
 
 namespace mpr {
 
-/// Optional batch interface of a ray sampler: `sample_rays(rays, out)` writes the colour of
-/// every ray of a span (equal lengths), the same colours as `sample` per ray, but free to walk
-/// its data in a better order (e.g. cameras in the outer loop). `Renderer::render_row` uses it
-/// when present, on chunks of one row; `sample(ray)` stays the contract.
-template <class M>
-concept BatchRaySampler = RaySampler<M> &&
-    requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays, std::span<sampler_color_t<M>> out) {
-  { m.sample_rays(rays, out) }
-  noexcept;
-};
-
-/// Optional tile interface of a ray sampler: `sample_tile(rays, width, out)` gets the rays of
-/// `rays.size() / width` consecutive image rows of `width` pixels each (row-major, one pixel
-/// after the other; precondition: `width > 0`, `rays.size()` a multiple of it and equal to
-/// `out.size()`) and writes the colour of every ray, the same colours as `sample` per ray (to
-/// rounding), but free to walk its data once per tile (e.g. each camera's image rows once for
-/// several output rows, which share most of them). `mpr::render` then hands each thread whole
-/// tiles of `kTileRows` rows (fixed, so the image is still the same for every thread count);
-/// `sample(ray)` stays the contract.
-template <class M>
-concept TileRaySampler = RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
-                                                   int width, std::span<sampler_color_t<M>> out) {
-  { m.sample_tile(rays, width, out) }
-  noexcept;
-};
-
-/// Rows per tile for `TileRaySampler`s.
-inline constexpr int kTileRows = 8;
-
 /// Settings of one render call.
 struct RenderOptions {
   /// Worker threads, the calling thread included; 0 or less means all hardware threads.
@@ -97,15 +68,15 @@ public:
   }
 
   /// Renders pixels [x_begin, x_end) of row `y` into `out` (image coordinates). A sampler that
-  /// models `BatchRaySampler` gets the rays of up to 256 pixels per call.
+  /// models `BatchRaySampler` gets the rays of up to `kBatchRays` pixels per call.
   /// Preconditions: the span lies inside both `out` and `region`.
   template <class Px>
   requires StorableAs<Px, color_type>
   void render_row(ImageView<Px> out, const Region& region, int y, int x_begin, int x_end) const noexcept {
     Px* row = out.row(y);
     if constexpr (BatchRaySampler<Sampler>) {
-      // Rays of up to kBatch pixels, then one batch call to the sampler.
-      constexpr int kBatch = 256;
+      // Rays of up to kBatchRays pixels, then one batch call to the sampler.
+      constexpr int kBatch = static_cast<int>(kBatchRays);
       Ray<scalar_type> rays[kBatch];
       color_type colors[kBatch];
       for (int x0 = x_begin; x0 < x_end; x0 += kBatch) {

@@ -9,12 +9,12 @@
 /// centres at integer coordinates, image origin top-left. Image names are relative to the
 /// folder of the calibration file.
 
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/lightfield/frame_set.hpp>
-#include <mpr/camera/pinhole_camera.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -141,6 +141,26 @@ template <std::floating_point T, class Px>
 void write_par_file(const std::filesystem::path& par_file, const CameraFrameSet<T, Px>& frames) {
   write_par_file<T>(par_file, std::span<const std::string>(frames.names()),
                     std::span<const PinholeCamera<T>>(frames.cameras()));
+}
+
+/// Writes a frame set as `<folder>/<stem>_par.txt` plus one PNG per frame under its name (the
+/// folder is created), e.g. a rasterized virtual array (`scene::rasterize_virtual_array`), so a
+/// synthetic data set with a known ground truth can be shared. Returns the path of the
+/// `_par.txt` file, which `read_par_file` reads back. Throws `argument_error` naming "stem"
+/// (empty, or with a path separator or whitespace) or as `write_par_file` (distorted cameras,
+/// names with whitespace), `io_error` when a folder or file cannot be written.
+template <std::floating_point T, class Px>
+std::filesystem::path write_frame_set(const std::filesystem::path& folder, const std::string& stem,
+                                      const CameraFrameSet<T, Px>& frames) {
+  if (stem.empty() || stem.find_first_of("/\\ \t\r\n") != std::string::npos)
+    throw argument_error("stem", "empty or containing a path separator or whitespace: '" + stem + "'");
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw io_error(folder.string(), "cannot create folder: " + ec.message());
+  for (std::size_t i = 0; i < frames.size(); ++i) write_png(folder / frames.name(i), frames.image(i));
+  const std::filesystem::path par = folder / (stem + "_par.txt");
+  write_par_file(par, frames);
+  return par;
 }
 
 } // namespace mpr

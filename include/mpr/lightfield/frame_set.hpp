@@ -3,10 +3,10 @@
 /// `mpr::CameraFrameSet`: calibrated cameras and the images they took (a light field captured
 /// by a camera array, a gantry or a multi-view rig), the data behind `CameraFrameSampler`.
 
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
-#include <mpr/camera/pinhole_camera.hpp>
 
 #include <array>
 #include <cmath>

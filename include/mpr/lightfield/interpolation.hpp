@@ -1,47 +1,72 @@
 #pragma once
 /// \file
-/// The interpolation policies of `CameraFrameSampler`: which cameras answer a ray and with what
-/// weights, and how a camera's pixels are reconstructed. Light field rendering (Levoy & Hanrahan,
-/// SIGGRAPH 1996) and dynamically reparameterized light fields (Isaksen, McMillan & Gortler,
-/// SIGGRAPH 2000), as used for General Linear Cameras by Yu & McMillan (ECCV 2004).
+/// The contract of a light-field interpolation: which cameras of a `FrameTable` answer a ray and
+/// with what weights. An interpolation is a type of its own (`NearestCamera`,
+/// `SyntheticAperture`, `CylinderAperture`, or one of the user's) with a per-ray `sample` and,
+/// optionally, a batch `sample_rays` and a tile `sample_tile` that fall back to its own per-ray
+/// function; `CameraFrameSampler<Interpolation>` offers to the renderer exactly the interfaces
+/// the interpolation has. An optional `validate()` const member throws `argument_error` for bad
+/// parameters; the sampler calls it at construction.
 
-#include <mpr/core/error.hpp>
+#include <mpr/core/color.hpp>
+#include <mpr/core/ray.hpp>
+#include <mpr/lightfield/frame_table.hpp>
 
-#include <cmath>
+#include <algorithm>
+#include <concepts>
+#include <cstddef>
+#include <span>
 
 namespace mpr {
 
-/// The camera whose centre is nearest to the ray *line* (not only the half-line), and the pixel
-/// where that camera sees the ray's point. Ties (equal distance) go to the lowest camera index.
-/// When that camera does not see the point (behind it or outside its image), the sampler's
-/// background colour is returned.
-struct NearestCamera {};
+// (clang-format 14 would spell the return-type requirements "noexcept->".)
+// clang-format off
 
-/// The unweighted average over every camera that sees the ray's point (in front of it and
-/// inside its image): a synthetic aperture as wide as the whole array, focused on the point.
-/// No camera sees it: the background colour.
-struct SyntheticAperture {};
-
-/// The cameras whose centres lie strictly within `radius` (world units) of the ray line,
-/// weighted by the linear falloff `1 - d / radius` and renormalised over those that see the
-/// point: a finite synthetic aperture centred on the ray. When no such camera sees the point
-/// the nearest-camera answer is used (`NearestCamera`), so the result is never NaN.
-struct CylinderAperture {
-  double radius = 1.0;
-
-  /// Throws `argument_error` ("radius") unless `radius` is positive and finite.
-  void validate() const {
-    if (!(radius > 0) || !std::isfinite(radius)) throw argument_error("radius", "must be positive and finite");
-  }
+/// `I` answers one ray from the frames of a `FrameTable<T, Px>`: `sample(table, ray)`, const and
+/// noexcept, returning linear `Color`.
+template <class I, class T, class Px>
+concept FrameInterpolation = std::copy_constructible<I> &&
+    requires(const I& i, const FrameTable<T, Px>& table, const Ray<T>& ray) {
+  { i.sample(table, ray) } noexcept -> std::same_as<Color>;
 };
 
-/// Reconstruction of a camera image between pixel centres.
-enum class PixelFilter {
-  /// Bilinear interpolation of the four nearest pixel centres (edge pixels repeat), in linear
-  /// colour.
-  bilinear,
-  /// The pixel whose square contains the point.
-  nearest,
+/// Optional batch path: `sample_rays(table, rays, out)` writes `out[k] = sample(table, rays[k])`
+/// (to float rounding) for spans of equal length.
+template <class I, class T, class Px>
+concept BatchFrameInterpolation = FrameInterpolation<I, T, Px> &&
+    requires(const I& i, const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) {
+  { i.sample_rays(table, rays, out) } noexcept;
 };
+
+/// Optional tile path: `sample_tile(table, rays, width, out)` for the rays of consecutive output
+/// rows of `width` pixels (the preconditions of `TileRaySampler`).
+template <class I, class T, class Px>
+concept TileFrameInterpolation = FrameInterpolation<I, T, Px> &&
+    requires(const I& i, const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
+             std::span<Color> out) {
+  { i.sample_tile(table, rays, width, out) } noexcept;
+};
+
+// clang-format on
+
+/// The row length of a tile call: `width`, or the whole span when `width <= 0`.
+[[nodiscard]] inline std::size_t tile_width(std::size_t rays, int width) noexcept {
+  return width > 0 ? static_cast<std::size_t>(width) : rays;
+}
+
+/// Calls `f(row_rays, row_out)` for each row of `w` rays (the last may be shorter): the fallback
+/// of a tile path to an interpolation's own batch or per-ray function.
+template <std::floating_point T, class F>
+void for_each_row(std::span<const Ray<T>> rays, std::size_t w, std::span<Color> out, F&& f) noexcept {
+  for (std::size_t start = 0; start < rays.size(); start += std::max<std::size_t>(w, 1))
+    f(rays.subspan(start, std::min(w, rays.size() - start)), out.subspan(start));
+}
+
+/// Calls `f(chunk_rays, chunk_out)` for chunks of at most `chunk` rays.
+template <std::floating_point T, class F>
+void for_each_chunk(std::span<const Ray<T>> rays, std::size_t chunk, std::span<Color> out, F&& f) noexcept {
+  for (std::size_t start = 0; start < rays.size(); start += chunk)
+    f(rays.subspan(start, std::min(chunk, rays.size() - start)), out.subspan(start));
+}
 
 } // namespace mpr

@@ -7,6 +7,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/geometry/plane.hpp>
 
 #include <cmath>
 #include <limits>
@@ -46,23 +47,19 @@ public:
     const Vec3<T> n = config.cell_u.cross(config.cell_v);
     if (!(n.norm() > 16 * std::numeric_limits<T>::epsilon() * config.cell_u.norm() * config.cell_v.norm()))
       throw argument_error("cell_v", "zero or parallel to cell_u");
-    normal_ = n;
-    // Dual basis: a = dot(p - origin, dual_u), b = dot(p - origin, dual_v).
-    const T nn = n.squaredNorm();
-    dual_u_ = config.cell_v.cross(n) / nn;
-    dual_v_ = n.cross(config.cell_u) / nn;
+    plane_ = Plane<T>{config.origin, n};
+    cells_ = PlaneBasis<T>(config.origin, config.cell_u, config.cell_v);
   }
 
   [[nodiscard]] const Config& config() const noexcept { return config_; }
 
   /// Board coordinates (a, b) where `ray` meets the plane, if it does so at t >= 0.
   [[nodiscard]] bool intersect(const Ray<T>& ray, T& a, T& b) const noexcept {
-    const T denom = ray.direction.dot(normal_);
-    const T t = (config_.origin - ray.origin).dot(normal_) / denom;
+    const T t = plane_.crossing_parameter(ray);
     if (!(t >= 0) || !std::isfinite(t)) return false; // parallel, behind, or NaN
-    const Vec3<T> offset = ray.at(t) - config_.origin;
-    a = offset.dot(dual_u_);
-    b = offset.dot(dual_v_);
+    const Vec2<T> ab = cells_.coordinates(ray.at(t));
+    a = ab.x();
+    b = ab.y();
     return std::isfinite(a) && std::isfinite(b);
   }
 
@@ -87,9 +84,8 @@ public:
 
 private:
   Config config_;
-  Vec3<T> normal_;
-  Vec3<T> dual_u_;
-  Vec3<T> dual_v_;
+  Plane<T> plane_;
+  PlaneBasis<T> cells_;
 };
 
 } // namespace mpr

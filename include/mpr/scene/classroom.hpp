@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// `mpr::scenes::classroom()`: the built-in demo scene, a deterministic classroom rich in straight
+/// `mpr::scene::classroom()`: the built-in demo scene, a deterministic classroom rich in straight
 /// lines and known shapes, so that multi-perspective distortions are easy to read.
 ///
 /// World frame: metres, y up, the floor is y = 0, the room spans x in [-7, 7] and z in [-14, 12];
@@ -25,7 +25,7 @@
 #include <cmath>
 #include <concepts>
 
-namespace mpr::scenes {
+namespace mpr::scene {
 
 namespace detail {
 
@@ -133,4 +133,4 @@ template <std::floating_point T = float>
   return s;
 }
 
-} // namespace mpr::scenes
+} // namespace mpr::scene

@@ -8,8 +8,9 @@
 /// Levoy & Hanrahan 1996; the OpenGL-rendered synthetic light fields of Yu & McMillan, ECCV 2004).
 ///
 /// The virtual array can be written to disk in the Middlebury `_par.txt` calibration format plus
-/// one PNG per camera (`write_virtual_array`) and read back with `mpr::read_par_file`, so a
-/// synthetic data set with a known ground truth (the ray-cast scene) can be shared.
+/// one PNG per camera (`mpr::write_frame_set`, <mpr/io/par_file.hpp>) and read back with
+/// `mpr::read_par_file`, so a synthetic data set with a known ground truth (the ray-cast scene)
+/// can be shared.
 ///
 /// Example (16 x 12 cameras of 160 x 120 in the image plane, cylinder aperture of one spacing):
 ///
@@ -18,22 +19,21 @@
 ///     const mpr::SceneSampler<mpr::scene::Scene<float>, mpr::Rasterized<mpr::CylinderAperture>>
 ///         sampler(scene, plane, config, {mpr::CylinderAperture{0.5}});
 ///     const mpr::Renderer renderer(plane, glc, sampler);   // renders like any other sampler
-///     sampler.write("classroom-array", "classroom");       // classroom_par.txt + cam_RRR_CCC.png
+///     mpr::write_frame_set("classroom-array", "classroom", sampler.frames()); // + cam_RRR_CCC.png
 ///
 /// How close this gets to the ray-cast image depends on the scene's depth range against the
 /// array's spacing (one focal plane for all rays): see docs/accuracy.md.
 
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/color.hpp>
+#include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/io/image_io.hpp>
-#include <mpr/io/par_file.hpp>
-#include <mpr/lightfield/interpolation.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/frame_set.hpp>
-#include <mpr/camera/pinhole_camera.hpp>
+#include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/scene/rasterizer.hpp>
 #include <mpr/scene/scene.hpp>
 #include <mpr/scene/scene_sampler.hpp>
@@ -42,7 +42,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <span>
@@ -55,7 +54,7 @@ namespace mpr {
 
 /// Sampling policy tag: rasterize the scene into a virtual camera array once, then interpolate
 /// its frames with `Interpolation` (`NearestCamera`, `SyntheticAperture` or `CylinderAperture`).
-/// Frames are stored as `Px`: 8-bit sRGB `Rgb8` (the default; what `write_virtual_array` writes,
+/// Frames are stored as `Px`: 8-bit sRGB `Rgb8` (the default; what `mpr::write_frame_set` writes,
 /// so a reloaded data set samples identically) or linear `Color` (no quantisation).
 template <class Interpolation = NearestCamera, class Px = Rgb8>
 struct Rasterized {
@@ -203,24 +202,6 @@ template <class Px = Rgb8, std::floating_point T>
   return {CameraFrameSet<T, Px>(std::move(cameras), std::move(images), std::move(names)), focal};
 }
 
-/// Writes a frame set as `<folder>/<stem>_par.txt` plus one PNG per frame under its name (the
-/// folder is created). Returns the path of the `_par.txt` file, which `mpr::read_par_file`
-/// reads back. Throws `io_error` when a file cannot be written, `argument_error` as
-/// `write_par_file` (distorted cameras, names with whitespace).
-template <std::floating_point T, class Px>
-std::filesystem::path write_virtual_array(const std::filesystem::path& folder, const std::string& stem,
-                                          const CameraFrameSet<T, Px>& frames) {
-  if (stem.empty() || stem.find_first_of("/\\ \t\r\n") != std::string::npos)
-    throw argument_error("stem", "empty or containing a path separator or whitespace: '" + stem + "'");
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec) throw io_error(folder.string(), "cannot create folder: " + ec.message());
-  for (std::size_t i = 0; i < frames.size(); ++i) write_png(folder / frames.name(i), frames.image(i));
-  const std::filesystem::path par = folder / (stem + "_par.txt");
-  write_par_file(par, frames);
-  return par;
-}
-
 } // namespace scene
 
 /// The rasterized-scene sampler: `Rasterized<Interpolation, Px>` over a `scene::Scene<T>`.
@@ -261,15 +242,15 @@ public:
   [[nodiscard]] T focal_depth() const noexcept { return focal_depth_; }
 
   [[nodiscard]] Color sample(const Ray<T>& ray) const noexcept { return sampler_.sample(ray); }
-  /// The batch form (`out[i] = sample(rays[i])` up to float rounding); see `CameraFrameSampler`.
-  void sample_rays(std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
+  /// The batch and tile forms of the frame sampler, where its interpolation has them (see
+  /// `CameraFrameSampler`).
+  void sample_rays(std::span<const Ray<T>> rays,
+                   std::span<Color> out) const noexcept requires BatchRaySampler<frame_sampler_type> {
     sampler_.sample_rays(rays, out);
   }
-
-  /// Writes the virtual array (`<stem>_par.txt` + PNGs) to `folder`; see
-  /// `scene::write_virtual_array`.
-  std::filesystem::path write(const std::filesystem::path& folder, const std::string& stem = "virtual") const {
-    return scene::write_virtual_array(folder, stem, *frames_);
+  void sample_tile(std::span<const Ray<T>> rays, int width,
+                   std::span<Color> out) const noexcept requires TileRaySampler<frame_sampler_type> {
+    sampler_.sample_tile(rays, width, out);
   }
 
 private:

@@ -4,6 +4,7 @@
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/geometry/plane.hpp>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -39,6 +40,7 @@ public:
     if (!(cross.norm() > 16 * std::numeric_limits<T>::epsilon()))
       throw argument_error("height_vector", "parallel to width_vector: the plane is degenerate");
     normal_ = cross.normalized();
+    basis_ = PlaneBasis<T>(origin, width_vector, height_vector);
   }
 
   /// The plane centred on `centre` with the given edge vectors.
@@ -56,6 +58,14 @@ public:
     return Vec3<T>(origin_.x() + u * width_.x() + v * height_.x(), origin_.y() + u * width_.y() + v * height_.y(),
                    origin_.z() + u * width_.z() + v * height_.z());
   }
+
+  /// The inverse of `point_at`: the uv of a point on the plane (a point off the plane is
+  /// projected along the normal). Exact up to rounding; uv outside [0, 1]^2 for points outside
+  /// the rectangle.
+  [[nodiscard]] Vec2<T> uv_of(const Vec3<T>& point) const noexcept { return basis_.coordinates(point); }
+
+  /// The plane as a point and unit normal (for ray crossings).
+  [[nodiscard]] Plane<T> plane() const noexcept { return Plane<T>{origin_, normal_}; }
 
   [[nodiscard]] const Vec3<T>& origin() const noexcept { return origin_; }
   [[nodiscard]] const Vec3<T>& width_vector() const noexcept { return width_; }
@@ -93,6 +103,7 @@ private:
   Vec3<T> width_;
   Vec3<T> height_;
   Vec3<T> normal_;
+  PlaneBasis<T> basis_;
 };
 
 } // namespace mpr

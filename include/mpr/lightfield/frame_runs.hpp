@@ -1,0 +1,133 @@
+#pragma once
+/// \file
+/// Runs of rays against one camera of a `FrameTable`: the shared row machinery of the light-field
+/// interpolations. A run whose points are evenly spaced along a line (a row of a planar image
+/// surface) and seen one camera pixel apart is added by shift-and-add of two camera rows
+/// (refocusing as in Isaksen et al. 2000; the shift-and-add of synthetic-aperture photography,
+/// Vaish et al. 2004), else ray by ray. An interpolation decides which cameras weigh which rays;
+/// these functions add them.
+
+#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/frame_table.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace mpr {
+
+/// Points p_i = p_0 + i (p_{n-1} - p_0) / (n - 1) up to rounding (64 ulp of the end points'
+/// magnitude, per coordinate). Precondition: n >= 2.
+template <std::floating_point T>
+[[nodiscard]] bool evenly_spaced(const Vec3<T>* p, std::size_t n) noexcept {
+  const Vec3<T> step = (p[n - 1] - p[0]) / static_cast<T>(n - 1);
+  const T scale = p[0].cwiseAbs().maxCoeff() + p[n - 1].cwiseAbs().maxCoeff();
+  const T tolerance = T(64) * std::numeric_limits<T>::epsilon() * scale;
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const Vec3<T> predicted = p[0] + static_cast<T>(i) * step;
+    if (!((p[i] - predicted).cwiseAbs().maxCoeff() <= tolerance)) return false;
+  }
+  return true;
+}
+
+/// `evenly_spaced` for points also given as coordinates relative to some fixed point (structure
+/// of arrays, vectorised); the tolerance is that of the absolute points `p`.
+template <std::floating_point T>
+[[nodiscard]] bool evenly_spaced(const Vec3<T>* p, const T* const (&relative)[3], std::size_t n) noexcept {
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max())) return evenly_spaced(p, n);
+  const T scale = p[0].cwiseAbs().maxCoeff() + p[n - 1].cwiseAbs().maxCoeff();
+  const T tolerance = T(64) * std::numeric_limits<T>::epsilon() * scale;
+  return detail::evenly_spaced(relative[0], relative[1], relative[2], static_cast<int>(n), tolerance);
+}
+
+namespace detail {
+// The shift-and-add kernel over the n pixels of texel rows a and b (flat channel arrays); with
+// per-ray weights, those are spread over the three channel slots of each pixel first, a stack
+// buffer at a time.
+template <class Texel>
+void add_texel_rows(const Texel* a, const Texel* b, RowWeights w, const float* ray_weight, float* acc,
+                    std::size_t n) noexcept {
+  using channel = typename Texel::channel_type;
+  // Texels are packed channel triples (static_assert in frame_set.hpp): a row is one flat array
+  // of 3 n channels.
+  const channel* fa = a->c;
+  const channel* fb = b->c;
+  if (ray_weight == nullptr) return shift_add_flat(fa, fb, w, nullptr, acc, 3 * n);
+  constexpr std::size_t kStep = 256;
+  float spread[3 * kStep];
+  for (std::size_t s0 = 0; s0 < n; s0 += kStep) {
+    const std::size_t m = std::min(kStep, n - s0);
+    for (std::size_t i = 0; i < m; ++i) spread[3 * i] = spread[3 * i + 1] = spread[3 * i + 2] = ray_weight[s0 + i];
+    shift_add_flat(fa + 3 * s0, fb + 3 * s0, w, spread, acc + 3 * s0, 3 * m);
+  }
+}
+} // namespace detail
+
+/// Camera c's contribution to a run of n evenly spaced points by shift-and-add: when c sees the
+/// run one camera pixel apart along its rows (checked at both ends and the middle against the
+/// affine model, within 1e-3 pixel: below one 8-bit level after averaging, since bilinear
+/// interpolation is continuous), acc and weight get c's bilinear pixels (times `ray_weight[i]`
+/// when given; rays of weight <= 0 are skipped) and true is returned. Pixels near the image's
+/// left and right edges go ray by ray. False (nothing added) when the run does not qualify.
+/// Preconditions: n >= 2, c undistorted, bilinear filtering.
+template <std::floating_point T, class Px>
+bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
+               std::size_t n, float* acc, float* weight, const float* ray_weight = nullptr) noexcept {
+  using Table = FrameTable<T, Px>;
+  using texel_type = typename Table::texel_type;
+  T x0, y0, x1, y1, xm, ym;
+  if (!Table::project_any(c, points[0], x0, y0) || !Table::project_any(c, points[n - 1], x1, y1) ||
+      !Table::project_any(c, points[n / 2], xm, ym))
+    return false;
+  const T span = static_cast<T>(n - 1);
+  constexpr T kTolerance = T(1e-3);
+  if (!(std::abs(x1 - x0 - span) <= kTolerance && std::abs(y1 - y0) <= kTolerance)) return false;
+  if (!(std::abs(xm - x0 - static_cast<T>(n / 2)) <= kTolerance && std::abs(ym - y0) <= kTolerance)) return false;
+  // Rows wholly above or below the image: nothing to add (every per-ray y is outside too).
+  if (y0 < T(-0.5) - kTolerance || y0 >= static_cast<T>(c.height) - T(0.5) + kTolerance) return true;
+  const T fx = std::floor(x0), fy = std::floor(y0);
+  if (!(std::abs(fx) < T(1e8))) return false; // keeps the integer conversion in range
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  if (iy < 0 || iy + 1 > c.height - 1) return false; // the clamped border rows: per ray
+  // Pixels i whose two texels ix + i, ix + i + 1 lie inside the row are shifted and added; the
+  // others (near or past the left and right edges) go ray by ray.
+  const long first = std::max(0L, -static_cast<long>(ix));
+  const long last = std::min(static_cast<long>(n), static_cast<long>(c.width) - 1 - ix);
+  if (first >= last) return false;
+  const std::size_t i_begin = static_cast<std::size_t>(first), i_end = static_cast<std::size_t>(last);
+  table.add_per_ray(c, points, i_begin, acc, weight, ray_weight);
+  table.add_per_ray(c, points + i_end, n - i_end, acc + 3 * i_end, weight + i_end,
+                    ray_weight != nullptr ? ray_weight + i_end : nullptr);
+  const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
+  const float sc = texel_type::scale;
+  const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
+  const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
+  const texel_type* b = a + c.width;
+  // The next output row reads row iy + 2 over about the same columns: ask for it now. Short runs
+  // (nearest camera, cylinder aperture) are too short for the hardware prefetcher to pick up; on
+  // long ones (whole-row refocusing) it does, and extra prefetches cost time.
+  if (iy + 2 < c.height && i_end - i_begin < 1024)
+    detail::prefetch_range(b + c.width + i_begin, b + c.width + i_end + 1);
+  detail::add_texel_rows(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr,
+                         acc + 3 * i_begin, i_end - i_begin);
+  if (ray_weight != nullptr) {
+    for (std::size_t i = i_begin; i < i_end; ++i)
+      if (ray_weight[i] > 0) weight[i] += ray_weight[i];
+  } else {
+    for (std::size_t i = i_begin; i < i_end; ++i) weight[i] += 1.0f;
+  }
+  return true;
+}
+
+/// Camera c's (weighted) contribution to a run of n points: shift-and-add when the run
+/// qualifies (`even`: its points are evenly spaced, see `evenly_spaced`; bilinear filtering
+/// assumed by the caller), else ray by ray. `ray_weight` as in `FrameTable::add_per_ray`.
+template <std::floating_point T, class Px>
+void add_run(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
+             std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr) noexcept {
+  if (even && !c.distorted && n >= 8 && shift_add(table, c, points, n, acc, weight, ray_weight)) return;
+  table.add_per_ray(c, points, n, acc, weight, ray_weight);
+}
+
+} // namespace mpr

@@ -1,0 +1,122 @@
+#pragma once
+/// \file
+/// `mpr::SyntheticAperture`: the light-field interpolation that averages every camera seeing the
+/// ray's point -- a synthetic aperture as wide as the array, focused on the point (dynamically
+/// reparameterized light fields, Isaksen, McMillan & Gortler 2000; synthetic-aperture
+/// photography, Vaish et al. 2004).
+
+#include <mpr/core/concepts.hpp>
+#include <mpr/lightfield/frame_runs.hpp>
+#include <mpr/lightfield/frame_table.hpp>
+#include <mpr/lightfield/interpolation.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace mpr {
+
+/// The unweighted average over every camera that sees the ray's point (in front of it and inside
+/// its image). No camera sees it: the background colour.
+///
+/// Batch and tile: cameras in the outer loop; a run of evenly spaced points that a camera sees
+/// one pixel apart is added by shift-and-add (`mpr::shift_add`), and a tile walks each camera
+/// once for all its rows, so camera rows shared by neighbouring output rows are read while still
+/// in cache. Equal to `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
+struct SyntheticAperture {
+  template <std::floating_point T, class Px>
+  [[nodiscard]] Color sample(const FrameTable<T, Px>& table, const Ray<T>& ray) const noexcept {
+    const Vec3<T> X = table.point_of(ray);
+    float acc[3] = {0, 0, 0};
+    float weight = 0;
+    for (const auto& c : table.cameras()) table.add_seen(c, X, 1.0f, acc, weight);
+    return table.finish(acc, weight);
+  }
+
+  template <std::floating_point T, class Px>
+  void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
+    for_each_chunk(rays, kBatchRays, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { run(table, r, o); });
+  }
+
+  template <std::floating_point T, class Px>
+  void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
+                   std::span<Color> out) const noexcept {
+    const std::size_t w = tile_width(rays.size(), width);
+    if (w > 0 && tile(table, rays, w, out)) return;
+    for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
+  }
+
+private:
+  // One run of at most kBatchRays rays, cameras in the outer loop.
+  template <std::floating_point T, class Px>
+  static void run(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) noexcept {
+    const std::size_t n = rays.size();
+    float acc[3 * kBatchRays];
+    float weight[kBatchRays];
+    Vec3<T> points[kBatchRays];
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = table.point_of(rays[i]);
+      weight[i] = 0;
+    }
+    std::fill(acc, acc + 3 * n, 0.0f);
+    const bool even = table.config().filter == PixelFilter::bilinear && n >= 8 && evenly_spaced(points, n);
+    for (const auto& c : table.cameras()) add_run(table, c, points, n, even, acc, weight);
+    for (std::size_t i = 0; i < n; ++i) out[i] = table.finish(acc + 3 * i, weight[i]);
+  }
+
+  // Per-thread working memory of `tile`.
+  template <std::floating_point T>
+  struct TileScratch {
+    std::vector<Vec3<T>> points;
+    std::vector<float> acc; // 3 per ray (r g b), the layout of the texel rows
+    std::vector<float> weight;
+    std::vector<unsigned char> even;
+  };
+
+  // Every camera once per tile; false when working memory cannot grow.
+  template <std::floating_point T, class Px>
+  static bool tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::size_t w,
+                   std::span<Color> out) noexcept {
+    const std::size_t n = rays.size(), rows = n / w;
+    thread_local TileScratch<T> scratch;
+    try {
+      if (scratch.points.size() < n) scratch.points.resize(n);
+      if (scratch.acc.size() < 3 * n) scratch.acc.resize(3 * n);
+      if (scratch.weight.size() < n) scratch.weight.resize(n);
+      if (scratch.even.size() < rows) scratch.even.resize(rows);
+    } catch (...) {
+      return false;
+    }
+    Vec3<T>* points = scratch.points.data();
+    float* acc = scratch.acc.data();
+    float* weight = scratch.weight.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = table.point_of(rays[i]);
+      weight[i] = 0;
+    }
+    std::fill(acc, acc + 3 * n, 0.0f);
+    for (std::size_t r = 0; r < rows; ++r)
+      scratch.even[r] = table.config().filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
+    for (const auto& c : table.cameras()) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t o = r * w;
+        if (scratch.even[r] && !c.distorted) {
+          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o)) continue;
+          // The whole row does not fit the affine model within tolerance: try it in chunks.
+          for (std::size_t s0 = 0; s0 < w; s0 += kBatchRays) {
+            const std::size_t m = std::min(kBatchRays, w - s0);
+            if (m >= 8 && shift_add(table, c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0)) continue;
+            table.add_per_ray(c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0);
+          }
+          continue;
+        }
+        table.add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = table.finish(acc + 3 * i, weight[i]);
+    return true;
+  }
+};
+
+} // namespace mpr
