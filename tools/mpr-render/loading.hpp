@@ -1,0 +1,125 @@
+#pragma once
+// mpr-render's data: the classroom scene, an OBJ mesh or a light field (_par.txt, Stanford,
+// LFCA), loaded once for all frames, with the reference camera and default framing.
+
+#include "job.hpp"
+
+#include <mpr/camera/planar_camera_array.hpp>
+#include <mpr/lightfield.hpp>
+#include <mpr/lightfield/frame_set.hpp>
+#include <mpr/scene.hpp>
+#ifdef MPR_HAVE_TINYOBJLOADER
+#include <mpr/scene/obj_loader.hpp>
+#endif
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace mpr_cli {
+
+/// The data of a job, loaded once for all frames.
+template <std::floating_point T>
+struct Loaded {
+  std::shared_ptr<const mpr::scene::Scene<T>> scene;
+  std::optional<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>> scene_sampler;
+  std::shared_ptr<const mpr::CameraFrameSet<T>> frames;
+  std::optional<mpr::PinholeCamera<T>> reference; ///< light fields: the camera the views start from
+  double default_focal_depth = 1;
+  // Scene defaults (world units).
+  mpr::Vec3<double> plane_centre{0, 3.1, 3}, look_at{0, 1.6, -8}, scene_centre{0, 1.6, -8};
+  double plane_width = 8, scene_scale = 14;
+};
+
+namespace detail {
+
+inline mpr::PlanarArrayOptions array_options(const Job& job) {
+  mpr::PlanarArrayOptions o;
+  o.reference_depth = job.reference_depth;
+  o.scale = job.position_scale;
+  return o;
+}
+
+/// The virtual camera at the centre of a rectified planar array: frame 0's intrinsics with the
+/// principal point at the image centre, R = I, centre at the mean camera centre.
+template <std::floating_point T>
+mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) {
+  mpr::Vec3<T> mean = mpr::Vec3<T>::Zero();
+  for (std::size_t i = 0; i < frames.size(); ++i) mean += frames.camera(i).centre();
+  mean /= static_cast<T>(frames.size());
+  return mpr::planar_array_reference_camera(frames.camera(0), mean);
+}
+
+} // namespace detail
+
+/// Loads the sampler's data (scene, OBJ or light field) and its default framing.
+template <std::floating_point T>
+Loaded<T> load(const Job& job) {
+  Loaded<T> l;
+  switch (job.sampler) {
+  case SamplerKind::scene:
+    l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
+    break;
+  case SamplerKind::obj: {
+#ifdef MPR_HAVE_TINYOBJLOADER
+    mpr::scene::Scene<T> scene;
+    mpr::scene::ObjOptions o;
+    o.scale = job.obj_scale;
+    mpr::scene::add_obj(scene, job.input, o);
+    if (scene.empty()) throw mpr::io_error(job.input.string(), "no usable (non-degenerate) faces");
+    l.scene = std::make_shared<const mpr::scene::Scene<T>>(std::move(scene));
+    mpr::Vec3<double> lo = mpr::Vec3<double>::Constant(1e300), hi = -lo;
+    for (const auto& tri : l.scene->triangles())
+      for (const mpr::Vec3<T>& p : tri.p) {
+        lo = lo.cwiseMin(p.template cast<double>());
+        hi = hi.cwiseMax(p.template cast<double>());
+      }
+    const double diag = std::max((hi - lo).norm(), 1e-6);
+    l.scene_centre = l.look_at = 0.5 * (lo + hi);
+    l.plane_centre = l.scene_centre + mpr::Vec3<double>(0, 0, 1.2 * diag);
+    l.plane_width = diag;
+    l.scene_scale = diag;
+    break;
+#else
+    throw mpr::argument_error("--obj", "this mpr-render was built without tinyobjloader");
+#endif
+  }
+  case SamplerKind::par:
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input));
+    break;
+  case SamplerKind::stanford:
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(
+        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job)));
+    break;
+  case SamplerKind::lfca: {
+    mpr::LfcaOptions o;
+    o.array = detail::array_options(job);
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o));
+    break;
+  }
+  }
+  if (l.scene) l.scene_sampler.emplace(l.scene);
+  if (l.frames) {
+    if (job.camera && *job.camera >= static_cast<int>(l.frames->size()))
+      throw mpr::argument_error("--camera", std::to_string(*job.camera) + " is not below the camera count " +
+                                                std::to_string(l.frames->size()));
+    if (job.sampler == SamplerKind::par || job.camera) {
+      l.reference = l.frames->camera(job.camera ? static_cast<std::size_t>(*job.camera) : l.frames->size() / 2);
+      // Default focus: the depth of the mean camera centre's... projection of the array's middle.
+      mpr::Vec3<double> mean = mpr::Vec3<double>::Zero();
+      for (std::size_t i = 0; i < l.frames->size(); ++i) mean += l.frames->camera(i).centre().template cast<double>();
+      mean /= static_cast<double>(l.frames->size());
+      const double z = (l.reference->R().template cast<double>() * mean + l.reference->t().template cast<double>()).z();
+      l.default_focal_depth = job.sampler == SamplerKind::par ? z : job.reference_depth;
+      if (!(l.default_focal_depth > 0) && !job.focal_depth)
+        throw mpr::argument_error("--focal-depth", "no default for this camera set: give --focal-depth");
+    } else {
+      l.reference = detail::array_centre_camera(*l.frames);
+      l.default_focal_depth = job.reference_depth;
+    }
+  }
+  return l;
+}
+
+} // namespace mpr_cli

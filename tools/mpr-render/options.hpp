@@ -1,0 +1,114 @@
+#pragma once
+// mpr-render's option table: every option with its value placeholder, help text and an example
+// (printed by --help and parsed by parse_args), and the VIEW grammar printed after them.
+
+#include "cli_args.hpp"
+
+#include <vector>
+
+namespace mpr_cli {
+
+/// Every option of mpr-render, with help text and an example.
+inline const std::vector<OptionSpec>& options() {
+  static const std::vector<OptionSpec> specs = {
+      {"help", "", "Print this help and exit.", "mpr-render --help"},
+      {"output", "FILE.png", "Output PNG (default mpr-render.png). With --frames N: FILE_0001.png ... FILE_NNNN.png.",
+       "--output out/cross.png"},
+      {"size", "WxH", "Size of one view in pixels (default 480x360).", "--size 640x480"},
+      {"layout", "CxR", "Tile C x R views side by side in one image (default 1x1); list them with --views.",
+       "--layout 3x3 --views A,B,C,D,E,F,G,H,I"},
+      {"view", "VIEW", "The camera (selector) of a single view; see VIEW below (default: 'default').", "--view G"},
+      {"views", "V1,V2,...", "One VIEW per tile of --layout, row-major (',' separates views; use ';' inside).",
+       "--views A,G,pinhole:0;1.6;10"},
+      {"threads", "N", "Worker threads, 0 = all (default 0). Images are identical for any N.", "--threads 2"},
+      {"double", "", "Render in double precision (default float).", "--double"},
+      {"print-camera", "", "Print each view's GLC type, slits and centre (mpr::glc::classify) to stdout.",
+       "--view G --print-camera"},
+      {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",
+       "--scene classroom"},
+      {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj bunny.obj"},
+      {"raster", "CxR",
+       "Scene/OBJ: sample a rasterized virtual camera array of C x R cameras (160x120 pixels each, on the image "
+       "plane) instead of ray casting; --interp, --radius and --focal-depth (in front of the plane) apply.",
+       "--raster 16x12 --interp cylinder --radius 0.5"},
+      {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).", "--obj-scale 0.01"},
+      {"par", "FILE_par.txt", "Sampler: a light field from a Middlebury-style _par.txt calibration.",
+       "--par data/templeSR/templeSR_par.txt"},
+      {"stanford", "FOLDER", "Sampler: a Stanford light-field archive folder of out_RR_CC_Y_X.png images.",
+       "--stanford data/stanford/chess"},
+      {"lfca", "POSITIONS.txt",
+       "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
+       "--lfca rig/positions.txt"},
+      {"interp", "nearest|synthetic|cylinder",
+       "Light-field interpolation: nearest camera, full synthetic aperture, or cylinder aperture of --radius "
+       "(default synthetic).",
+       "--interp cylinder --radius 10"},
+      {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.", "--radius 5:40"},
+      {"focal-depth", "D|A:B|T=V,...",
+       "Light fields: depth of the focal (image) plane in front of the reference camera (default: the reference "
+       "plane); animatable.",
+       "--focal-depth 700:950"},
+      {"reference-depth", "D", "Stanford/LFCA: depth of the rectified reference plane (default 1000).",
+       "--reference-depth 1000"},
+      {"position-scale", "S", "Stanford/LFCA: world units per stored camera-position unit (default 1).",
+       "--position-scale 1"},
+      {"camera", "K",
+       "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
+       "the middle camera for _par.txt).",
+       "--camera 3"},
+      {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).",
+       "--plane-centre 0,3.1,3"},
+      {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).", "--look-at 0,1.6,-8"},
+      {"plane-size", "W,H", "Extent of the image plane in world units.", "--plane-size 8,6"},
+      {"up", "X,Y,Z", "Up direction of the image plane (default 0,1,0).", "--up 0,1,0"},
+      {"tilt-x", "DEG|A:B|T=V,...", "Tilt the image plane about its horizontal axis, degrees; animatable.",
+       "--tilt-x 0:30"},
+      {"tilt-y", "DEG|A:B|T=V,...", "Tilt the image plane about its vertical axis, degrees; animatable.",
+       "--tilt-y -20:20"},
+      {"rectify", "P1;P2;P3;P4",
+       "Rectifying homography: the world quadrilateral (top-left, top-right, bottom-right, bottom-left; each "
+       "X,Y,Z) that fills each view (mpr::glc::rectify). 'plane': the untilted image plane's corners, so a "
+       "tilted focal plane keeps the untilted framing.",
+       "--rectify -4.4,5.4,-14;4.4,5.4,-14;4.4,-1.2,-14;-4.4,-1.2,-14"},
+      {"scene-centre", "X,Y,Z", "Where the gallery views aim (default: the middle of the scene).",
+       "--scene-centre 0,1.6,-8"},
+      {"scene-scale", "S", "Size of the scene the gallery views frame, world units (default: the scene's).",
+       "--scene-scale 14"},
+      {"frames", "N", "Render an animation of N frames (numbered PNGs; an MP4 too when ffmpeg is on PATH).",
+       "--frames 24 --tilt-x 0:30"},
+      {"morph-to", "VIEW", "Animation: morph from the view to this VIEW by interpolating corner directions.",
+       "--view A --morph-to G --frames 24"},
+      {"morph", "A:B|T=V,...", "Morph weight over the animation (default 0:1).", "--morph 0=0,0.5=1,1=0"},
+      {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--no-video"},
+  };
+  return specs;
+}
+
+/// The text after the options in --help.
+inline const char* view_help() {
+  return R"(VIEW (a camera, i.e. a GLC ray selector on the image plane):
+  default            scene: gallery view A; light field: the reference camera's pinhole
+  A..I or a name     gallery view (mpr::glc::gallery_view): A perspective, B orthographic, C oblique,
+                     D pushbroom, E twisted, F twisted_down, G cross_slit, H pencil, I bilinear
+  pinhole:C          pinhole with centre C                          e.g. pinhole:0,1.6,10
+  orthographic:D     parallel rays along D                          e.g. orthographic:0,-0.1,-1
+  oblique:AU,AV      rays tilted AU, AV degrees from the normal     e.g. oblique:30,10
+  pushbroom:P:D      slit through P along D                         e.g. pushbroom:0,1.6,10:1,0,0
+  cross_slit:P1:D1:P2:D2  two slits                                 e.g. cross_slit:0,1.6,8:0,1,0:0,1.6,12:1,0,0
+  pencil:P:D:K       slit through P along D, twist K (1/length)     e.g. pencil:0,1.6,10:1,0,0:0.05
+  twisted:D:W:K      twisted orthographic: direction D, tilt W, twist K
+  bilinear:D:C:K     bilinear: direction D, convergence C, twist K  e.g. bilinear:0,0,-1:-0.05:0.05
+  corners:D00:D10:D01  explicit ray directions at the top-left, top-right and bottom-left corners
+In --views, separate the numbers of a vector with ';' instead of ',' (e.g. pinhole:0;1.6;10).
+ANIMATABLE values are a number, FROM:TO (linear over the frames) or keyframes T=V,T=V,... with
+times from 0 to 1.
+
+Examples:
+  mpr-render --view G --print-camera --output cross_slit.png
+  mpr-render --layout 3x3 --views A,B,C,D,E,F,G,H,I --size 320x240 --output gallery.png
+  mpr-render --stanford /data/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
+  mpr-render --stanford /data/stanford/chess --focal-depth 820 --tilt-x -30:30 --frames 24 --output tilt.png
+)";
+}
+
+} // namespace mpr_cli

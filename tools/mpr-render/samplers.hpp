@@ -1,0 +1,62 @@
+#pragma once
+// mpr-render's sampler factories: ray-cast scene, rasterized virtual array (--raster) or light
+// field, with the chosen interpolation, as one std::variant of fully typed samplers.
+
+#include "job.hpp"
+#include "loading.hpp"
+
+#include <mpr/lightfield.hpp>
+#include <mpr/scene.hpp>
+#include <mpr/scene/rasterized_sampler.hpp>
+
+#include <variant>
+
+namespace mpr_cli {
+
+template <std::floating_point T>
+using SamplerVariant =
+    std::variant<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>, mpr::CameraFrameSampler<mpr::NearestCamera, T>,
+                 mpr::CameraFrameSampler<mpr::SyntheticAperture, T>, mpr::CameraFrameSampler<mpr::CylinderAperture, T>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::NearestCamera>>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::SyntheticAperture>>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>>>;
+
+/// The rasterized virtual-array sampler (--raster) on the frame's untilted image plane.
+template <std::floating_point T>
+SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p,
+                                      const mpr::PlanarSurface<T>& plane) {
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = job.raster->first;
+  config.rows = job.raster->second;
+  if (job.focal_depth) config.focal_depth = static_cast<T>(p.focal_depth);
+  config.raster.threads = job.threads;
+  using S = mpr::scene::Scene<T>;
+  switch (job.interpolation) {
+  case Interpolation::nearest:
+    return mpr::SceneSampler<S, mpr::Rasterized<mpr::NearestCamera>>(*l.scene, plane, config);
+  case Interpolation::synthetic:
+    return mpr::SceneSampler<S, mpr::Rasterized<mpr::SyntheticAperture>>(*l.scene, plane, config);
+  case Interpolation::cylinder:
+    break;
+  }
+  return mpr::SceneSampler<S, mpr::Rasterized<mpr::CylinderAperture>>(
+      *l.scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{p.radius}});
+}
+
+template <std::floating_point T>
+SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p, int width = 1,
+                               int height = 1) {
+  if (job.raster) return make_raster_sampler(job, l, p, base_plane(job, l, p, width, height));
+  if (l.scene_sampler) return *l.scene_sampler;
+  switch (job.interpolation) {
+  case Interpolation::nearest:
+    return mpr::CameraFrameSampler<mpr::NearestCamera, T>(l.frames);
+  case Interpolation::synthetic:
+    return mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(l.frames);
+  case Interpolation::cylinder:
+    break;
+  }
+  return mpr::CameraFrameSampler<mpr::CylinderAperture, T>(l.frames, mpr::CylinderAperture{p.radius});
+}
+
+} // namespace mpr_cli
