@@ -46,6 +46,12 @@ TEST_CASE("Stanford folder: planar array with zero disparity on the reference pl
   // y (image down) with Y, which falls as the row grows.
   CHECK(frames.camera(0).centre().isApprox(mpr::Vec3<double>(-10, 5, 0)));
   CHECK(frames.camera(5).centre().isApprox(mpr::Vec3<double>(10, -5, 0)));
+  // The loader hands the array plane (z = 0) to the samplers.
+  REQUIRE(frames.array_plane().has_value());
+  CHECK(frames.array_plane()->normal == mpr::Vec3<double>::UnitZ());
+  CHECK(frames.array_plane()->point == mpr::Vec3<double>::Zero());
+  CHECK(frames.without(2).array_plane().has_value());
+  CHECK(frames.cast<float>().array_plane()->normal == mpr::Vec3<float>::UnitZ());
   options.negate_x = true;
   options.negate_y = true;
   CHECK(mpr::read_stanford_light_field<double>(dir.path(), options)

@@ -69,3 +69,37 @@ TEMPLATE_TEST_CASE("ArrayPlane::fit rejects layouts that are not planar arrays",
     ring.emplace_back(T(std::cos(k * 0.4)), T(std::sin(k * 0.4)), T(0.3 * std::sin(k * 1.3)));
   CHECK_FALSE(mpr::ArrayPlane<T>::fit(ring).has_value());
 }
+
+TEMPLATE_TEST_CASE("ArrayPlane::fit takes a known plane's normal instead of testing planarity",
+                   "[lightfield][array_plane]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  // A 3 x 3 grid on z = 0 with one centre lifted by 1e-3 of the spacing: too far off for the
+  // test of planarity (1e-6 of the extent), so an unknown plane is refused ...
+  std::vector<V> centres;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) centres.emplace_back(T(c), T(r), T(0));
+  centres[4].z() = T(1e-3);
+  CHECK_FALSE(mpr::ArrayPlane<T>::fit(centres).has_value());
+  // ... but a plane the caller declares is used as given (normal normalized), with in-plane
+  // axes orthogonal to it and coordinates that reproduce the in-plane offsets.
+  const auto plane = mpr::ArrayPlane<T>::fit(centres, mpr::Plane<T>{V::Zero(), V(0, 0, 2)});
+  REQUIRE(plane.has_value());
+  CHECK(plane->normal == V::UnitZ());
+  CHECK(std::abs(plane->axis_u.dot(plane->normal)) < T(1e-6));
+  CHECK(std::abs(plane->axis_v.dot(plane->normal)) < T(1e-6));
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    const T du = plane->centre_u[i] - plane->centre_u[0], dv = plane->centre_v[i] - plane->centre_v[0];
+    const T dx = centres[i].x() - centres[0].x(), dy = centres[i].y() - centres[0].y();
+    CHECK(std::sqrt(du * du + dv * dv) == Approx(std::sqrt(dx * dx + dy * dy)).margin(1e-5));
+  }
+  // The same centres declared on a plane through them: identical to the fit of the exact grid.
+  centres[4].z() = T(0);
+  const auto fitted = mpr::ArrayPlane<T>::fit(centres);
+  const auto given = mpr::ArrayPlane<T>::fit(centres, mpr::Plane<T>{V::Zero(), V::UnitZ()});
+  REQUIRE(fitted.has_value());
+  REQUIRE(given.has_value());
+  CHECK(std::abs(fitted->normal.dot(given->normal)) == Approx(1));
+  CHECK(fitted->neighbours == given->neighbours);
+  CHECK(fitted->separation == given->separation);
+}

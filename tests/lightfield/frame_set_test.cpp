@@ -61,3 +61,22 @@ TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels togethe
   CHECK(hdr.texels(0)[11].c[1] == 2.0f);
   CHECK(hdr.texels(0)[11].c[2] == -1.0f);
 }
+
+TEST_CASE("CameraFrameSet::on_plane declares the array plane, checked against the centres", "[camera_frame_set]") {
+  // grid_cameras puts the centres on z = 0.
+  const auto cams = mpr_test::grid_cameras<double>(3, 2, 1.0, 4, 3, 4.0);
+  const std::vector<mpr::Image<mpr::Rgb8>> images(6, mpr::Image<mpr::Rgb8>(4, 3));
+  CHECK_FALSE(mpr::CameraFrameSet<double>(cams, images).array_plane().has_value());
+  const auto planar = mpr::CameraFrameSet<double>(cams, images).on_plane({mpr::Vec3<double>::Zero(), {0, 0, -3}});
+  REQUIRE(planar.array_plane().has_value());
+  CHECK(planar.array_plane()->normal == mpr::Vec3<double>(0, 0, -3));
+  CHECK(planar.without(0).array_plane().has_value());
+  // A plane the centres do not lie on, a zero normal and a NaN point are refused.
+  using Error = mpr::argument_error;
+  CHECK_THROWS_AS(mpr::CameraFrameSet<double>(cams, images).on_plane({mpr::Vec3<double>::Zero(), {0, 1, 0}}), Error);
+  CHECK_THROWS_AS(mpr::CameraFrameSet<double>(cams, images).on_plane({{0, 0, 0.01}, {0, 0, 1}}), Error);
+  CHECK_THROWS_AS(mpr::CameraFrameSet<double>(cams, images).on_plane({mpr::Vec3<double>::Zero(), {0, 0, 0}}), Error);
+  CHECK_THROWS_AS(
+      mpr::CameraFrameSet<double>(cams, images).on_plane({mpr::Vec3<double>::Constant(std::nan("")), {0, 0, 1}}),
+      Error);
+}

@@ -5,7 +5,7 @@
 /// `mpr::PlaneBasis<T>`, the affine coordinates (a, b) of points on it along two edge vectors
 /// (the dual basis), which `PlanarSurface::uv_of` and the checkerboard's cells use. The
 /// structure-of-arrays crossing of a whole row of rays is `detail::plane_rays`
-/// (lightfield/detail/kernels.hpp).
+/// (geometry/detail/plane_kernels.hpp).
 
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>

@@ -12,11 +12,11 @@
 /// `P_raw ~ H^-1 K_i [I | -C_i]`; its 3x3 part is split into K' R' (RQ decomposition), which
 /// is again a pinhole camera with the same centre.
 
+#include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
 #include <mpr/io/image_io.hpp>
-#include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <Eigen/LU>
@@ -141,7 +141,9 @@ template <std::floating_point T = double>
     }
     images.push_back(std::move(image));
   }
-  return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), ids);
+  // Built on z = 0 (planar_camera_array.hpp): hand the plane over instead of letting the samplers fit it.
+  return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), ids)
+      .on_plane(Plane<T>{Vec3<T>::Zero(), Vec3<T>::UnitZ()});
 }
 
 } // namespace mpr

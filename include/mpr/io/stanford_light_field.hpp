@@ -5,10 +5,10 @@
 /// CC, then the camera position on the camera plane as Y then X, known only up to scale and
 /// offset). See planar_camera_array.hpp for the camera model and its metric options.
 
+#include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/io/image_io.hpp>
-#include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
@@ -106,7 +106,9 @@ template <std::floating_point T = double>
     images.push_back(std::move(image));
     names.push_back(entries[i].path.filename().string());
   }
-  return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names));
+  // Built on z = 0 (planar_camera_array.hpp): hand the plane over instead of letting the samplers fit it.
+  return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names))
+      .on_plane(Plane<T>{Vec3<T>::Zero(), Vec3<T>::UnitZ()});
 }
 
 } // namespace mpr

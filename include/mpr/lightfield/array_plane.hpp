@@ -45,8 +45,12 @@ struct ArrayPlane {
   std::vector<T> neighbour_u, neighbour_v;
 
   /// The plane of `centres` when they are planar (every centre within 1e-6 x extent of the
-  /// least-squares plane) and at least two distinct; else nullopt.
-  [[nodiscard]] static std::optional<ArrayPlane> fit(std::span<const Vec3<T>> centres) {
+  /// least-squares plane) and at least two distinct; else nullopt. When the caller knows the
+  /// plane (`known`: a loader built the array on it, `CameraFrameSet::array_plane`), its normal
+  /// is used and planarity is not tested again; the in-plane axes, a free choice, are the
+  /// principal directions of the centres either way.
+  [[nodiscard]] static std::optional<ArrayPlane> fit(std::span<const Vec3<T>> centres,
+                                                     const std::optional<Plane<T>>& known = std::nullopt) {
     const std::size_t n = centres.size();
     if (n < 2) return std::nullopt;
     Vec3<double> mean = Vec3<double>::Zero();
@@ -61,10 +65,13 @@ struct ArrayPlane {
     }
     if (!(extent > 0)) return std::nullopt;
     const Eigen::SelfAdjointEigenSolver<Mat3<double>> eig(cov);
-    const Vec3<double> normal = eig.eigenvectors().col(0).normalized();
-    double off = 0;
-    for (const Vec3<T>& c : centres) off = std::max(off, std::abs(normal.dot(c.template cast<double>() - mean)));
-    if (!(off <= 1e-6 * extent)) return std::nullopt;
+    const Vec3<double> normal = known ? Vec3<double>(known->normal.template cast<double>().normalized())
+                                      : Vec3<double>(eig.eigenvectors().col(0).normalized());
+    if (!known) {
+      double off = 0;
+      for (const Vec3<T>& c : centres) off = std::max(off, std::abs(normal.dot(c.template cast<double>() - mean)));
+      if (!(off <= 1e-6 * extent)) return std::nullopt;
+    }
     ArrayPlane p;
     p.neighbours_begin.resize(n);
     p.neighbours_end.resize(n);

@@ -7,11 +7,14 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
+#include <mpr/geometry/plane.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -96,6 +99,31 @@ public:
   /// Image `i` decoded to linear colour, row-major, `width * height` texels.
   [[nodiscard]] const std::vector<texel_type>& texels(std::size_t i) const noexcept { return texels_[i]; }
 
+  /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
+  /// and LFCA loaders build rectified planar arrays on z = 0); the samplers then use it instead
+  /// of fitting one. nullopt for general rigs (their planarity is tested by a fit).
+  [[nodiscard]] const std::optional<Plane<T>>& array_plane() const noexcept { return array_plane_; }
+
+  /// This set, declaring that every camera centre lies on `plane` (normal of any non-zero
+  /// length). Throws `argument_error` ("array plane") when the normal is zero or not finite, or a
+  /// centre lies off the plane by more than 1e-6 of the array's extent (its largest distance from
+  /// the plane's point) -- a loader bug, not a data error.
+  [[nodiscard]] CameraFrameSet on_plane(const Plane<T>& plane) && {
+    const Vec3<double> n = plane.normal.template cast<double>();
+    if (!(n.norm() > 0) || !n.allFinite() || !plane.point.allFinite())
+      throw argument_error("array plane", "normal must be non-zero and finite");
+    double extent = 0, off = 0;
+    for (const camera_type& c : cameras_) {
+      const Vec3<double> d = c.centre().template cast<double>() - plane.point.template cast<double>();
+      extent = std::max(extent, d.norm());
+      off = std::max(off, std::abs(n.normalized().dot(d)));
+    }
+    if (!(off <= 1e-6 * extent))
+      throw argument_error("array plane", "a camera centre lies " + std::to_string(off) + " off the declared plane");
+    array_plane_ = plane;
+    return std::move(*this);
+  }
+
   /// The same frames without frame `i` (for leave-one-out evaluation).
   [[nodiscard]] CameraFrameSet without(std::size_t i) const {
     if (i >= size()) throw argument_error("frame index", "out of range");
@@ -117,7 +145,11 @@ public:
           c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(), c.height(),
           typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1), static_cast<U>(c.distortion().k2)},
           std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
-    return CameraFrameSet<U, Px>(std::move(cameras), images_, names_);
+    CameraFrameSet<U, Px> out(std::move(cameras), images_, names_);
+    if (array_plane_)
+      return std::move(out).on_plane(
+          Plane<U>{array_plane_->point.template cast<U>(), array_plane_->normal.template cast<U>()});
+    return out;
   }
 
 private:
@@ -140,6 +172,7 @@ private:
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
   std::vector<std::vector<texel_type>> texels_;
+  std::optional<Plane<T>> array_plane_;
 };
 
 } // namespace mpr

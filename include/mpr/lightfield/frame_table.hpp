@@ -97,7 +97,7 @@ public:
       cameras_.push_back(d);
     }
     index_ = CameraCentreIndex<T>(std::span<const Vec3<T>>(centres));
-    plane_ = ArrayPlane<T>::fit(centres);
+    plane_ = ArrayPlane<T>::fit(centres, frames_->array_plane());
   }
 
   [[nodiscard]] const frame_set_type& frames() const noexcept { return *frames_; }
