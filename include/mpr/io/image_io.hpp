@@ -40,6 +40,7 @@ struct StbFree {
                                                                  const LoadLimits& limits) {
   const std::uint64_t max_bytes = std::min<std::uint64_t>(limits.max_image_file_bytes, std::numeric_limits<int>::max());
   const std::uint64_t size = require_regular_file(path, max_bytes, "image");
+  if (size == 0) throw io_error(path.string(), "empty file (not an image)");
   std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
   std::FILE* file = std::fopen(path.string().c_str(), "rb");
   if (file == nullptr) throw io_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
