@@ -11,6 +11,7 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
+#include <mpr/io/file_write.hpp>
 #include <mpr/io/load_limits.hpp>
 
 #include <stb_image.h>
@@ -129,13 +130,29 @@ inline void check_set_budget(std::span<const std::filesystem::path> paths, std::
   return convert_image<Color>(encoded.view(), [](const Rgb8& p) { return to_color(p); });
 }
 
-/// Writes 8-bit sRGB pixels as a PNG file. Throws `io_error` if the file cannot be written.
-inline void write_png(const std::filesystem::path& path, ImageView<const Rgb8> image) {
+/// Encodes 8-bit sRGB pixels as PNG bytes (in memory).
+[[nodiscard]] inline std::vector<unsigned char> encode_png(ImageView<const Rgb8> image) {
   static_assert(sizeof(Rgb8) == 3, "Rgb8 must be tightly packed for stb");
+  std::vector<unsigned char> bytes;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    const auto* first = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), first, first + size);
+  };
+  if (stbi_write_png_to_func(append, &bytes, image.width(), image.height(), 3, image.data(),
+                             static_cast<int>(image.stride() * 3)) == 0)
+    bytes.clear();
+  return bytes;
+}
+
+/// Writes 8-bit sRGB pixels as a PNG file, through `write_file_atomically` (file_write.hpp): a
+/// failed write (missing folder, no permission, full disk) throws `io_error` naming the file and
+/// the reason and never leaves a partial file under `path`.
+inline void write_png(const std::filesystem::path& path, ImageView<const Rgb8> image) {
   if (image.empty()) throw io_error(path.string(), "cannot write an empty image");
-  const int ok = stbi_write_png(path.string().c_str(), image.width(), image.height(), 3, image.data(),
-                                static_cast<int>(image.stride() * 3));
-  if (ok == 0) throw io_error(path.string(), "cannot write PNG (missing folder or no permission?)");
+  const std::vector<unsigned char> bytes = encode_png(image);
+  if (bytes.empty()) throw io_error(path.string(), "cannot encode PNG");
+  write_file_atomically(path, bytes);
 }
 
 /// Writes a linear image as an 8-bit sRGB PNG (`to_rgb8` per pixel).

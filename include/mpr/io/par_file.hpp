@@ -13,6 +13,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
+#include <mpr/io/file_write.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/io/load_limits.hpp>
 #include <mpr/lightfield/frame_set.hpp>
@@ -128,7 +129,7 @@ template <std::floating_point T = double>
 /// Writes cameras in the `_par.txt` format (K normalised to K(2,2) = 1; 17 significant digits,
 /// so doubles read back exactly). Throws `argument_error` ("cameras") when the lists differ in
 /// length or a camera has lens distortion (the format has none), `io_error` when the file
-/// cannot be written.
+/// cannot be written (`write_file_atomically`: no partial file is left).
 template <std::floating_point T>
 void write_par_file(const std::filesystem::path& par_file, std::span<const std::string> image_names,
                     std::span<const PinholeCamera<T>> cameras) {
@@ -138,19 +139,22 @@ void write_par_file(const std::filesystem::path& par_file, std::span<const std::
   for (const std::string& n : image_names)
     if (n.empty() || n.find_first_of(" \t\r\n") != std::string::npos)
       throw argument_error("image_names", "empty or containing whitespace: '" + n + "'");
-  std::FILE* f = std::fopen(par_file.string().c_str(), "wb");
-  if (f == nullptr) throw io_error(par_file.string(), "cannot open for writing");
-  bool ok = std::fprintf(f, "%zu\n", cameras.size()) > 0;
-  for (std::size_t i = 0; i < cameras.size() && ok; ++i) {
+  std::string text = std::to_string(cameras.size()) + "\n";
+  const auto number = [&text](double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, " %.17g", v);
+    text += buffer;
+  };
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
     const PinholeCamera<T>& c = cameras[i];
-    ok = std::fprintf(f, "%s", image_names[i].c_str()) > 0;
-    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.K()(k / 3, k % 3))) > 0;
-    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.R()(k / 3, k % 3))) > 0;
-    for (int k = 0; k < 3; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.t()[k])) > 0;
-    ok = ok && std::fprintf(f, "\n") > 0;
+    text += image_names[i];
+    for (int k = 0; k < 9; ++k) number(static_cast<double>(c.K()(k / 3, k % 3)));
+    for (int k = 0; k < 9; ++k) number(static_cast<double>(c.R()(k / 3, k % 3)));
+    for (int k = 0; k < 3; ++k) number(static_cast<double>(c.t()[k]));
+    text += "\n";
   }
-  if (std::fclose(f) != 0) ok = false;
-  if (!ok) throw io_error(par_file.string(), "write failed");
+  write_file_atomically(
+      par_file, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
 }
 
 /// Writes the cameras of a frame set (with its names) in the `_par.txt` format.
