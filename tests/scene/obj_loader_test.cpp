@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <unistd.h>
 
@@ -99,6 +100,80 @@ TEST_CASE("add_obj names the file and line of malformed input", "[scene][obj][ba
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", 4, "normal index");
   expect_error("mtllib none.mtl\nv 0 0 0\n", 1, "not found");
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2/3/4 2 3\n", 4, "malformed face reference");
+}
+
+TEST_CASE("add_obj never reads past what tinyobjloader parsed (issue 18)", "[scene][obj][bad_input]") {
+  // A bare '\r' ends a line for tinyobjloader: "#\rf 1 2 900000" is a comment for a checker
+  // that ends lines only at '\n', but a face with vertex 900000 for tinyobjloader.
+  expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n#\rf 1 2 900000\n"), 6,
+               "not a vertex defined so far");
+  // Control characters that the two parsers split differently are refused with their line.
+  expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2\f3\n"), 4, "control character 0x0c");
+  expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\v9\n"), 4, "control character 0x0b");
+  expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n") + std::string(1, '\0') + "f 1 2 77\n", 5,
+               "control character 0x00");
+  // Index overflow of a 64-bit integer is not a valid index either.
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999999\n", 4, "face vertex index");
+}
+
+TEST_CASE("check_parsed_indices refuses indices outside what tinyobjloader read", "[scene][obj][bad_input]") {
+  tinyobj::attrib_t attrib;
+  attrib.vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  attrib.texcoords = {0, 0};
+  tinyobj::shape_t shape;
+  shape.name = "s";
+  shape.mesh.num_face_vertices = {3};
+  // index_t is {vertex_index, normal_index, texcoord_index}.
+  shape.mesh.indices = {{0, -1, -1}, {1, -1, 0}, {2, -1, -1}};
+  const std::vector<tinyobj::shape_t> ok{shape};
+  CHECK_NOTHROW(mpr::scene::detail::check_parsed_indices("x.obj", attrib, ok));
+  const auto expect = [&](tinyobj::shape_t bad, const char* fragment) {
+    CHECK_THROWS_WITH(mpr::scene::detail::check_parsed_indices("x.obj", attrib, {bad}), Catch::Contains(fragment));
+  };
+  tinyobj::shape_t s = shape;
+  s.mesh.indices[2].vertex_index = 3;
+  expect(s, "face vertex index 3");
+  s = shape;
+  s.mesh.indices[1].texcoord_index = 1;
+  expect(s, "face texture index 1");
+  s = shape;
+  s.mesh.indices[0].normal_index = 0;
+  expect(s, "face normal index 0");
+  s = shape;
+  s.mesh.num_face_vertices = {4};
+  expect(s, "inconsistent faces");
+  attrib.vertices[4] = std::numeric_limits<float>::infinity();
+  CHECK_THROWS_WITH(mpr::scene::detail::check_parsed_indices("x.obj", attrib, ok), Catch::Contains("non-finite"));
+}
+
+TEST_CASE("add_obj refuses what is not a regular file and overlong lines", "[scene][obj][bad_input]") {
+  mpr::scene::Scene<float> scene;
+  CHECK_THROWS_WITH(mpr::scene::add_obj(scene, "/dev/zero"), Catch::Contains("not a regular file"));
+  CHECK_THROWS_WITH(mpr::scene::add_obj(scene, temp_folder()), Catch::Contains("not a regular file"));
+  const auto long_line = write("long.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n#" + std::string(5000, 'x') + "\nf 1 2 3\n");
+  mpr::scene::ObjOptions options;
+  options.limits.max_line_bytes = 4096;
+  try {
+    mpr::scene::add_obj(scene, long_line, options);
+    FAIL("no error for a line over the limit");
+  } catch (const mpr::io_error& e) {
+    CHECK(e.line() == 4);
+    CHECK_THAT(e.what(), Catch::Contains("line longer than 4096 bytes"));
+  }
+  options.limits.max_line_bytes = 8192;
+  CHECK(mpr::scene::add_obj(scene, long_line, options) == 1);
+  const auto loop = temp_folder() / "loop.obj";
+  std::filesystem::remove(loop);
+  std::filesystem::create_symlink(loop, loop);
+  CHECK_THROWS_AS(mpr::scene::add_obj(scene, loop), mpr::io_error);
+}
+
+TEST_CASE("add_obj reports coordinates that overflow the scalar type", "[scene][obj][bad_input]") {
+  const auto path = write("huge.obj", "v 0 0 0\nv 1e38 0 0\nv 0 1e38 0\nf 1 2 3\n");
+  mpr::scene::Scene<float> scene;
+  CHECK_THROWS_WITH(mpr::scene::add_obj(scene, path, {.scale = 100.0}), Catch::Contains("not finite in float"));
+  mpr::scene::Scene<double> scene_d;
+  CHECK(mpr::scene::add_obj(scene_d, path, {.scale = 100.0}) == 1);
 }
 
 TEST_CASE("add_obj rejects missing files and files without faces", "[scene][obj][bad_input]") {

@@ -20,7 +20,11 @@
 #include <mpr/core/vec.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <span>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 namespace mpr {
@@ -67,10 +71,27 @@ template <std::floating_point T>
   for (const Vec2<double>& p : positions) {
     const double x = (p.x() - mean.x()) * options.scale * (options.negate_x ? -1 : 1);
     const double y = (p.y() - mean.y()) * options.scale * (options.negate_y ? -1 : 1);
-    centres.emplace_back(static_cast<T>(x), static_cast<T>(y), T(0));
+    // Out of T's range (or not finite): infinity, without an undefined float conversion; the
+    // loaders report such a centre with the file it came from.
+    const auto to_t = [](double v) {
+      return std::abs(v) <= static_cast<double>(std::numeric_limits<T>::max()) ? static_cast<T>(v)
+                                                                               : std::numeric_limits<T>::infinity();
+    };
+    centres.emplace_back(to_t(x), to_t(y), T(0));
   }
   return centres;
 }
+
+namespace detail {
+/// Why a stored position gives a non-finite camera centre in T (for the loaders' messages).
+template <std::floating_point T>
+[[nodiscard]] std::string position_overflow_reason(const Vec2<double>& position, const PlanarArrayOptions& options) {
+  char text[160];
+  std::snprintf(text, sizeof text, "camera position (%.6g, %.6g) times the position scale %.6g is not finite in %s",
+                position.x(), position.y(), options.scale, std::is_same_v<T, float> ? "float" : "double");
+  return text;
+}
+} // namespace detail
 
 /// The rectified camera at `centre` (z = 0) for `width` x `height` images (see the file comment).
 template <std::floating_point T>

@@ -32,6 +32,11 @@ struct RenderOptions {
   int threads = 0;
 };
 
+template <class R>
+struct View;
+template <class Px, class... R>
+void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... views) noexcept;
+
 /// The renderer of one view: surface, selector and sampler, held by value. Empty (stateless)
 /// policies take no storage. The inner loop is exactly: uv from pixel, point from surface, ray
 /// from selector, colour from sampler; every call is resolved at compile time.
@@ -133,9 +138,13 @@ public:
   }
 
   /// Renders the view into the part of `region` that lies inside `out`.
+  /// (Defined here, not out of line: Clang 14 matches no out-of-line definition of a
+  /// constrained member template of a constrained class template.)
   template <class Px>
   requires StorableAs<Px, color_type>
-  void render(ImageView<Px> out, const Region& region, const RenderOptions& options = {}) const noexcept;
+  void render(ImageView<Px> out, const Region& region, const RenderOptions& options = {}) const noexcept {
+    mpr::render(out, options, View<Renderer>{region, this});
+  }
 
 private:
   // rays[i] = the ray of pixel (x_begin + i, y): the same rays as `ray_at`, with the row's v
@@ -214,15 +223,6 @@ void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... v
     };
     detail::parallel_rows(y_begin, y_end, options.threads, row);
   }
-}
-
-template <class Surface, class Selector, class Sampler>
-requires ComposablePolicies<Surface, Selector, Sampler>
-template <class Px>
-requires StorableAs<Px, typename Renderer<Surface, Selector, Sampler>::color_type>
-void Renderer<Surface, Selector, Sampler>::render(ImageView<Px> out, const Region& region,
-                                                  const RenderOptions& options) const noexcept {
-  mpr::render(out, options, view(region, *this));
 }
 
 } // namespace mpr

@@ -4,12 +4,12 @@
 /// file and the 1-based line (`io_error`). Shared by the light-field loaders.
 
 #include <mpr/core/error.hpp>
+#include <mpr/io/load_limits.hpp>
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -23,27 +23,32 @@ struct TextLine {
   std::vector<std::string> fields;
 };
 
-/// Reads `path` and splits every line at whitespace. Lines that are empty or start with `#`
-/// (after leading whitespace) are skipped. Throws `io_error` if the file cannot be opened or read.
-[[nodiscard]] inline std::vector<TextLine> read_text_lines(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io_error(path.string(), "cannot open file");
+/// Reads `path` (a regular file within `limits`: size and line length, see load_limits.hpp)
+/// and splits every line at whitespace. Lines end at `\n`, `\r\n` or a bare `\r`. Lines that
+/// are empty or start with `#` (after leading whitespace) are skipped. Throws `io_error` if the
+/// file is not a regular file, cannot be read, or exceeds a limit (naming the line).
+[[nodiscard]] inline std::vector<TextLine> read_text_lines(const std::filesystem::path& path,
+                                                           const LoadLimits& limits = {}) {
+  const std::string text = read_text_file(path, limits);
   std::vector<TextLine> lines;
-  std::string text;
-  for (std::size_t number = 1; std::getline(in, text); ++number) {
-    TextLine line{number, {}};
+  std::size_t number = 0;
+  for (std::size_t begin = 0; begin < text.size();) {
+    std::size_t stop = text.find_first_of("\r\n", begin);
+    if (stop == std::string::npos) stop = text.size();
+    const std::string_view line_text(text.data() + begin, stop - begin);
+    begin = stop + (stop + 1 < text.size() && text[stop] == '\r' && text[stop + 1] == '\n' ? 2 : 1);
+    TextLine line{++number, {}};
     std::size_t i = 0;
-    while (i < text.size()) {
-      while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    while (i < line_text.size()) {
+      while (i < line_text.size() && std::isspace(static_cast<unsigned char>(line_text[i]))) ++i;
       std::size_t j = i;
-      while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
-      if (j > i) line.fields.emplace_back(text.substr(i, j - i));
+      while (j < line_text.size() && !std::isspace(static_cast<unsigned char>(line_text[j]))) ++j;
+      if (j > i) line.fields.emplace_back(line_text.substr(i, j - i));
       i = j;
     }
     if (line.fields.empty() || line.fields.front()[0] == '#') continue;
     lines.push_back(std::move(line));
   }
-  if (in.bad()) throw io_error(path.string(), "read error");
   return lines;
 }
 

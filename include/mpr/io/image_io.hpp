@@ -5,20 +5,27 @@
 /// This header only declares stb's functions: link Debian's `libstb` (the CMake target `mpr::mpr`
 /// does this) or compile `src/stb_implementation.cpp` once into your program.
 /// Files are sRGB-encoded: `read_rgb8` returns the stored 8-bit codes, `read_linear` decodes them
-/// to linear `Color`, and `write_png` of a linear image encodes with `to_rgb8`.
+/// to linear `Color`, and `write_png` of a linear image encodes with `to_rgb8`. Reading refuses
+/// non-regular files and images above `LoadLimits` (load_limits.hpp) before decoding.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
+#include <mpr/io/file_write.hpp>
+#include <mpr/io/load_limits.hpp>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,42 +36,123 @@ struct StbFree {
   void operator()(unsigned char* p) const noexcept { stbi_image_free(p); }
 };
 
-inline void require_readable(const std::filesystem::path& path) {
+/// The bytes of the image file `path` (a regular file within `limits.max_image_file_bytes`).
+[[nodiscard]] inline std::vector<unsigned char> read_image_bytes(const std::filesystem::path& path,
+                                                                 const LoadLimits& limits) {
+  const std::uint64_t max_bytes = std::min<std::uint64_t>(limits.max_image_file_bytes, std::numeric_limits<int>::max());
+  const std::uint64_t size = require_regular_file(path, max_bytes, "image");
+  if (size == 0) throw io_error(path.string(), "empty file (not an image)");
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
   std::FILE* file = std::fopen(path.string().c_str(), "rb");
   if (file == nullptr) throw io_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), file);
   std::fclose(file);
+  if (got != bytes.size()) throw io_error(path.string(), "read error (file shorter than its size)");
+  return bytes;
+}
+
+/// stb's reason for the last failure, never empty.
+[[nodiscard]] inline std::string stb_reason() {
+  const char* reason = stbi_failure_reason();
+  return reason != nullptr && reason[0] != '\0' ? std::string(reason)
+                                                : std::string("corrupt or truncated data (stb gave no reason)");
+}
+
+/// Throws `io_error` naming `path` when `width` x `height` is above `limits.max_image_pixels`.
+inline void check_image_pixels(const std::filesystem::path& path, int width, int height, const LoadLimits& limits) {
+  const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  if (pixels > limits.max_image_pixels)
+    throw io_error(path.string(), "image of " + std::to_string(width) + "x" + std::to_string(height) + " = " +
+                                      std::to_string(pixels) + " pixels is above the limit of " +
+                                      std::to_string(limits.max_image_pixels) +
+                                      " pixels (LoadLimits::max_image_pixels)");
 }
 } // namespace detail
 
-/// Reads an image file into 8-bit sRGB pixels (grey and alpha are converted to RGB; 16-bit files
-/// are reduced to 8 bits). Throws `io_error` with the path and stb's reason.
-[[nodiscard]] inline Image<Rgb8> read_rgb8(const std::filesystem::path& path) {
-  detail::require_readable(path);
-  int width = 0, height = 0, channels = 0;
-  const std::unique_ptr<unsigned char, detail::StbFree> data(
-      stbi_load(path.string().c_str(), &width, &height, &channels, 3));
-  if (!data) {
-    const char* reason = stbi_failure_reason();
-    throw io_error(path.string(), std::string("cannot decode image: ") + (reason ? reason : "unknown reason"));
+/// The size of an image, read from its header.
+struct ImageInfo {
+  int width = 0;
+  int height = 0;
+};
+
+/// Reads only the header of an image file (without decoding it). Throws `io_error` naming the
+/// file when it is not a regular file within the limits, not an image stb_image can read, or
+/// larger than `limits.max_image_pixels`.
+[[nodiscard]] inline ImageInfo read_image_info(const std::filesystem::path& path, const LoadLimits& limits = {}) {
+  detail::require_regular_file(path, limits.max_image_file_bytes, "image");
+  ImageInfo info;
+  int channels = 0;
+  if (stbi_info(path.string().c_str(), &info.width, &info.height, &channels) == 0)
+    throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
+  detail::check_image_pixels(path, info.width, info.height, limits);
+  return info;
+}
+
+/// Throws `io_error` naming the first of `paths` above the budget when the images (sizes
+/// `infos`, in the same order) decode to more than `limits.max_set_bytes` bytes of 8-bit RGB.
+inline void check_set_budget(std::span<const std::filesystem::path> paths, std::span<const ImageInfo> infos,
+                             const LoadLimits& limits) {
+  std::uint64_t bytes = 0;
+  for (std::size_t i = 0; i < infos.size() && i < paths.size(); ++i) {
+    bytes += 3 * static_cast<std::uint64_t>(infos[i].width) * static_cast<std::uint64_t>(infos[i].height);
+    if (bytes > limits.max_set_bytes)
+      throw io_error(paths[i].string(),
+                     "the " + std::to_string(infos.size()) + " images of this set decode to more than the limit of " +
+                         std::to_string(limits.max_set_bytes) +
+                         " bytes (LoadLimits::max_set_bytes); reached at this image (" + std::to_string(i + 1) + ")");
   }
+}
+
+/// Reads an image file into 8-bit sRGB pixels (grey and alpha are converted to RGB; 16-bit files
+/// are reduced to 8 bits). The header is checked against `limits` before decoding. Throws
+/// `io_error` with the path and the reason (stb's, or the limit exceeded).
+[[nodiscard]] inline Image<Rgb8> read_rgb8(const std::filesystem::path& path, const LoadLimits& limits = {}) {
+  const std::vector<unsigned char> bytes = detail::read_image_bytes(path, limits);
+  const int length = static_cast<int>(bytes.size());
+  int width = 0, height = 0, channels = 0;
+  if (stbi_info_from_memory(bytes.data(), length, &width, &height, &channels) == 0)
+    throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
+  detail::check_image_pixels(path, width, height, limits);
+  int w = 0, h = 0;
+  const std::unique_ptr<unsigned char, detail::StbFree> data(
+      stbi_load_from_memory(bytes.data(), length, &w, &h, &channels, 3));
+  if (!data) throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
+  if (w != width || h != height)
+    throw io_error(path.string(), "cannot decode image: header and data disagree on the size");
   Image<Rgb8> image(width, height);
   std::memcpy(static_cast<void*>(image.data()), data.get(), static_cast<std::size_t>(width) * height * 3);
   return image;
 }
 
 /// Reads an image file and decodes it to linear `Color` (see `read_rgb8`).
-[[nodiscard]] inline Image<Color> read_linear(const std::filesystem::path& path) {
-  const Image<Rgb8> encoded = read_rgb8(path);
+[[nodiscard]] inline Image<Color> read_linear(const std::filesystem::path& path, const LoadLimits& limits = {}) {
+  const Image<Rgb8> encoded = read_rgb8(path, limits);
   return convert_image<Color>(encoded.view(), [](const Rgb8& p) { return to_color(p); });
 }
 
-/// Writes 8-bit sRGB pixels as a PNG file. Throws `io_error` if the file cannot be written.
-inline void write_png(const std::filesystem::path& path, ImageView<const Rgb8> image) {
+/// Encodes 8-bit sRGB pixels as PNG bytes (in memory).
+[[nodiscard]] inline std::vector<unsigned char> encode_png(ImageView<const Rgb8> image) {
   static_assert(sizeof(Rgb8) == 3, "Rgb8 must be tightly packed for stb");
+  std::vector<unsigned char> bytes;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    const auto* first = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), first, first + size);
+  };
+  if (stbi_write_png_to_func(append, &bytes, image.width(), image.height(), 3, image.data(),
+                             static_cast<int>(image.stride() * 3)) == 0)
+    bytes.clear();
+  return bytes;
+}
+
+/// Writes 8-bit sRGB pixels as a PNG file, through `write_file_atomically` (file_write.hpp): a
+/// failed write (missing folder, no permission, full disk) throws `io_error` naming the file and
+/// the reason and never leaves a partial file under `path`.
+inline void write_png(const std::filesystem::path& path, ImageView<const Rgb8> image) {
   if (image.empty()) throw io_error(path.string(), "cannot write an empty image");
-  const int ok = stbi_write_png(path.string().c_str(), image.width(), image.height(), 3, image.data(),
-                                static_cast<int>(image.stride() * 3));
-  if (ok == 0) throw io_error(path.string(), "cannot write PNG (missing folder or no permission?)");
+  const std::vector<unsigned char> bytes = encode_png(image);
+  if (bytes.empty()) throw io_error(path.string(), "cannot encode PNG");
+  write_file_atomically(path, bytes);
 }
 
 /// Writes a linear image as an 8-bit sRGB PNG (`to_rgb8` per pixel).

@@ -17,6 +17,7 @@
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
 #include <mpr/io/image_io.hpp>
+#include <mpr/io/load_limits.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <Eigen/LU>
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace mpr {
@@ -71,34 +73,47 @@ void rq_decompose(const Mat3<T>& M_in, Mat3<T>& K, Mat3<T>& R) {
 }
 
 /// Reads an LFCA calibration and its images into a `CameraFrameSet` (8-bit frames; names are
-/// the camera ids, in file order). Throws `io_error` naming the file and line for malformed
-/// numbers, a wrong field count, duplicate ids, a homography file without exactly 9 numbers or
-/// with a singular matrix, missing or unreadable images, or images of different sizes.
+/// the camera ids, in file order). Text files are read within `limits` (regular files, bounded
+/// size and line length); image headers are read first, and sizes and `limits` (pixels per
+/// image, bytes of the whole set) checked before any image is decoded. Throws `io_error` naming
+/// the file and line for malformed numbers, a wrong field count, duplicate ids, a position that
+/// is not finite once scaled, a homography file without exactly 9 numbers or with a singular
+/// matrix (the scale of H does not matter), missing or unreadable images, images above a
+/// limit, or images of different sizes.
 template <std::floating_point T = double>
 [[nodiscard]] CameraFrameSet<T, Rgb8> read_lfca(const std::filesystem::path& positions_file,
-                                                const LfcaOptions& options = {}) {
+                                                const LfcaOptions& options = {}, const LoadLimits& limits = {}) {
   options.array.validate();
-  const std::vector<detail::TextLine> lines = detail::read_text_lines(positions_file);
+  const std::vector<detail::TextLine> lines = detail::read_text_lines(positions_file, limits);
   if (lines.empty()) throw io_error(positions_file.string(), "no `camera-id X Y` lines");
   const std::filesystem::path folder = positions_file.parent_path();
   std::vector<std::string> ids;
   std::vector<Vec2<double>> positions;
+  std::unordered_map<std::string, std::size_t> first_line; // id -> line: linear, not quadratic
   for (const detail::TextLine& line : lines) {
     detail::require_fields(positions_file, line, 3);
-    for (const std::string& id : ids)
-      if (id == line.fields[0]) throw io_error(positions_file.string(), "duplicate camera id " + id, line.number);
+    const auto [at, inserted] = first_line.emplace(line.fields[0], line.number);
+    if (!inserted)
+      throw io_error(positions_file.string(),
+                     "duplicate camera id " + line.fields[0] + " (first on line " + std::to_string(at->second) + ")",
+                     line.number);
     ids.push_back(line.fields[0]);
     positions.emplace_back(detail::parse_number(positions_file, line, 1),
                            detail::parse_number(positions_file, line, 2));
   }
   const std::vector<Vec3<T>> centres = planar_array_centres<T>(positions, options.array);
-  std::vector<PinholeCamera<T>> cameras;
-  std::vector<Image<Rgb8>> images;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (!centres[i].allFinite())
+      throw io_error(positions_file.string(), detail::position_overflow_reason<T>(positions[i], options.array),
+                     lines[i].number);
+  // First every homography and image header (no image decoded yet), in camera order.
+  std::vector<std::filesystem::path> image_paths;
+  std::vector<ImageInfo> infos;
+  std::vector<Mat3<double>> homographies;
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    const std::filesystem::path image_path = folder / detail::replace_id(options.image_pattern, ids[i]);
     const std::filesystem::path h_path = folder / detail::replace_id(options.homography_pattern, ids[i]);
     // The homography: 9 numbers over any number of lines.
-    const std::vector<detail::TextLine> h_lines = detail::read_text_lines(h_path);
+    const std::vector<detail::TextLine> h_lines = detail::read_text_lines(h_path, limits);
     std::vector<double> h;
     for (const detail::TextLine& line : h_lines)
       for (std::size_t k = 0; k < line.fields.size(); ++k) {
@@ -111,20 +126,41 @@ template <std::floating_point T = double>
                      "expected 9 numbers (a 3x3 row-major homography), found " + std::to_string(h.size()));
     Mat3<double> H;
     for (int k = 0; k < 9; ++k) H(k / 3, k % 3) = h[static_cast<std::size_t>(k)];
+    // H is defined up to scale: normalise it so that tiny or huge (finite) entries do not matter.
     const double scale = H.cwiseAbs().maxCoeff();
-    if (!(std::abs((H / scale).determinant()) > 1e-12)) throw io_error(h_path.string(), "singular homography");
-    Image<Rgb8> image;
+    if (!(scale > 0)) throw io_error(h_path.string(), "singular homography (all zero)");
+    H /= scale;
+    if (!(std::abs(H.determinant()) > 1e-12)) throw io_error(h_path.string(), "singular homography");
+    homographies.push_back(H);
+    image_paths.push_back(folder / detail::replace_id(options.image_pattern, ids[i]));
     try {
-      image = read_rgb8(image_path);
+      infos.push_back(read_image_info(image_paths.back(), limits));
     } catch (const io_error& err) {
       throw io_error(positions_file.string(), std::string("image of camera ") + ids[i] + ": " + err.what(),
                      lines[i].number);
     }
-    if (!images.empty() && (image.width() != images[0].width() || image.height() != images[0].height()))
-      throw io_error(image_path.string(), "image is " + std::to_string(image.width()) + "x" +
-                                              std::to_string(image.height()) + ", the first camera's is " +
-                                              std::to_string(images[0].width()) + "x" +
-                                              std::to_string(images[0].height()));
+    if (infos.back().width != infos[0].width || infos.back().height != infos[0].height)
+      throw io_error(image_paths.back().string(), "image is " + std::to_string(infos.back().width) + "x" +
+                                                      std::to_string(infos.back().height) + ", the first camera's is " +
+                                                      std::to_string(infos[0].width) + "x" +
+                                                      std::to_string(infos[0].height));
+  }
+  check_set_budget(image_paths, infos, limits);
+  std::vector<PinholeCamera<T>> cameras;
+  std::vector<Image<Rgb8>> images;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const std::filesystem::path& image_path = image_paths[i];
+    const std::filesystem::path h_path = folder / detail::replace_id(options.homography_pattern, ids[i]);
+    const Mat3<double>& H = homographies[i];
+    Image<Rgb8> image;
+    try {
+      image = read_rgb8(image_path, limits);
+    } catch (const io_error& err) {
+      throw io_error(positions_file.string(), std::string("image of camera ") + ids[i] + ": " + err.what(),
+                     lines[i].number);
+    }
+    if (image.width() != infos[0].width || image.height() != infos[0].height)
+      throw io_error(image_path.string(), "image changed size while loading");
     const Vec3<double> C = centres[i].template cast<double>();
     const PinholeCamera<double> rectified =
         planar_array_camera<double>(C, image.width(), image.height(), options.array);

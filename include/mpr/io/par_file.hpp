@@ -13,7 +13,9 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/io/calibration_text.hpp>
+#include <mpr/io/file_write.hpp>
 #include <mpr/io/image_io.hpp>
+#include <mpr/io/load_limits.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <cstdio>
@@ -39,8 +41,9 @@ struct ParEntry {
 /// naming the file and line for a missing or malformed count, a wrong number of fields, a
 /// malformed or non-finite number, or fewer/more lines than the count says.
 template <std::floating_point T = double>
-[[nodiscard]] std::vector<ParEntry<T>> read_par_entries(const std::filesystem::path& par_file) {
-  const std::vector<detail::TextLine> lines = detail::read_text_lines(par_file);
+[[nodiscard]] std::vector<ParEntry<T>> read_par_entries(const std::filesystem::path& par_file,
+                                                        const LoadLimits& limits = {}) {
+  const std::vector<detail::TextLine> lines = detail::read_text_lines(par_file, limits);
   if (lines.empty()) throw io_error(par_file.string(), "empty file: expected the image count on line 1");
   detail::require_fields(par_file, lines[0], 1);
   const long count = detail::parse_count(par_file, lines[0], 0);
@@ -79,28 +82,43 @@ template <std::floating_point T>
 
 /// Reads a `_par.txt` file and every image it names into a `CameraFrameSet` (8-bit frames;
 /// names are the image names). Every image must exist, decode, and have the size of the first.
-/// Throws `io_error` naming the file (and line) on any failure.
+/// Image headers are read first: sizes and `limits` (pixels per image, bytes of the whole set)
+/// are checked before any image is decoded. Throws `io_error` naming the file (and line) on any
+/// failure.
 template <std::floating_point T = double>
-[[nodiscard]] CameraFrameSet<T, Rgb8> read_par_file(const std::filesystem::path& par_file) {
-  const std::vector<ParEntry<T>> entries = read_par_entries<T>(par_file);
+[[nodiscard]] CameraFrameSet<T, Rgb8> read_par_file(const std::filesystem::path& par_file,
+                                                    const LoadLimits& limits = {}) {
+  const std::vector<ParEntry<T>> entries = read_par_entries<T>(par_file, limits);
   if (entries.empty()) throw io_error(par_file.string(), "no images", 1);
   const std::filesystem::path folder = par_file.parent_path();
-  std::vector<PinholeCamera<T>> cameras;
-  std::vector<Image<Rgb8>> images;
-  std::vector<std::string> names;
+  std::vector<std::filesystem::path> paths;
+  std::vector<ImageInfo> infos;
   for (const ParEntry<T>& e : entries) {
-    const std::filesystem::path image_path = folder / e.image_name;
-    Image<Rgb8> image;
+    paths.push_back(folder / e.image_name);
     try {
-      image = read_rgb8(image_path);
+      infos.push_back(read_image_info(paths.back(), limits));
     } catch (const io_error& err) {
       throw io_error(par_file.string(), std::string("image of this line: ") + err.what(), e.line);
     }
-    if (!images.empty() && (image.width() != images[0].width() || image.height() != images[0].height()))
-      throw io_error(image_path.string(), "image is " + std::to_string(image.width()) + "x" +
-                                              std::to_string(image.height()) + ", the first image is " +
-                                              std::to_string(images[0].width()) + "x" +
-                                              std::to_string(images[0].height()));
+    if (infos.back().width != infos[0].width || infos.back().height != infos[0].height)
+      throw io_error(paths.back().string(), "image is " + std::to_string(infos.back().width) + "x" +
+                                                std::to_string(infos.back().height) + ", the first image is " +
+                                                std::to_string(infos[0].width) + "x" + std::to_string(infos[0].height));
+  }
+  check_set_budget(paths, infos, limits);
+  std::vector<PinholeCamera<T>> cameras;
+  std::vector<Image<Rgb8>> images;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const ParEntry<T>& e = entries[i];
+    Image<Rgb8> image;
+    try {
+      image = read_rgb8(paths[i], limits);
+    } catch (const io_error& err) {
+      throw io_error(par_file.string(), std::string("image of this line: ") + err.what(), e.line);
+    }
+    if (image.width() != infos[0].width || image.height() != infos[0].height)
+      throw io_error(paths[i].string(), "image changed size while loading");
     cameras.push_back(par_camera(par_file, e, image.width(), image.height()));
     images.push_back(std::move(image));
     names.push_back(e.image_name);
@@ -111,7 +129,7 @@ template <std::floating_point T = double>
 /// Writes cameras in the `_par.txt` format (K normalised to K(2,2) = 1; 17 significant digits,
 /// so doubles read back exactly). Throws `argument_error` ("cameras") when the lists differ in
 /// length or a camera has lens distortion (the format has none), `io_error` when the file
-/// cannot be written.
+/// cannot be written (`write_file_atomically`: no partial file is left).
 template <std::floating_point T>
 void write_par_file(const std::filesystem::path& par_file, std::span<const std::string> image_names,
                     std::span<const PinholeCamera<T>> cameras) {
@@ -121,19 +139,22 @@ void write_par_file(const std::filesystem::path& par_file, std::span<const std::
   for (const std::string& n : image_names)
     if (n.empty() || n.find_first_of(" \t\r\n") != std::string::npos)
       throw argument_error("image_names", "empty or containing whitespace: '" + n + "'");
-  std::FILE* f = std::fopen(par_file.string().c_str(), "wb");
-  if (f == nullptr) throw io_error(par_file.string(), "cannot open for writing");
-  bool ok = std::fprintf(f, "%zu\n", cameras.size()) > 0;
-  for (std::size_t i = 0; i < cameras.size() && ok; ++i) {
+  std::string text = std::to_string(cameras.size()) + "\n";
+  const auto number = [&text](double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, " %.17g", v);
+    text += buffer;
+  };
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
     const PinholeCamera<T>& c = cameras[i];
-    ok = std::fprintf(f, "%s", image_names[i].c_str()) > 0;
-    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.K()(k / 3, k % 3))) > 0;
-    for (int k = 0; k < 9; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.R()(k / 3, k % 3))) > 0;
-    for (int k = 0; k < 3; ++k) ok = ok && std::fprintf(f, " %.17g", static_cast<double>(c.t()[k])) > 0;
-    ok = ok && std::fprintf(f, "\n") > 0;
+    text += image_names[i];
+    for (int k = 0; k < 9; ++k) number(static_cast<double>(c.K()(k / 3, k % 3)));
+    for (int k = 0; k < 9; ++k) number(static_cast<double>(c.R()(k / 3, k % 3)));
+    for (int k = 0; k < 3; ++k) number(static_cast<double>(c.t()[k]));
+    text += "\n";
   }
-  if (std::fclose(f) != 0) ok = false;
-  if (!ok) throw io_error(par_file.string(), "write failed");
+  write_file_atomically(
+      par_file, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
 }
 
 /// Writes the cameras of a frame set (with its names) in the `_par.txt` format.

@@ -4,12 +4,17 @@
 /// tinyobjloader (Debian `libtinyobjloader-dev`). This is the only scene header that needs it:
 /// link `tinyobjloader::tinyobjloader` (find_package(tinyobjloader)) when you include it.
 ///
-/// Before tinyobjloader parses the file, every line is checked, so that a malformed file fails
+/// The file is read once, within `ObjOptions::limits` (a regular file, bounded size and line
+/// length; see load_limits.hpp), and the same text is handed to tinyobjloader.
+/// Before tinyobjloader parses it, every line is checked, so that a malformed file fails
 /// with `io_error(path, reason, line)` naming the line: a `v` line needs 3 finite numbers
 /// (optionally 3 more: a vertex colour), `vt` 2 or 3, `vn` 3; a face `f` needs at least 3
 /// references `v`, `v/vt`, `v//vn` or `v/vt/vn` whose non-zero indices (negative: relative) name
 /// elements defined *before* the face; a `mtllib` must exist next to the OBJ file. Other keywords
-/// (o, g, s, usemtl, l, p, ...) are accepted. A file without faces is an error too.
+/// (o, g, s, usemtl, l, p, ...) are accepted. A file without faces is an error too. Lines end
+/// at `\n`, `\r\n` or a bare `\r`; control characters other than tab are refused. After parsing,
+/// every index tinyobjloader returned is checked against the arrays it read (`io_error`
+/// without a line when the two readings disagree), so no input is read out of bounds.
 ///
 /// Conversion rules: polygons are triangulated; one `Mesh` is added per material (faces without
 /// a material use `ObjOptions::color`); the material's Kd is the mesh colour, unless the file
@@ -22,19 +27,24 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/io/image_io.hpp>
+#include <mpr/io/load_limits.hpp>
 #include <mpr/scene/scene.hpp>
 #include <mpr/scene/texture.hpp>
 
 #include <tiny_obj_loader.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <type_traits>
 #include <vector>
 
 namespace mpr::scene {
@@ -45,6 +55,8 @@ struct ObjOptions {
   Color color{0.8f, 0.8f, 0.8f};
   /// Uniform scale applied to every position.
   double scale = 1.0;
+  /// Bounds on the OBJ, MTL and texture files (load_limits.hpp).
+  LoadLimits limits = {};
 };
 
 namespace detail {
@@ -61,28 +73,40 @@ inline bool parse_number(const std::string& token, double& value) {
 inline bool parse_index(const std::string& token, long long count, long long& resolved) {
   if (token.empty()) return false;
   char* end = nullptr;
+  errno = 0;
   const long long i = std::strtoll(token.c_str(), &end, 10);
-  if (end != token.c_str() + token.size() || i == 0) return false;
+  if (end != token.c_str() + token.size() || i == 0 || errno == ERANGE) return false;
   resolved = i > 0 ? i - 1 : count + i;
   return resolved >= 0 && resolved < count;
 }
 
-/// The line-by-line check described in the file comment. Returns true when the file has vertex colours.
-inline bool validate_obj(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw io_error(path.string(), "cannot open OBJ file");
+/// The line-by-line check of the OBJ text `text` read from `path`, described in the file
+/// comment. Lines end at `\n`, `\r\n` or a bare `\r` (as in tinyobjloader); control characters
+/// other than tab (NUL, form feed, vertical tab, ...) are refused, so that this check and
+/// tinyobjloader see the same lines and fields. Returns true when the file has vertex colours.
+inline bool validate_obj(const std::filesystem::path& path, const std::string& text) {
   long long nv = 0, nvt = 0, nvn = 0, faces = 0;
   bool colours = false;
   std::size_t line_no = 0;
-  for (std::string line; std::getline(in, line);) {
+  for (std::size_t begin = 0; begin < text.size();) {
+    std::size_t stop = text.find_first_of("\r\n", begin);
+    if (stop == std::string::npos) stop = text.size();
+    std::string line = text.substr(begin, stop - begin);
+    begin = stop + (stop + 1 < text.size() && text[stop] == '\r' && text[stop + 1] == '\n' ? 2 : 1);
     ++line_no;
+    const auto fail = [&](const std::string& reason) { throw io_error(path.string(), reason, line_no); };
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%02x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        fail(std::string("control character ") + code + " (OBJ text allows only tab, space and printable characters)");
+      }
     if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::istringstream tokens(line);
     std::string key;
     if (!(tokens >> key)) continue;
     std::vector<std::string> args;
     for (std::string a; tokens >> a;) args.push_back(a);
-    const auto fail = [&](const std::string& reason) { throw io_error(path.string(), reason, line_no); };
     const auto numbers = [&](std::size_t lo, std::size_t hi, const char* what) {
       if (args.size() < lo || args.size() > hi)
         fail(std::string("malformed ") + what + ": expected " + std::to_string(lo) +
@@ -128,12 +152,70 @@ inline bool validate_obj(const std::filesystem::path& path) {
       if (args.empty()) fail("mtllib without a file name");
       for (const std::string& a : args) {
         const std::filesystem::path mtl = path.parent_path() / a;
-        if (!std::filesystem::exists(mtl)) fail("material library '" + mtl.string() + "' not found");
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(mtl, ec)) fail("material library '" + mtl.string() + "' not found");
       }
     }
   }
   if (faces == 0) throw io_error(path.string(), "no faces");
   return colours;
+}
+
+/// tinyobjloader's material callback: reads `<folder>/<name>` within the load limits. An error
+/// is kept (tinyobjloader only takes true/false) and rethrown by `add_obj` after parsing.
+class BoundedMaterialReader : public tinyobj::MaterialReader {
+public:
+  BoundedMaterialReader(std::filesystem::path folder, const LoadLimits& limits)
+      : folder_(std::move(folder)), limits_(limits) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* warn, std::string* err) override {
+    try {
+      std::istringstream in(mpr::detail::read_text_file(folder_ / name, limits_, "MTL file"));
+      tinyobj::LoadMtl(material_map, materials, &in, warn, err);
+      return true;
+    } catch (...) {
+      if (!error_) error_ = std::current_exception();
+      return false;
+    }
+  }
+  void rethrow() const {
+    if (error_) std::rethrow_exception(error_);
+  }
+
+private:
+  std::filesystem::path folder_;
+  LoadLimits limits_;
+  std::exception_ptr error_;
+};
+
+/// Checks that every index tinyobjloader produced names an element it parsed, so that a file
+/// both parsers read differently fails instead of being read out of bounds.
+inline void check_parsed_indices(const std::filesystem::path& path, const tinyobj::attrib_t& attrib,
+                                 const std::vector<tinyobj::shape_t>& shapes) {
+  const long long nv = static_cast<long long>(attrib.vertices.size() / 3);
+  const long long nvt = static_cast<long long>(attrib.texcoords.size() / 2);
+  const long long nvn = static_cast<long long>(attrib.normals.size() / 3);
+  for (const tinyobj::real_t x : attrib.vertices)
+    if (!std::isfinite(x)) throw io_error(path.string(), "tinyobjloader read a non-finite vertex coordinate");
+  for (const tinyobj::real_t x : attrib.texcoords)
+    if (!std::isfinite(x)) throw io_error(path.string(), "tinyobjloader read a non-finite texture coordinate");
+  for (const tinyobj::shape_t& shape : shapes) {
+    std::size_t total = 0;
+    for (const unsigned int count : shape.mesh.num_face_vertices) total += count;
+    if (total != shape.mesh.indices.size())
+      throw io_error(path.string(), "tinyobjloader returned inconsistent faces in shape '" + shape.name + "'");
+    for (std::size_t k = 0; k < shape.mesh.indices.size(); ++k) {
+      const tinyobj::index_t& i = shape.mesh.indices[k];
+      const auto bad = [&](const char* what, int index, long long count) {
+        throw io_error(path.string(), std::string("face ") + what + " index " + std::to_string(index) +
+                                          " (0-based) is outside the " + std::to_string(count) + " " + what +
+                                          " elements tinyobjloader read (in shape '" + shape.name + "')");
+      };
+      if (i.vertex_index < 0 || i.vertex_index >= nv) bad("vertex", i.vertex_index, nv);
+      if (i.texcoord_index < -1 || i.texcoord_index >= nvt) bad("texture", i.texcoord_index, nvt);
+      if (i.normal_index < -1 || i.normal_index >= nvn) bad("normal", i.normal_index, nvn);
+    }
+  }
 }
 
 } // namespace detail
@@ -145,22 +227,26 @@ template <std::floating_point T>
 std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const ObjOptions& options = {}) {
   if (!std::isfinite(options.scale) || !(options.scale > 0))
     throw argument_error("scale", "must be positive and finite");
-  const bool vertex_colours = detail::validate_obj(path);
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = vertex_colours;
-  config.mtl_search_path = path.parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config) || !reader.Valid())
-    throw io_error(path.string(), "tinyobjloader: " + reader.Error());
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
+  // Both the line check and tinyobjloader read the same bytes, read once within the limits.
+  const std::string text = mpr::detail::read_text_file(path, options.limits, "OBJ file");
+  const bool vertex_colours = detail::validate_obj(path, text);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warn, err;
+  detail::BoundedMaterialReader material_reader(path.parent_path(), options.limits);
+  std::istringstream in(text);
+  const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &material_reader,
+                                       /*triangulate=*/true, /*default_vcols_fallback=*/vertex_colours);
+  material_reader.rethrow();
+  if (!parsed) throw io_error(path.string(), "tinyobjloader: " + (err.empty() ? std::string("cannot parse") : err));
+  detail::check_parsed_indices(path, attrib, shapes);
 
   // Group the triangles by material (-1: none).
   std::map<int, Mesh<T>> meshes;
   std::map<int, bool> all_uv;
   const T scale = static_cast<T>(options.scale);
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const auto& mesh = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
@@ -174,9 +260,14 @@ std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const Ob
         for (std::size_t k = 0; k < 3; ++k) {
           const tinyobj::index_t index = mesh.indices[offset + k];
           const std::size_t v = static_cast<std::size_t>(index.vertex_index);
-          m.positions.emplace_back(scale * static_cast<T>(attrib.vertices[3 * v]),
-                                   scale * static_cast<T>(attrib.vertices[3 * v + 1]),
-                                   scale * static_cast<T>(attrib.vertices[3 * v + 2]));
+          const Vec3<T> p(scale * static_cast<T>(attrib.vertices[3 * v]),
+                          scale * static_cast<T>(attrib.vertices[3 * v + 1]),
+                          scale * static_cast<T>(attrib.vertices[3 * v + 2]));
+          if (!p.allFinite())
+            throw io_error(path.string(), "vertex " + std::to_string(v + 1) + " times the scale " +
+                                              std::to_string(options.scale) + " is not finite in " +
+                                              (std::is_same_v<T, float> ? "float" : "double"));
+          m.positions.push_back(p);
           if (vertex_colours && 3 * v + 2 < attrib.colors.size())
             m.colors.emplace_back(static_cast<float>(attrib.colors[3 * v]),
                                   static_cast<float>(attrib.colors[3 * v + 1]),
@@ -211,7 +302,7 @@ std::size_t add_obj(Scene<T>& scene, const std::filesystem::path& path, const Ob
         const std::filesystem::path image = path.parent_path() / mat.diffuse_texname;
         Image<Color> texels;
         try {
-          texels = read_linear(image);
+          texels = read_linear(image, options.limits);
         } catch (const io_error& e) {
           throw io_error(image.string(),
                          "texture of material '" + mat.name + "' in " + path.string() + ": " + e.what());
