@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 
 TEST_CASE("compare_images: RMSE, PSNR and percentiles", "[metrics]") {
   mpr::Image<mpr::Rgb8> a(10, 10, mpr::Rgb8{100, 100, 100});
@@ -49,4 +50,26 @@ TEST_CASE("ssim is 1 for identical images and drops with noise", "[metrics]") {
   const double noisy = mpr::ssim(a.view(), b.view());
   CHECK(noisy < 0.99);
   CHECK(noisy > 0.3);
+}
+
+TEST_CASE("ssim of two aligned checkerboards equals the closed form", "[metrics]") {
+  // Grey 1-pixel checkerboards a in {50, 150} and b in {100, 140}, same phase: every 8 x 8 window
+  // holds 32 of each value, so every window has the same means (100, 120), variances
+  // (50^2, 20^2) and covariance 50 * 20, and the mean SSIM is that of one window.
+  mpr::Image<mpr::Rgb8> a(24, 16), b(24, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 24; ++x) {
+      const bool odd = (x + y) % 2 == 1;
+      const std::uint8_t va = odd ? 150 : 50, vb = odd ? 140 : 100;
+      a(x, y) = {va, va, va};
+      b(x, y) = {vb, vb, vb};
+    }
+  const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+  const double ma = 100, mb = 120, va = 2500, vb = 400, cov = 1000;
+  const double expected = ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+  CHECK(expected == Approx(0.68439).epsilon(1e-4)); // worked out by hand
+  CHECK(mpr::ssim(a.view(), b.view()) == Approx(expected).epsilon(1e-9));
+  // Symmetric in its arguments; identical images give exactly 1.
+  CHECK(mpr::ssim(b.view(), a.view()) == Approx(expected).epsilon(1e-9));
+  CHECK(mpr::ssim(b.view(), b.view()) == Approx(1.0).epsilon(1e-12));
 }

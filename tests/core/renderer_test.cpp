@@ -2,7 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <span>
 
 namespace {
 
@@ -18,6 +20,19 @@ struct RayHash {
   }
 };
 
+/// RayHash with a batch and a tile path (each ray hashed on its own), so the renderer takes its
+/// row-batch (`render_row`) and tile (`render`) paths; counts the tile calls.
+struct RayHashTiles : RayHash {
+  std::atomic<int>* tiles = nullptr;
+  void sample_rays(std::span<const mpr::Ray<T>> rays, std::span<mpr::Color> out) const noexcept {
+    for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(rays[i]);
+  }
+  void sample_tile(std::span<const mpr::Ray<T>> rays, int, std::span<mpr::Color> out) const noexcept {
+    if (tiles != nullptr) ++*tiles;
+    sample_rays(rays, out);
+  }
+};
+
 /// A sampler that reports the constant it was given (to tell views apart).
 struct Constant {
   using scalar_type = float;
@@ -26,10 +41,11 @@ struct Constant {
   float sample(const mpr::Ray<float>&) const noexcept { return value; }
 };
 
-auto make_renderer() {
+template <class Sampler = RayHash>
+auto make_renderer(Sampler sampler = {}) {
   const mpr::PlanarSurface<T> plane({-1, -0.75, 1}, {2, 0, 0}, {0, 1.5, 0});
   const mpr::GlcSelector<T> xslit(plane, {-0.5, -0.1, 1}, {0.5, -0.1, 1}, {-0.5, 0.3, 1});
-  return mpr::Renderer(plane, xslit, RayHash{});
+  return mpr::Renderer(plane, xslit, sampler);
 }
 
 auto constant_renderer(float value) {
@@ -40,6 +56,50 @@ auto constant_renderer(float value) {
 
 } // namespace
 
+TEST_CASE("pixels worked out by hand: uv, surface point, ray and colour", "[renderer]") {
+  // make_renderer(): plane point(u, v) = (-1 + 2u, -0.75 + 1.5v, 1); GLC direction
+  // d(u, v) = (-0.5 + u, -0.1 + 0.4v, 1); RayHash = (7 ox + dx, 7 oy + dy, oz + 3 dz).
+  // In a 4 x 2 region pixel (x, y) has u = (x + 0.5) / 4, v = (y + 0.5) / 2.
+  struct Expected {
+    int x, y;
+    double u, v;
+    mpr::Vec3<double> point, direction;
+    mpr::Color colour;
+  };
+  const Expected cases[] = {
+      // u = 0.375, v = 0.25: point (-0.25, -0.375, 1), d (-0.125, 0, 1).
+      {1, 0, 0.375, 0.25, {-0.25, -0.375, 1}, {-0.125, 0, 1}, mpr::Color(-1.875f, -2.625f, 4)},
+      // u = 0.875, v = 0.75: point (0.75, 0.375, 1), d (0.375, 0.2, 1).
+      {3, 1, 0.875, 0.75, {0.75, 0.375, 1}, {0.375, 0.2, 1}, mpr::Color(5.625f, 2.825f, 4)},
+      // u = 0.125, v = 0.75: point (-0.75, 0.375, 1), d (-0.375, 0.2, 1).
+      {0, 1, 0.125, 0.75, {-0.75, 0.375, 1}, {-0.375, 0.2, 1}, mpr::Color(-5.625f, 2.825f, 4)},
+  };
+  const auto renderer = make_renderer();
+  std::atomic<int> tiles{0};
+  const auto tiled = make_renderer(RayHashTiles{{}, &tiles});
+  // The region at (2, 1) of a 7 x 4 image: pixel (x, y) of the region is image pixel (x + 2, y + 1).
+  const mpr::Region region(2, 1, 4, 2);
+  mpr::Image<mpr::Color> rows(7, 4), batches(7, 4), tiled_image(7, 4);
+  renderer.render(rows.view(), region, {1});
+  for (int y = 1; y < 3; ++y) tiled.render_row(batches.view(), region, y, 2, 6);
+  tiled.render(tiled_image.view(), region, {2});
+  CHECK(tiles.load() >= 1);
+  for (const Expected& e : cases) {
+    INFO("pixel " << e.x << ", " << e.y);
+    const mpr::Pixel px{e.x + 2, e.y + 1};
+    const mpr::Vec2<double> uv = region.pixel_to_uv<double>(px);
+    CHECK(uv.x() == Approx(e.u).margin(1e-15));
+    CHECK(uv.y() == Approx(e.v).margin(1e-15));
+    const mpr::Ray<double> ray = renderer.ray_at(px, region);
+    CHECK((ray.origin - e.point).norm() <= 1e-12);
+    CHECK((ray.direction - e.direction).norm() <= 1e-12);
+    CHECK(((renderer.shade(px, region) - e.colour).abs() <= 1e-6f).all());
+    CHECK(((rows(px.x, px.y) - e.colour).abs() <= 1e-6f).all());
+    CHECK(((batches(px.x, px.y) - e.colour).abs() <= 1e-6f).all());
+    CHECK(((tiled_image(px.x, px.y) - e.colour).abs() <= 1e-6f).all());
+  }
+}
+
 TEST_CASE("render equals shade at every pixel", "[renderer]") {
   const auto renderer = make_renderer();
   const mpr::Region region(0, 0, 37, 23);
@@ -49,19 +109,35 @@ TEST_CASE("render equals shade at every pixel", "[renderer]") {
     for (int x = 0; x < 37; ++x) REQUIRE((image(x, y) == renderer.shade({x, y}, region)).all());
 }
 
-TEST_CASE("the image is identical for 1, 2 and 7 threads", "[renderer]") {
-  const auto renderer = make_renderer();
+TEST_CASE("the image is identical for 1, 2, 3 and 7 threads, by rows and by tiles, OpenMP and std::thread",
+          "[renderer]") {
   const mpr::Region region(0, 0, 101, 67);
-  mpr::Image<mpr::Color> one(101, 67), two(101, 67), seven(101, 67), threads_std(101, 67);
-  renderer.render(one.view(), region, {1});
-  renderer.render(two.view(), region, {2});
-  renderer.render(seven.view(), region, {7});
-  // The std::thread back end directly (the OpenMP one is used by default when available).
-  mpr::detail::parallel_rows_std(0, 67, 2,
-                                 [&](int y) noexcept { renderer.render_row(threads_std.view(), region, y, 0, 101); });
-  CHECK(one == two);
-  CHECK(one == seven);
-  CHECK(one == threads_std);
+  const auto renderer = make_renderer();
+  std::atomic<int> tiles{0};
+  const auto tiled = make_renderer(RayHashTiles{{}, &tiles});
+  mpr::Image<mpr::Color> reference(101, 67);
+  renderer.render(reference.view(), region, {1});
+  // The reference is the per-pixel image (checked against hand-worked pixels above).
+  for (int y = 0; y < 67; y += 11)
+    for (int x = 0; x < 101; x += 13) REQUIRE((reference(x, y) == renderer.shade({x, y}, region)).all());
+  for (const int threads : {1, 2, 3, 7}) {
+    INFO(threads << " threads");
+    mpr::Image<mpr::Color> rows(101, 67), tile_image(101, 67), rows_std(101, 67), tiles_std(101, 67);
+    renderer.render(rows.view(), region, {threads});
+    tiles = 0;
+    tiled.render(tile_image.view(), region, {threads});
+    CHECK(tiles.load() == (67 + mpr::kTileRows - 1) / mpr::kTileRows); // the tile path, every tile once
+    // The std::thread back end directly (the OpenMP one is used by default when available).
+    mpr::detail::parallel_rows_std(0, 67, threads,
+                                   [&](int y) noexcept { renderer.render_row(rows_std.view(), region, y, 0, 101); });
+    mpr::detail::parallel_rows_std(0, (67 + 4) / 5, threads, [&](int t) noexcept {
+      tiled.render_tile(tiles_std.view(), region, 5 * t, std::min(5 * t + 5, 67), 0, 101);
+    });
+    CHECK(rows == reference);
+    CHECK(tile_image == reference);
+    CHECK(rows_std == reference);
+    CHECK(tiles_std == reference);
+  }
 }
 
 TEST_CASE("a region offset inside a larger image renders the same pixels", "[renderer]") {

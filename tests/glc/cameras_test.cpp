@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 using mpr::glc::Type;
 
@@ -115,4 +116,76 @@ TEMPLATE_TEST_CASE("cameras: the EPI camera is one plane of rays, rendered by Tw
       CHECK(std::abs(r.direction.dot(normal)) <= 8 * std::numeric_limits<T>::epsilon());
       CHECK(r.origin.x() == Approx(u).margin(1e-6));
     }
+}
+
+namespace {
+
+// The slope field of a GLC, worked out from its rays alone: with an orthonormal frame (e1, e2)
+// on the plane and n its normal, the slope of the ray at a plane point is (d.e1, d.e2) / d.n and
+// is affine in the point's plane coordinates (x, y) = ((p - c).e1, (p - c).e2). Returns the
+// gradient K (d slope / d (x, y)) and the slope at the plane centre c.
+template <class T>
+std::pair<Eigen::Matrix2d, Eigen::Vector2d> slope_field(const mpr::PlanarSurface<T>& plane,
+                                                        const mpr::GlcSelector<T>& sel) {
+  const Eigen::Vector3d n = plane.normal().template cast<double>();
+  const Eigen::Vector3d e1 = (plane.point_at({1, 0}) - plane.point_at({0, 0})).template cast<double>().normalized();
+  const Eigen::Vector3d e2 = n.cross(e1);
+  const Eigen::Vector3d c = plane.centre().template cast<double>();
+  const auto at = [&](double u, double v, Eigen::Vector2d& xy) {
+    const mpr::Vec2<T> uv(static_cast<T>(u), static_cast<T>(v));
+    const Eigen::Vector3d p = plane.point_at(uv).template cast<double>() - c;
+    const Eigen::Vector3d d = sel.direction_at(uv).template cast<double>();
+    xy = Eigen::Vector2d(p.dot(e1), p.dot(e2));
+    return Eigen::Vector2d(d.dot(e1) / d.dot(n), d.dot(e2) / d.dot(n));
+  };
+  Eigen::Vector2d x0, x1, x2;
+  const Eigen::Vector2d s0 = at(0.5, 0.5, x0), s1 = at(1, 0.5, x1), s2 = at(0.5, 1, x2);
+  Eigen::Matrix2d dx, ds;
+  dx << x1 - x0, x2 - x0;
+  ds << s1 - s0, s2 - s0;
+  return {ds * dx.inverse(), s0};
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("cameras: twisted orthographic and bilinear cameras have the slope field of their definition",
+                   "[glc][cameras]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  const double tol = sizeof(T) == 4 ? 2e-4 : 1e-11;
+  // A plane that is not axis-aligned and not square.
+  const mpr::PlanarSurface<T> plane(V(T(0.2), T(-0.4), T(1)), V(T(1.6), T(0.3), T(0.2)), V(T(-0.2), T(1.1), T(0.4)));
+  const Eigen::Vector3d n = plane.normal().template cast<double>();
+  const V direction = plane.normal() + V(T(0.3), T(-0.2), T(0.1));
+  // The slope of `direction` in any orthonormal frame has the length of its part along the plane
+  // over its normal component.
+  const Eigen::Vector3d dd = direction.template cast<double>();
+  const double expected_slope = (dd - dd.dot(n) * n).norm() / dd.dot(n);
+
+  // Twisted orthographic: K = twist w w_perp^T (rank 1, trace 0): the rays are parallel along the
+  // tilt direction w and turn as one moves across it; |K| = |twist|.
+  const T twist = T(0.7);
+  const auto [Kt, st] =
+      slope_field(plane, mpr::glc::twisted_orthographic(plane, direction, V(T(0.4), T(0.9), T(0.1)), twist));
+  CHECK(st.norm() == Approx(expected_slope).epsilon(tol));
+  CHECK(std::abs(Kt.trace()) <= tol);
+  CHECK(std::abs(Kt.determinant()) <= tol);
+  CHECK(Kt.norm() == Approx(0.7).epsilon(tol));
+  // The kernel of K is the tilt's in-plane direction w: moving along w keeps the direction.
+  Eigen::Vector3d w3 = Eigen::Vector3d(0.4, 0.9, 0.1);
+  w3 -= w3.dot(n) * n;
+  const Eigen::Vector3d e1 = (plane.point_at({1, 0}) - plane.point_at({0, 0})).template cast<double>().normalized();
+  const Eigen::Vector2d w = Eigen::Vector2d(w3.dot(e1), w3.dot(n.cross(e1))).normalized();
+  CHECK((Kt * w).norm() <= tol);
+  CHECK((Kt.transpose() * w).norm() == Approx(0.7).epsilon(tol)); // the slope changes along w
+
+  // Bilinear: K = [c -t; t c]: trace 2c, determinant c^2 + t^2, rotation part |t|.
+  const T convergence = T(-0.35), bi_twist = T(0.6);
+  const auto [Kb, sb] = slope_field(plane, mpr::glc::bilinear(plane, direction, convergence, bi_twist));
+  CHECK(sb.norm() == Approx(expected_slope).epsilon(tol));
+  CHECK(Kb.trace() == Approx(2 * -0.35).epsilon(tol));
+  CHECK(Kb.determinant() == Approx(0.35 * 0.35 + 0.6 * 0.6).epsilon(tol));
+  CHECK(std::abs(Kb(1, 0) - Kb(0, 1)) / 2 == Approx(0.6).epsilon(tol));
+  CHECK(std::abs(Kb(0, 0) - Kb(1, 1)) <= tol);
+  CHECK(std::abs(Kb(0, 1) + Kb(1, 0)) <= tol);
 }

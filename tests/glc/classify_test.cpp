@@ -136,4 +136,13 @@ TEST_CASE("classify: to_string names every type", "[glc][classify]") {
   STATIC_REQUIRE(mpr::glc::to_string(Type::twisted_orthographic) == "twisted_orthographic");
   CHECK(mpr::glc::to_string(Type::epi) == "epi");
   CHECK(mpr::glc::to_string(Type::pinhole) == "pinhole");
+  CHECK(mpr::glc::to_string(Type::orthographic) == "orthographic");
+  CHECK(mpr::glc::to_string(Type::pushbroom) == "pushbroom");
+  CHECK(mpr::glc::to_string(Type::pencil) == "pencil");
+  CHECK(mpr::glc::to_string(Type::bilinear) == "bilinear");
+  // All eight names differ.
+  const Type all[] = {Type::pinhole, Type::orthographic,         Type::pushbroom, Type::cross_slit,
+                      Type::pencil,  Type::twisted_orthographic, Type::bilinear,  Type::epi};
+  for (const Type a : all)
+    for (const Type b : all) CHECK((a == b) == (mpr::glc::to_string(a) == mpr::glc::to_string(b)));
 }

@@ -5,11 +5,14 @@
 #include <mpr/lightfield.hpp>
 #include <mpr/mpr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <memory>
 #include <random>
+#include <utility>
+#include <vector>
 
 using mpr_test::constant_colour;
 
@@ -24,6 +27,32 @@ make_sampler(const std::vector<mpr::PinholeCamera<T>>& cameras, std::vector<mpr:
 }
 
 bool close(const mpr::Color& a, const mpr::Color& b, float tolerance) { return ((a - b).abs() <= tolerance).all(); }
+
+// `rays` through the sampler by every path it has -- per ray, batch (`sample_rays`) and tile
+// (`sample_tile`, rows of `width`) -- each answer within `tolerance` of `expected[i]`.
+template <class S, class T>
+void check_every_path(const S& sampler, const std::vector<mpr::Ray<T>>& rays, int width,
+                      const std::vector<mpr::Color>& expected, float tolerance) {
+  std::vector<mpr::Color> batch(rays.size()), tile(rays.size());
+  sampler.sample_rays(rays, batch);
+  sampler.sample_tile(rays, width, tile);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    INFO("ray " << i << " expected " << expected[i].transpose());
+    CHECK(close(sampler.sample(rays[i]), expected[i], tolerance));
+    CHECK(close(batch[i], expected[i], tolerance));
+    CHECK(close(tile[i], expected[i], tolerance));
+  }
+}
+
+// `n` rays along +z whose points (origins) are evenly spaced `step` apart in x from `start`: a
+// run the batch and tile paths add by shift-and-add.
+template <class T>
+std::vector<mpr::Ray<T>> ray_row(const mpr::Vec3<T>& start, T step, std::size_t n) {
+  std::vector<mpr::Ray<T>> rays;
+  for (std::size_t i = 0; i < n; ++i)
+    rays.push_back({mpr::Vec3<T>(start.x() + step * static_cast<T>(i), start.y(), start.z()), mpr::Vec3<T>(0, 0, 1)});
+  return rays;
+}
 
 } // namespace
 
@@ -91,25 +120,28 @@ TEMPLATE_TEST_CASE("SyntheticAperture averages the cameras that see the point", 
   typename mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>::Config config;
   config.background = mpr::Color(0.5f, 0.25f, 0.125f);
   const auto sampler = make_sampler<T>(cams, mpr_test::constant_images(cams), mpr::SyntheticAperture{}, config);
-  // Seen by all nine cameras: the mean of the nine colours, whatever the ray direction.
-  mpr::Color mean = mpr::Color::Zero();
-  for (std::size_t k = 0; k < 9; ++k) mean += constant_colour(k, 9);
-  mean /= 9.0f;
+  // The fixture's colours are asymmetric: leaving out any one or two cameras changes the mean.
+  REQUIRE(mpr_test::constant_colour_is_asymmetric(9, 1e-3f));
+  // Seen by all nine cameras: the mean of the nine colours, (11/24, 4/9, 19/48) worked out by
+  // hand from the fixture's table, whatever the ray direction.
+  const mpr::Color mean(11.0f / 24.0f, 4.0f / 9.0f, 19.0f / 48.0f);
   CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, 20), mpr::Vec3<T>(0, 0, 1)}), mean, 1e-6f));
   CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, 20), mpr::Vec3<T>(T(0.3), 0, 1)}), mean, 1e-6f));
-  // Field of view: half-width 8 px at f = 16 is 0.5 rad-ish; at depth 1, x = 1.0 is seen by the
-  // cameras at x = 1 (centre) and x = 0 (offset 1 -> pixel 7.5 + 16 = out), so only column x = 1.
-  const mpr::Vec3<T> X(T(1.0), T(0), T(1));
-  mpr::Color column = mpr::Color::Zero();
+  // The batch and tile paths too: 24 evenly spaced points (shift-and-add), two tile rows of 12.
+  check_every_path(sampler, ray_row<T>(mpr::Vec3<T>(T(-0.2), T(0.1), T(20)), T(0.02), 24), 12,
+                   std::vector<mpr::Color>(24, mean), 1e-5f);
+  // Field of view: x pixel 7.5 + 16 dx / z must lie in [-0.5, 15.5), y pixel 5.5 + 16 dy / z in
+  // [-0.5, 11.5). At X = (1, 0, 2.5) a camera one unit away is 6.4 px off centre: seen across x
+  // (cameras 4 and 5 of the middle row), not across y, and the camera two units away in x not
+  // at all -- so exactly cameras 4 and 5, mean (8/16 + 5/16, 4/16 + 5/16, 7/16 + 7/16) / 2.
+  const mpr::Vec3<T> X(T(1.0), T(0), T(2.5));
   int seen = 0;
-  for (std::size_t k = 0; k < 9; ++k)
-    if (cams[k].project(X)) {
-      column += constant_colour(k, 9);
-      ++seen;
-    }
-  REQUIRE(seen > 0);
-  REQUIRE(seen < 9);
-  CHECK(close(sampler.sample({X, mpr::Vec3<T>(0, 0, 1)}), column / static_cast<float>(seen), 1e-6f));
+  for (std::size_t k = 0; k < 9; ++k) seen += cams[k].project(X) ? 1 : 0;
+  CHECK(seen == 2);
+  const mpr::Color pair_mean(13.0f / 32.0f, 9.0f / 32.0f, 7.0f / 16.0f);
+  CHECK(close(sampler.sample({X, mpr::Vec3<T>(0, 0, 1)}), pair_mean, 1e-6f));
+  check_every_path(sampler, ray_row<T>(mpr::Vec3<T>(T(0.99), 0, T(2.5)), T(0.001), 16), 8,
+                   std::vector<mpr::Color>(16, pair_mean), 1e-5f);
   // Nobody sees it: the background.
   CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, -1), mpr::Vec3<T>(0, 0, 1)}), config.background, 0));
 }
@@ -125,6 +157,17 @@ TEMPLATE_TEST_CASE("CylinderAperture weights cameras by 1 - d/r and falls back t
   const mpr::Ray<T> ray{mpr::Vec3<T>(T(0.2), 0, 30), mpr::Vec3<T>(0, 0, 2)};
   const mpr::Color expected = (0.3f * constant_colour(1, 4) + 0.7f * constant_colour(2, 4)) / 1.0f;
   CHECK(close(sampler.sample(ray), expected, 1e-5f));
+  // By hand: 0.3 (9/16, 10/16, 8/16) + 0.7 (10/16, 5/16, 2/16); swapped weights would give
+  // (0.58125, 0.53125, 0.3875).
+  const mpr::Color by_hand(0.60625f, 0.40625f, 0.2375f);
+  CHECK(close(sampler.sample(ray), by_hand, 1e-5f));
+  // Every path, on a row of lines x = 0.2 + 0.001 i (weights change slowly along it).
+  std::vector<mpr::Color> along;
+  for (int i = 0; i < 16; ++i) {
+    const float x = 0.2f + 0.001f * static_cast<float>(i);
+    along.push_back((0.5f - x) * constant_colour(1) + (0.5f + x) * constant_colour(2)); // weights sum to 1
+  }
+  check_every_path(sampler, ray_row<T>(mpr::Vec3<T>(T(0.2), 0, 30), T(0.001), 16), 8, along, 1e-4f);
   // Nobody within the radius: the nearest camera (camera 3 at x = 1.5 for a line at x = 4).
   const auto narrow = make_sampler<T>(cams, images, mpr::CylinderAperture{0.1});
   const mpr::Ray<T> far{mpr::Vec3<T>(T(1.55), 0, 30), mpr::Vec3<T>(0, 0, 1)};
@@ -217,6 +260,147 @@ TEMPLATE_TEST_CASE("refocusing on the scene plane reproduces a held-out view", "
   check_policy(mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>(shared), 1e-4f);
   check_policy(mpr::CameraFrameSampler<mpr::CylinderAperture, T, mpr::Color>(shared, mpr::CylinderAperture{1.5}),
                1e-4f);
+}
+
+namespace {
+
+// An independent answer for the light-field samplers, written from their definitions with no
+// library code: cameras with R = I and centres `centres`, focal length f, principal point at
+// the image centre, images `images`. A camera sees X when X is in front of it and its pixel
+// (x, y) lies in [-0.5, w - 0.5) x [-0.5, h - 0.5); its colour there is bilinear between pixel
+// centres with edge pixels repeated. `near_edge` is set when some camera's pixel, a cylinder
+// distance or a nearest-camera tie lies within 1e-3 of a decision boundary (such pixels are
+// not compared: float and double may decide differently).
+struct Oracle {
+  std::vector<mpr::Vec3<double>> centres;
+  const std::vector<mpr::Image<mpr::Color>>* images = nullptr;
+  double f = 0;
+
+  bool seen(std::size_t k, const mpr::Vec3<double>& X, mpr::Color& colour, bool& near_edge) const {
+    const mpr::Image<mpr::Color>& img = (*images)[k];
+    const mpr::Vec3<double> d = X - centres[k];
+    if (d.z() <= 0) return false;
+    const double x = f * d.x() / d.z() + 0.5 * (img.width() - 1), y = f * d.y() / d.z() + 0.5 * (img.height() - 1);
+    for (const double e : {x + 0.5, y + 0.5, img.width() - 0.5 - x, img.height() - 0.5 - y})
+      near_edge = near_edge || std::abs(e) < 1e-3;
+    if (x < -0.5 || y < -0.5 || x >= img.width() - 0.5 || y >= img.height() - 0.5) return false;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    const double ax = x - x0, ay = y - y0;
+    const auto px = [&](int i, int j) {
+      return img(std::clamp(i, 0, img.width() - 1), std::clamp(j, 0, img.height() - 1)).cast<double>();
+    };
+    const Eigen::Array3d c = (1 - ax) * (1 - ay) * px(x0, y0) + ax * (1 - ay) * px(x0 + 1, y0) +
+                             (1 - ax) * ay * px(x0, y0 + 1) + ax * ay * px(x0 + 1, y0 + 1);
+    colour = c.cast<float>();
+    return true;
+  }
+
+  double distance(std::size_t k, const mpr::Vec3<double>& X, const mpr::Vec3<double>& dir) const {
+    return (centres[k] - X).cross(dir).norm() / dir.norm();
+  }
+
+  // Synthetic aperture: the plain mean over the cameras that see X.
+  mpr::Color mean(const mpr::Vec3<double>& X, bool& near_edge) const {
+    Eigen::Array3d acc = Eigen::Array3d::Zero();
+    int n = 0;
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+      mpr::Color c;
+      if (seen(k, X, c, near_edge)) {
+        acc += c.cast<double>();
+        ++n;
+      }
+    }
+    return n > 0 ? mpr::Color((acc / n).cast<float>()) : mpr::Color::Zero();
+  }
+
+  // Nearest camera to the line (X, dir): its colour, or black when it does not see X.
+  mpr::Color nearest(const mpr::Vec3<double>& X, const mpr::Vec3<double>& dir, bool& near_edge) const {
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t k = 0; k < centres.size(); ++k) order.emplace_back(distance(k, X, dir), k);
+    std::sort(order.begin(), order.end());
+    near_edge = near_edge || order[1].first - order[0].first < 1e-3;
+    mpr::Color c;
+    return seen(order[0].second, X, c, near_edge) ? c : mpr::Color(mpr::Color::Zero());
+  }
+
+  // Cylinder of radius r: weights 1 - d / r over cameras strictly within r that see X,
+  // renormalised; the nearest camera when none does.
+  mpr::Color cylinder(const mpr::Vec3<double>& X, const mpr::Vec3<double>& dir, double r, bool& near_edge) const {
+    Eigen::Array3d acc = Eigen::Array3d::Zero();
+    double wsum = 0;
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+      const double d = distance(k, X, dir);
+      near_edge = near_edge || std::abs(d - r) < 1e-3;
+      mpr::Color c;
+      if (d < r && seen(k, X, c, near_edge)) {
+        acc += (1 - d / r) * c.cast<double>();
+        wsum += 1 - d / r;
+      }
+    }
+    return wsum > 0 ? mpr::Color((acc / wsum).cast<float>()) : nearest(X, dir, near_edge);
+  }
+};
+
+} // namespace
+
+TEMPLATE_TEST_CASE("refocusing off the scene plane gives the independently computed per-camera blend",
+                   "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  // 4 x 4 cameras looking at the plane z = 20 with per-pixel noise on its texture (so neighbouring
+  // cameras see different colours and no blend is linear in the camera position), viewed by a
+  // pinhole between the cameras focused at z = 12: every camera sees a different scene point
+  // through each focal point, so which cameras are used and their weights all show in the result.
+  const auto cams = mpr_test::grid_cameras<T>(4, 4, 1.0, 40, 30, 40.0);
+  auto images = mpr_test::plane_images(cams, 20.0);
+  std::mt19937 rng(19);
+  for (auto& img : images)
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x)
+        img(x, y) += mpr::Color(1, 2, 3) * (static_cast<float>(rng() % 64) / 512.0f);
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(cams, images);
+  Oracle oracle;
+  oracle.images = &images;
+  oracle.f = 40;
+  for (const auto& c : cams) oracle.centres.push_back(c.centre().template cast<double>());
+
+  const mpr::Vec3<double> eye(-0.3, -0.15, 0);
+  const double focus = 12, f = 40;
+  const mpr::PinholeCamera<T> view = mpr_test::camera_at<T>(mpr::Vec3<T>(eye.cast<T>()), 40, 30, f);
+  const mpr::PlanarSurface<T> plane = view.image_plane(static_cast<T>(focus));
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(view, plane);
+  const mpr::Region region(0, 0, 40, 30);
+  const double radius = 1.3;
+  const auto check = [&](const auto& sampler, int kind) {
+    const mpr::Renderer renderer(plane, glc, sampler);
+    for (const int threads : {1, 2}) {
+      mpr::Image<mpr::Color> out(40, 30);
+      renderer.render(out.view(), region, mpr::RenderOptions{threads});
+      float worst = 0, worst_pixel = 0;
+      int compared = 0;
+      for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+          // Pixel (x, y) of the view sees the focal point X on z = 12 along the line from the eye.
+          const mpr::Vec3<double> dir((x - 19.5) / f, (y - 14.5) / f, 1);
+          const mpr::Vec3<double> X = eye + focus * dir;
+          bool near_edge = false;
+          const mpr::Color expected = kind == 0   ? oracle.mean(X, near_edge)
+                                      : kind == 1 ? oracle.nearest(X, dir, near_edge)
+                                                  : oracle.cylinder(X, dir, radius, near_edge);
+          if (near_edge) continue;
+          ++compared;
+          worst = std::max(worst, (out(x, y) - expected).abs().maxCoeff());
+          worst_pixel = std::max(worst_pixel, (renderer.shade({x, y}, region) - expected).abs().maxCoeff());
+        }
+      INFO("interpolation " << kind << ", " << threads << " threads, " << compared << " pixels compared");
+      CHECK(compared >= 40 * 30 * 9 / 10);
+      // Bilinear of noise 0.37 per pixel at most, shift-and-add within 1e-3 pixel.
+      CHECK(worst <= 1e-3f);
+      CHECK(worst_pixel <= 1e-4f);
+    }
+  };
+  check(mpr::CameraFrameSampler<mpr::SyntheticAperture, T, mpr::Color>(frames), 0);
+  check(mpr::CameraFrameSampler<mpr::NearestCamera, T, mpr::Color>(frames), 1);
+  check(mpr::CameraFrameSampler<mpr::CylinderAperture, T, mpr::Color>(frames, mpr::CylinderAperture{radius}), 2);
 }
 
 TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path", "[camera_frame_sampler]", float,

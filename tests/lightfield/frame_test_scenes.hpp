@@ -62,20 +62,43 @@ std::vector<mpr::Image<mpr::Color>> plane_images(const std::vector<mpr::PinholeC
   return images;
 }
 
-/// Constant images: camera i shows colour (i / n, 1 - i / n, 0.25).
+/// Camera i's constant colour: channels are multiples of 1/16 (exact in float) taken from
+/// quadratic and cubic residues of i, so they are neither linear nor symmetric in i. With colours
+/// linear in i the mean of a symmetric set of cameras equals the middle camera's colour, and a
+/// path that dropped the middle camera (or any symmetric pair) would go unnoticed; here every
+/// leave-one-out and leave-two-out mean of the first 4, 9 or 20 cameras differs from the full
+/// mean by at least 1/320 in some channel (checked by `constant_colour_is_asymmetric`).
+/// For 3 x 3 cameras the mean is exactly (11/24, 4/9, 19/48); for 4 cameras (3/8, 1/2, 3/8).
+inline mpr::Color constant_colour(std::size_t i, std::size_t /*n*/ = 0) {
+  const auto k = static_cast<long>(i);
+  return mpr::Color(static_cast<float>((5 * k * k + 3 * k + 1) % 17) / 16.0f,
+                    static_cast<float>((3 * k * k * k + 7) % 13) / 16.0f,
+                    static_cast<float>((k * k + 2 * k + 5) % 11) / 16.0f);
+}
+
+/// Constant images: camera i shows `constant_colour(i)` everywhere.
 template <class T>
 std::vector<mpr::Image<mpr::Color>> constant_images(const std::vector<mpr::PinholeCamera<T>>& cameras) {
   std::vector<mpr::Image<mpr::Color>> images;
-  const float n = static_cast<float>(cameras.size());
   for (std::size_t i = 0; i < cameras.size(); ++i)
-    images.emplace_back(cameras[i].width(), cameras[i].height(),
-                        mpr::Color(static_cast<float>(i) / n, 1 - static_cast<float>(i) / n, 0.25f));
+    images.emplace_back(cameras[i].width(), cameras[i].height(), constant_colour(i));
   return images;
 }
 
-inline mpr::Color constant_colour(std::size_t i, std::size_t n) {
-  return mpr::Color(static_cast<float>(i) / static_cast<float>(n), 1 - static_cast<float>(i) / static_cast<float>(n),
-                    0.25f);
+/// True when no mean of the first n constant colours with one or two of them left out equals
+/// (within `tolerance` in every channel) the mean of all n: the property that makes a dropped
+/// camera visible in an average.
+inline bool constant_colour_is_asymmetric(std::size_t n, float tolerance) {
+  mpr::Color all = mpr::Color::Zero();
+  for (std::size_t i = 0; i < n; ++i) all += constant_colour(i);
+  const mpr::Color mean = all / static_cast<float>(n);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a; b < n; ++b) {
+      const mpr::Color rest = all - constant_colour(a) - (b != a ? constant_colour(b) : mpr::Color::Zero());
+      const float left = static_cast<float>(n - (b != a ? 2 : 1));
+      if (left > 0 && ((rest / left - mean).abs() <= tolerance).all()) return false;
+    }
+  return true;
 }
 
 } // namespace mpr_test
