@@ -9,6 +9,7 @@
 /// of the binary tree with SSE box and triangle-edge tests (float, x86-64), bit-identical to the
 /// portable kernels.
 
+#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/scene/scene.hpp>
@@ -26,15 +27,6 @@
 #include <type_traits>
 #include <vector>
 
-// SSE2 is part of x86-64, so the 4-wide float kernels need no run-time check. Define
-// MPR_BVH_SSE=0 to use the portable kernels everywhere.
-#if !defined(MPR_BVH_SSE)
-#if defined(__SSE2__) || defined(_M_X64)
-#define MPR_BVH_SSE 1
-#else
-#define MPR_BVH_SSE 0
-#endif
-#endif
 #if MPR_BVH_SSE
 #include <emmintrin.h>
 #endif
