@@ -5,7 +5,7 @@
 /// rasterized virtual camera array (`mpr::SceneSampler<Scene, mpr::Rasterized<...>>`).
 /// OBJ loading needs tinyobjloader and lives apart, in <mpr/scene/obj_loader.hpp>.
 
-#include <mpr/scene/bvh.hpp>
+#include <mpr/scene/bvh/bvh.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/rasterized_sampler.hpp>
 #include <mpr/scene/rasterizer.hpp>

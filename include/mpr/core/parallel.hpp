@@ -4,12 +4,14 @@
 /// compiled with it (and `MPR_NO_OPENMP` is not defined), otherwise `std::thread`. Each row is
 /// computed by exactly one thread with no shared state, so results never depend on scheduling.
 
+#include <mpr/core/config.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <thread>
 #include <vector>
 
-#if defined(_OPENMP)
+#if MPR_PARALLEL_OPENMP
 #include <omp.h>
 #endif
 
@@ -44,7 +46,7 @@ void parallel_rows_std(int begin, int end, int threads, const RowFn& row) noexce
   for (std::thread& t : pool) t.join();
 }
 
-#if defined(_OPENMP)
+#if MPR_PARALLEL_OPENMP
 /// OpenMP version of `parallel_rows_std`.
 template <class RowFn>
 void parallel_rows_openmp(int begin, int end, int threads, const RowFn& row) noexcept {
@@ -62,7 +64,7 @@ void parallel_rows(int begin, int end, int threads, const RowFn& row) noexcept {
     for (int y = begin; y < end; ++y) row(y);
     return;
   }
-#if defined(_OPENMP) && !defined(MPR_NO_OPENMP)
+#if MPR_PARALLEL_OPENMP
   parallel_rows_openmp(begin, end, n, row);
 #else
   parallel_rows_std(begin, end, n, row);

@@ -5,6 +5,7 @@
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/concepts.hpp>
+#include <mpr/core/config.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/region.hpp>
@@ -13,15 +14,6 @@
 #include <span>
 #include <utility>
 #include <vector>
-
-#if defined(__GNUC__) || defined(__clang__)
-/// Inlines every call, recursively, into the function it marks: used on the small loops that
-/// build rays and store colours, so that no policy call is left out of line however large the
-/// enclosing render function grows (the compiler's inlining budget is per function).
-#define MPR_FLATTEN __attribute__((flatten))
-#else
-#define MPR_FLATTEN
-#endif
 
 namespace mpr {
 

@@ -7,35 +7,13 @@
 /// them once; the environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`) can lower
 /// that choice, e.g. to compare kernels or to match a machine without AVX-512.
 
+#include <mpr/core/config.hpp>
+
 #include <cstdlib>
 #include <cstring>
 
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
-/// x86 with GCC/Clang: kernels also compiled for AVX2+FMA and AVX-512, chosen at run time.
-#define MPR_SIMD_X86 1
-#endif
-
-#if defined(__GNUC__) || defined(__clang__)
-#define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
-/// For the bodies handed to `run_at`: `[&]() MPR_INLINE_LAMBDA { ... }`.
-#define MPR_INLINE_LAMBDA __attribute__((always_inline))
-#define MPR_RESTRICT __restrict__
-#else
-#define MPR_ALWAYS_INLINE inline
-#define MPR_INLINE_LAMBDA
-#define MPR_RESTRICT
-#endif
-
 #if defined(MPR_SIMD_X86)
 #include <immintrin.h>
-#define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
-#if defined(__clang__)
-#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
-#else
-// GCC's generic tuning would use 256-bit vectors even here; the kernels are streaming loops
-// that gain from the full width.
-#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
-#endif
 #endif
 
 namespace mpr::detail {

@@ -12,7 +12,7 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
-#include <mpr/scene/bvh.hpp>
+#include <mpr/scene/bvh/bvh.hpp>
 #include <mpr/scene/scene.hpp>
 
 #include <algorithm>
@@ -65,7 +65,8 @@ public:
   }
 
   /// `out[i] = sample(rays[i])` for every i (`mpr::BatchRaySampler`): the same values, from
-  /// `Bvh::closest_hits`, which overlaps the walks of several rays. Precondition: equal lengths.
+  /// `Bvh::closest_hits` (one walk after another) and then shading, 64 rays at a time.
+  /// Precondition: equal lengths.
   void sample_rays(std::span<const Ray<T>> rays, std::span<color_type> out) const noexcept {
     constexpr std::size_t kChunk = 64;
     scene::Hit<T> hits[kChunk];

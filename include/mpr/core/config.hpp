@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// Every configuration macro of mpr, in one place (docs/conventions.md has the same table).
+/// Headers include this one instead of defining macros of their own.
+///
+/// Settings a user may define, consistently in every translation unit (e.g. on the compiler's
+/// command line):
+///
+/// | macro           | default                      | effect                                       |
+/// |-----------------|------------------------------|----------------------------------------------|
+/// | `MPR_NO_OPENMP` | undefined                    | rows go to `std::thread`s even when the      |
+/// |                 |                              | program is compiled with OpenMP              |
+/// | `MPR_BVH_SSE`   | 1 with SSE2 (x86-64), else 0 | 0: the BVH walks with its portable kernels   |
+/// |                 |                              | only (same hits; slower)                     |
+///
+/// Derived from the compiler and the settings above (not to be defined by users):
+///
+/// | macro                 | defined as                                                      |
+/// |-----------------------|-----------------------------------------------------------------|
+/// | `MPR_PARALLEL_OPENMP` | 1 when compiled with OpenMP and `MPR_NO_OPENMP` is undefined,   |
+/// |                       | else 0                                                          |
+/// | `MPR_SIMD_X86`        | 1 on x86 with GCC or Clang (kernels also built for AVX2+FMA and |
+/// |                       | AVX-512, chosen at run time, core/simd.hpp); else undefined     |
+/// | `MPR_TARGET_AVX2`     | `target("avx2,fma")` attribute (only with `MPR_SIMD_X86`)       |
+/// | `MPR_TARGET_AVX512`   | `target("avx512f,avx512bw,avx512vl,avx512dq,fma")` attribute,   |
+/// |                       | on GCC also preferring 512-bit vectors (only with MPR_SIMD_X86) |
+/// | `MPR_ALWAYS_INLINE`   | `inline` that always inlines (GCC/Clang), for kernel bodies     |
+/// | `MPR_INLINE_LAMBDA`   | always-inline attribute for the lambdas handed to `run_at`      |
+/// | `MPR_RESTRICT`        | `__restrict__` (GCC/Clang), else nothing                        |
+/// | `MPR_FLATTEN`         | `flatten` attribute (GCC/Clang): inline every call into the     |
+/// |                       | marked function, recursively                                    |
+///
+/// The environment variable `MPR_SIMD` (`portable`, `avx2`) lowers the kernel level chosen at
+/// run time (core/simd.hpp); it is read once, not a macro.
+
+// --- Threads -------------------------------------------------------------------------------
+
+#if defined(_OPENMP) && !defined(MPR_NO_OPENMP)
+#define MPR_PARALLEL_OPENMP 1
+#else
+#define MPR_PARALLEL_OPENMP 0
+#endif
+
+// --- Compiler attributes -------------------------------------------------------------------
+
+#if defined(__GNUC__) || defined(__clang__)
+#define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
+/// For the bodies handed to `run_at`: `[&]() MPR_INLINE_LAMBDA { ... }`.
+#define MPR_INLINE_LAMBDA __attribute__((always_inline))
+#define MPR_RESTRICT __restrict__
+/// Inlines every call, recursively, into the function it marks: used on the small loops that
+/// build rays and store colours, so that no policy call is left out of line however large the
+/// enclosing render function grows (the compiler's inlining budget is per function).
+#define MPR_FLATTEN __attribute__((flatten))
+#else
+#define MPR_ALWAYS_INLINE inline
+#define MPR_INLINE_LAMBDA
+#define MPR_RESTRICT
+#define MPR_FLATTEN
+#endif
+
+// --- Instruction sets ----------------------------------------------------------------------
+
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+/// x86 with GCC/Clang: kernels also compiled for AVX2+FMA and AVX-512, chosen at run time.
+#define MPR_SIMD_X86 1
+#endif
+
+#if defined(MPR_SIMD_X86)
+#define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
+#if defined(__clang__)
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
+#else
+// GCC's generic tuning would use 256-bit vectors even here; the kernels are streaming loops
+// that gain from the full width.
+#define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
+#endif
+#endif
+
+// SSE2 is part of x86-64, so the BVH's 4-wide float kernels need no run-time check.
+#if !defined(MPR_BVH_SSE)
+#if defined(__SSE2__) || defined(_M_X64)
+#define MPR_BVH_SSE 1
+#else
+#define MPR_BVH_SSE 0
+#endif
+#endif
