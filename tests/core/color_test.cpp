@@ -1,5 +1,7 @@
 #include <mpr/core/color.hpp>
 
+#include "simd_levels.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -84,12 +86,12 @@ TEST_CASE("linear_to_srgb8_row gives the per-channel codes bit for bit", "[color
                         std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(), 1.0f,
                         std::nextafter(1.0f, 0.0f), std::nextafter(1.0f, 2.0f), 1e30f, -1e30f})
     for (int r = 0; r < 17; ++r) in.push_back(v);
-  for (const std::size_t length : {in.size(), std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{16},
-                                   std::size_t{17}, std::size_t{33}}) {
-    for (std::size_t offset = 0; offset < 3; ++offset) {
-      const std::size_t m = std::min(length, in.size() - offset);
-      // The baseline loop, and the widest kernel this CPU runs (AVX-512 where it has it).
-      for (const auto level : {mpr::detail::SimdLevel::portable, mpr::detail::simd_level()}) {
+  // Every level this CPU runs (the AVX-512 one has its own 16-wide step).
+  mpr_test::for_each_simd_level([&](mpr::detail::SimdLevel level) {
+    for (const std::size_t length : {in.size(), std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{16},
+                                     std::size_t{17}, std::size_t{33}}) {
+      for (std::size_t offset = 0; offset < 3; ++offset) {
+        const std::size_t m = std::min(length, in.size() - offset);
         std::vector<std::uint8_t> out(m + 4, 7);
         mpr::linear_to_srgb8_row(in.data() + offset, out.data(), m, level);
         int wrong = 0;
@@ -98,5 +100,5 @@ TEST_CASE("linear_to_srgb8_row gives the per-channel codes bit for bit", "[color
         CHECK(out[m] == 7); // nothing written past the end
       }
     }
-  }
+  });
 }

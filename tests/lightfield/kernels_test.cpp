@@ -3,6 +3,7 @@
 // edge inputs; then the row paths of CameraFrameSampler that use them (nearest camera and
 // cylinder aperture on planar arrays) against brute force and against per-pixel `sample`.
 #include "lightfield/frame_test_scenes.hpp"
+#include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -36,65 +37,20 @@ constexpr std::size_t kLengths[] = {0, 1, 2, 3, 7, 8, 15, 16, 17, 31, 33, 64, 10
 // Entries past the end of every output, which no kernel may touch.
 constexpr std::size_t kGuard = 19;
 
-enum class Kernel { portable, avx2, avx512 };
+// The levels come from tests/simd_levels.hpp; a kernel variant is named by its level.
+using Kernel = mpr::detail::SimdLevel;
 
-const char* kernel_name(Kernel k) {
-  switch (k) {
-  case Kernel::avx2:
-    return "avx2";
-  case Kernel::avx512:
-    return "avx512";
-  default:
-    return "portable";
-  }
-}
-
-bool cpu_avx2() {
-#if defined(MPR_SIMD_X86)
-  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-  return false;
-#endif
-}
-
-bool cpu_avx512() {
-#if defined(MPR_SIMD_X86)
-  return cpu_avx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq");
-#else
-  return false;
-#endif
-}
+const char* kernel_name(Kernel k) { return mpr::detail::simd_level_name(k); }
 
 // The variants this CPU runs, portable first.
-std::vector<Kernel> kernels() {
-  std::vector<Kernel> out{Kernel::portable};
-  if (cpu_avx2()) out.push_back(Kernel::avx2);
-  if (cpu_avx512()) out.push_back(Kernel::avx512);
-  return out;
-}
+std::vector<Kernel> kernels() { return mpr_test::simd_levels(); }
 
-Kernel dispatched() {
-  switch (mpr::detail::simd_level()) {
-  case mpr::detail::SimdLevel::avx512:
-    return Kernel::avx512;
-  case mpr::detail::SimdLevel::avx2:
-    return Kernel::avx2;
-  default:
-    return Kernel::portable;
-  }
-}
+bool cpu_avx2() { return mpr_test::runs(Kernel::avx2); }
+bool cpu_avx512() { return mpr_test::runs(Kernel::avx512); }
 
-mpr::detail::SimdLevel level(Kernel k) {
-  switch (k) {
-  case Kernel::avx512:
-    return mpr::detail::SimdLevel::avx512;
-  case Kernel::avx2:
-    return mpr::detail::SimdLevel::avx2;
-  default:
-    return mpr::detail::SimdLevel::portable;
-  }
-}
+Kernel dispatched() { return mpr::detail::simd_level(); }
+
+mpr::detail::SimdLevel level(Kernel k) { return k; }
 
 template <class C>
 void shift_add_with(Kernel k, const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m) {

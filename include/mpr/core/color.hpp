@@ -12,6 +12,7 @@
 ///   every 8-bit value.
 
 #include <Eigen/Core>
+#include <mpr/core/detail/kernels.hpp>
 #include <mpr/core/simd.hpp>
 
 #include <array>
@@ -94,49 +95,17 @@ inline const SrgbTables srgb_tables{};
   return static_cast<std::uint8_t>(k + (linear >= t.threshold[k] ? 1 : 0));
 }
 
-#if defined(MPR_SIMD_X86)
-// GCC 12's AVX-512 headers start some intrinsics from _mm512_undefined_*(), which its own
-// -Wmaybe-uninitialized then reports at every use.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-namespace detail {
-/// `linear_to_srgb8` on 16 channels at a time (AVX-512: two gathers from the same tables), the
-/// rest one by one; the same codes bit for bit. NaN and values <= 0 clamp to 0, values >= 1 to
-/// the last bin, whose code is 255.
-MPR_TARGET_AVX512 inline void linear_to_srgb8_row_avx512(const float* in, std::uint8_t* out, std::size_t m) noexcept {
-  const auto& t = srgb_tables;
-  const __m512 zero = _mm512_setzero_ps(), below_one = _mm512_set1_ps(0x1.fffffep-1f);
-  const __m512 bins = _mm512_set1_ps(static_cast<float>(SrgbTables::kBins));
-  const __m512i byte = _mm512_set1_epi32(0xff), one = _mm512_set1_epi32(1);
-  std::size_t j = 0;
-  for (; j + 16 <= m; j += 16) {
-    // max(x, 0) returns 0 for NaN (the second operand).
-    const __m512 x = _mm512_min_ps(_mm512_max_ps(_mm512_loadu_ps(in + j), zero), below_one);
-    const __m512i bin = _mm512_cvttps_epi32(_mm512_mul_ps(x, bins));
-    const __m512i k = _mm512_and_si512(_mm512_i32gather_epi32(bin, t.bin_start.data(), 1), byte);
-    const __m512 threshold = _mm512_i32gather_ps(k, t.threshold.data(), 4);
-    const __mmask16 up = _mm512_cmp_ps_mask(x, threshold, _CMP_GE_OQ);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm512_cvtepi32_epi8(_mm512_mask_add_epi32(k, up, k, one)));
-  }
-  for (; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
-}
-} // namespace detail
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-#endif
-
-/// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), 16 at a time when `level` is
-/// AVX-512 (default: the widest this CPU runs).
+/// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), compiled for `level` (default:
+/// the widest this CPU runs); with AVX-512, 16 channels at a time (core/detail/kernels.hpp).
+/// The same codes at every level.
 inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m,
                                 detail::SimdLevel level = detail::simd_level()) noexcept {
-#if defined(MPR_SIMD_X86)
-  if (level == detail::SimdLevel::avx512) return detail::linear_to_srgb8_row_avx512(in, out, m);
-#endif
-  (void)level;
-  for (std::size_t j = 0; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
+  detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
+    const auto& t = detail::srgb_tables;
+    std::size_t j = detail::linear_to_srgb8_step(tag, in, out, m, t.bin_start.data(), t.threshold.data(),
+                                                 detail::SrgbTables::kBins);
+    for (; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
+  });
 }
 
 /// 8-bit sRGB to linear conversion of one channel (a table lookup).

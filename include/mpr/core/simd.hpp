@@ -11,6 +11,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <type_traits>
 
 #if defined(MPR_SIMD_X86)
 #include <immintrin.h>
@@ -21,11 +22,9 @@ namespace mpr::detail {
 /// The instruction sets the kernels are compiled for, widest last.
 enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
 
-/// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
-/// `MPR_SIMD` only ever lowers the choice: `avx512` (or `avx2` on a CPU without AVX-512) and any
-/// other value leave it as detected. It is read on the render path, which must not throw, so an
-/// unrecognised value is not an error; `simd_level_name()` tells what was chosen.
-[[nodiscard]] inline SimdLevel simd_level() noexcept {
+/// The widest kernel set this CPU runs, as detected (checked once; `MPR_SIMD` is ignored): what
+/// `simd_level()` starts from, and what tests run every level up to.
+[[nodiscard]] inline SimdLevel cpu_simd_level() noexcept {
   static const SimdLevel level = [] {
     SimdLevel best = SimdLevel::portable;
 #if defined(MPR_SIMD_X86)
@@ -34,6 +33,18 @@ enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
       best = SimdLevel::avx512;
 #endif
+    return best;
+  }();
+  return level;
+}
+
+/// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
+/// `MPR_SIMD` only ever lowers the choice: `avx512` (or `avx2` on a CPU without AVX-512) and any
+/// other value leave it as detected. It is read on the render path, which must not throw, so an
+/// unrecognised value is not an error; `simd_level_name()` tells what was chosen.
+[[nodiscard]] inline SimdLevel simd_level() noexcept {
+  static const SimdLevel level = [] {
+    const SimdLevel best = cpu_simd_level();
     const char* limit = std::getenv("MPR_SIMD");
     if (limit != nullptr) {
       if (std::strcmp(limit, "portable") == 0) return SimdLevel::portable;
@@ -44,10 +55,10 @@ enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
   return level;
 }
 
-/// The name of `simd_level()`: "avx512", "avx2+fma" or "portable" (the build's baseline, which
-/// is SSE2 on x86-64).
-[[nodiscard]] inline const char* simd_level_name() noexcept {
-  switch (simd_level()) {
+/// The name of `level`: "avx512", "avx2+fma" or "portable" (the build's baseline, which is SSE2
+/// on x86-64).
+[[nodiscard]] constexpr const char* simd_level_name(SimdLevel level) noexcept {
+  switch (level) {
   case SimdLevel::avx512:
     return "avx512";
   case SimdLevel::avx2:
@@ -57,21 +68,40 @@ enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
   }
 }
 
+/// The name of `simd_level()`.
+[[nodiscard]] inline const char* simd_level_name() noexcept { return simd_level_name(simd_level()); }
+
+/// The level a body is being compiled for, as a type: `run_at` hands it to bodies that take one,
+/// so that a kernel can add a hand-written step for one level (`if constexpr`) to its plain
+/// loop; the x86 steps live in each module's detail/kernels.hpp.
+template <SimdLevel L>
+using SimdTag = std::integral_constant<SimdLevel, L>;
+
+/// `body(SimdTag<L>{})` when the body takes the tag, else `body()`.
+template <SimdLevel L, class Body>
+MPR_ALWAYS_INLINE void call_at(const Body& body) noexcept {
+  if constexpr (std::is_invocable_v<const Body&, SimdTag<L>>)
+    body(SimdTag<L>{});
+  else
+    body();
+}
+
 #if defined(MPR_SIMD_X86)
 template <class Body>
 MPR_TARGET_AVX2 void run_avx2(const Body& body) noexcept {
-  body();
+  call_at<SimdLevel::avx2>(body);
 }
 template <class Body>
 MPR_TARGET_AVX512 void run_avx512(const Body& body) noexcept {
-  body();
+  call_at<SimdLevel::avx512>(body);
 }
 #endif
 
-/// Calls `body()` compiled for `level`: the body (a lambda marked `MPR_INLINE_LAMBDA` whose
-/// callees are `MPR_ALWAYS_INLINE`) is inlined into a function built for that instruction set,
-/// so the compiler vectorises its loops at that width. One plain C++ body thus gives every
-/// variant of a kernel. Precondition: the CPU runs `level` (any level up to `simd_level()`).
+/// Calls `body()` (or `body(SimdTag<level>{})`) compiled for `level`: the body (a lambda marked
+/// `MPR_INLINE_LAMBDA` whose callees are `MPR_ALWAYS_INLINE`) is inlined into a function built
+/// for that instruction set, so the compiler vectorises its loops at that width. One plain C++
+/// body thus gives every variant of a kernel. Precondition: the CPU runs `level` (any level up
+/// to `simd_level()`).
 template <class Body>
 void run_at(SimdLevel level, const Body& body) noexcept {
 #if defined(MPR_SIMD_X86)
@@ -79,7 +109,7 @@ void run_at(SimdLevel level, const Body& body) noexcept {
   if (level == SimdLevel::avx2) return run_avx2(body);
 #endif
   (void)level;
-  body();
+  call_at<SimdLevel::portable>(body);
 }
 
 } // namespace mpr::detail

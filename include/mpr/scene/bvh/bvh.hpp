@@ -6,9 +6,9 @@
 /// (bvh/traverse.hpp) with SSE box and triangle-edge tests on x86-64 (bvh/detail/kernels.hpp),
 /// bit-identical to the portable kernels.
 
-#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/build.hpp>
+#include <mpr/scene/bvh/detail/kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/traverse.hpp>
 #include <mpr/scene/scene.hpp>
@@ -43,10 +43,7 @@ public:
   /// and up to four leaf triangles per step (SSE for float on x86-64); the result is the one the
   /// per-triangle test gives in leaf order, whatever the instruction set.
   [[nodiscard]] Hit<T> closest_hit(const Ray<T>& ray, T t_max = std::numeric_limits<T>::infinity()) const noexcept {
-#if MPR_BVH_SSE
-    if constexpr (std::is_same_v<T, float>) return detail::closest_hit_walk<true>(tree_, ray, t_max);
-#endif
-    return detail::closest_hit_walk<false>(tree_, ray, t_max);
+    return detail::closest_hit_walk<detail::WalkKernels<T>>(tree_, ray, t_max);
   }
 
   /// `hits[i] = closest_hit(rays[i], t_max)` for every i (the same walk per ray, so the same
@@ -61,7 +58,7 @@ public:
   /// must match (tests), and what non-x86 builds always use.
   [[nodiscard]] Hit<T> closest_hit_portable(const Ray<T>& ray,
                                             T t_max = std::numeric_limits<T>::infinity()) const noexcept {
-    return detail::closest_hit_walk<false>(tree_, ray, t_max);
+    return detail::closest_hit_walk<detail::PortableKernels<T>>(tree_, ray, t_max);
   }
 
   /// The 4-wide tree traversed by `closest_hit`, collapsed from the binary SAH tree `nodes()`.

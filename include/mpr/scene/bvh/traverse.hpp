@@ -5,7 +5,6 @@
 /// per step, with the x86 kernels of bvh/detail/kernels.hpp or the portable ones; both give the
 /// same hit bit for bit.
 
-#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
@@ -18,55 +17,38 @@
 
 namespace mpr::scene::detail {
 
-/// Tests the triangles of the leaf whose blocks start at `first`, in leaf order.
-template <bool Simd, std::floating_point T>
+/// Tests the triangles of the leaf whose blocks start at `first`, in leaf order: the edge
+/// functions of a block at once, then the rest of the watertight test for each lane that may
+/// hit (or needs the exact fallback), in lane order, with those very values.
+template <class Kernels, std::floating_point T>
 void intersect_leaf(const BvhTree<T>& tree, std::uint32_t first, const Shear<T>& sh, Hit<T>& hit) noexcept {
   for (std::uint32_t b = first;; ++b) {
     const TriBlock<T>& block = tree.blocks[b];
-#if MPR_BVH_SSE
-    if constexpr (Simd) {
-      // 4-wide edge functions; only the lanes that may hit (or need the exact fallback) go
-      // on to the scalar part below, in lane order, with these very values.
-      EdgeValues4 e;
-      unsigned candidates = edges4_sse(block, sh.kx, sh.ky, sh.kz, sh.sx, sh.sy, sh.ox, sh.oy, sh.oz, e);
-      while (candidates != 0) {
-        const int lane = std::countr_zero(candidates);
-        candidates &= candidates - 1;
-        watertight_finish(e.lane(lane), sh.sz, block.index[lane], hit);
-      }
-    } else
-#endif
-    {
-      for (std::uint32_t lane = 0; lane < block.count; ++lane)
-        watertight_finish(edges_portable(block, lane, sh.kx, sh.ky, sh.kz, sh.sx, sh.sy, sh.ox, sh.oy, sh.oz), sh.sz,
-                          block.index[lane], hit);
+    typename Kernels::EdgeValues e;
+    unsigned candidates = Kernels::edges4(block, sh, e);
+    while (candidates != 0) {
+      const int lane = std::countr_zero(candidates);
+      candidates &= candidates - 1;
+      watertight_finish(e.lane(lane), sh.sz, block.index[lane], hit);
     }
     if (block.last) return;
   }
 }
 
-/// The closest triangle of `tree` hit by `ray` with t in (0, t_max); see `Bvh::closest_hit`.
-/// `Simd`: the x86 kernels (float with `MPR_BVH_SSE` only), else the portable ones.
-template <bool Simd, std::floating_point T>
+/// The closest triangle of `tree` hit by `ray` with t in (0, t_max), with the box and edge
+/// kernels of `Kernels` (bvh/detail/kernels.hpp); see `Bvh::closest_hit`.
+template <class Kernels, std::floating_point T>
 [[nodiscard]] Hit<T> closest_hit_walk(const BvhTree<T>& tree, const Ray<T>& ray, T t_max) noexcept {
   Hit<T> hit;
   hit.t = t_max;
   if (tree.wide.empty() && tree.blocks.empty()) return hit;
   Shear<T> sh;
   if (!Shear<T>::make(ray, sh)) return hit;
-  const BoxRay<T> r0 = BoxRay<T>::make(ray);
-  const auto r = [&] {
-#if MPR_BVH_SSE
-    if constexpr (Simd)
-      return BoxRaySse(r0);
-    else
-#endif
-      return r0;
-  }();
+  const typename Kernels::BoxRayType r = Kernels::box_ray(BoxRay<T>::make(ray));
 
   // A single-leaf tree has no box to test (its root is the leaf).
   if (tree.root & kLeafRef) {
-    intersect_leaf<Simd>(tree, tree.root & ~kLeafRef, sh, hit);
+    intersect_leaf<Kernels>(tree, tree.root & ~kLeafRef, sh, hit);
     return hit;
   }
   struct Entry {
@@ -79,17 +61,11 @@ template <bool Simd, std::floating_point T>
   std::uint32_t current = tree.root;
   for (;;) {
     if (current & kLeafRef) {
-      intersect_leaf<Simd>(tree, current & ~kLeafRef, sh, hit);
+      intersect_leaf<Kernels>(tree, current & ~kLeafRef, sh, hit);
     } else {
       const WideNode<T>& node = tree.wide[current];
       alignas(16) T t_near[4];
-      unsigned mask;
-#if MPR_BVH_SSE
-      if constexpr (Simd)
-        mask = box4_sse(node, r, hit.t, t_near);
-      else
-#endif
-        mask = box4_portable(node, r, hit.t, t_near);
+      const unsigned mask = Kernels::box4(node, r, hit.t, t_near);
       if (mask != 0) {
         // Visit the nearest child next; push the others farthest first, so that they pop
         // nearest first (ties: lower lane first, for a result independent of the kernel).

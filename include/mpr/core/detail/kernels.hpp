@@ -1,0 +1,63 @@
+#pragma once
+/// \file
+/// The x86 steps of the core kernels, the only hand-written intrinsics of core/: a kernel is a
+/// plain loop compiled per level through `run_at` (core/simd.hpp), and calls the step of this
+/// header for the levels that have one. A step handles a leading part of the input and returns
+/// how much; the plain loop finishes the rest. Levels without a step return 0.
+
+#include <mpr/core/config.hpp>
+#include <mpr/core/simd.hpp>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace mpr::detail {
+
+#if defined(MPR_SIMD_X86)
+// GCC 12's AVX-512 headers start some intrinsics from _mm512_undefined_*(), which its own
+// -Wmaybe-uninitialized then reports at every use.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+/// `linear_to_srgb8` (core/color.hpp) on the channels [0, m - m % 16) of `in`, 16 at a time
+/// with two AVX-512 gathers from its tables (`bin_start`: 8-bit code at the lower edge of each
+/// of `bins` bins, readable 3 bytes past the end; `threshold[k]`: least value encoded above k);
+/// the same codes bit for bit. NaN and values <= 0 clamp to 0, values >= 1 to the last bin,
+/// whose code is 255. Returns m - m % 16.
+MPR_TARGET_AVX512 inline std::size_t linear_to_srgb8_avx512(const float* in, std::uint8_t* out, std::size_t m,
+                                                            const std::uint8_t* bin_start, const float* threshold,
+                                                            int bins) noexcept {
+  const __m512 zero = _mm512_setzero_ps(), below_one = _mm512_set1_ps(0x1.fffffep-1f);
+  const __m512 scale = _mm512_set1_ps(static_cast<float>(bins));
+  const __m512i byte = _mm512_set1_epi32(0xff), one = _mm512_set1_epi32(1);
+  std::size_t j = 0;
+  for (; j + 16 <= m; j += 16) {
+    // max(x, 0) returns 0 for NaN (the second operand).
+    const __m512 x = _mm512_min_ps(_mm512_max_ps(_mm512_loadu_ps(in + j), zero), below_one);
+    const __m512i bin = _mm512_cvttps_epi32(_mm512_mul_ps(x, scale));
+    const __m512i k = _mm512_and_si512(_mm512_i32gather_epi32(bin, bin_start, 1), byte);
+    const __m512 t = _mm512_i32gather_ps(k, threshold, 4);
+    const __mmask16 up = _mm512_cmp_ps_mask(x, t, _CMP_GE_OQ);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm512_cvtepi32_epi8(_mm512_mask_add_epi32(k, up, k, one)));
+  }
+  return j;
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#endif
+
+/// The step of the sRGB row encoder at level `L` (see `linear_to_srgb8_avx512`): AVX-512 only.
+template <SimdLevel L>
+MPR_ALWAYS_INLINE std::size_t linear_to_srgb8_step(SimdTag<L>, const float* in, std::uint8_t* out, std::size_t m,
+                                                   const std::uint8_t* bin_start, const float* threshold,
+                                                   int bins) noexcept {
+#if defined(MPR_SIMD_X86)
+  if constexpr (L == SimdLevel::avx512) return linear_to_srgb8_avx512(in, out, m, bin_start, threshold, bins);
+#endif
+  (void)in, (void)out, (void)m, (void)bin_start, (void)threshold, (void)bins;
+  return 0;
+}
+
+} // namespace mpr::detail

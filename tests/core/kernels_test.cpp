@@ -1,0 +1,69 @@
+// core/detail/kernels.hpp: the x86 step of the sRGB row encoder, at every level this CPU runs,
+// against the per-channel encoder; and run_at hands each body the level it is compiled for.
+#include "simd_levels.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/detail/kernels.hpp>
+#include <mpr/core/simd.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace {
+
+using mpr::detail::SimdLevel;
+
+// The step at `level`, called from a body compiled for that level.
+std::size_t step_at(SimdLevel level, const float* in, std::uint8_t* out, std::size_t m) {
+  std::size_t done = 0;
+  mpr::detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
+    const auto& t = mpr::detail::srgb_tables;
+    done = mpr::detail::linear_to_srgb8_step(tag, in, out, m, t.bin_start.data(), t.threshold.data(),
+                                             mpr::detail::SrgbTables::kBins);
+  });
+  return done;
+}
+
+} // namespace
+
+TEST_CASE("run_at compiles a body for the level it is asked for and tells it which", "[simd]") {
+  mpr_test::for_each_simd_level([](SimdLevel level) {
+    SimdLevel seen = SimdLevel::portable;
+    int plain = 0;
+    mpr::detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA { seen = decltype(tag)::value; });
+    mpr::detail::run_at(level, [&]() MPR_INLINE_LAMBDA { ++plain; });
+    CHECK(seen == level);
+    CHECK(plain == 1);
+  });
+  CHECK(mpr_test::simd_levels().front() == SimdLevel::portable);
+  CHECK(mpr::detail::simd_level() <= mpr::detail::cpu_simd_level());
+  STATIC_REQUIRE(mpr::detail::SimdTag<SimdLevel::avx2>::value == SimdLevel::avx2);
+}
+
+TEST_CASE("sRGB row step: a multiple of 16 channels at AVX-512, none elsewhere, codes bit for bit", "[color][simd]") {
+  std::vector<float> in;
+  for (int i = 0; i <= 4000; ++i) in.push_back(static_cast<float>(i) / 3000.0f - 0.1f);
+  for (int k = 0; k < 255; ++k) {
+    const float t = mpr::detail::srgb_tables.threshold[static_cast<std::size_t>(k)];
+    in.push_back(std::nextafter(t, 0.0f));
+    in.push_back(t);
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (const float v : {nan, -inf, inf, -0.0f, 1.0f, 2.0f}) in.push_back(v);
+  mpr_test::for_each_simd_level([&](SimdLevel level) {
+    for (const std::size_t m : {std::size_t{0}, std::size_t{15}, std::size_t{16}, std::size_t{47}, in.size()}) {
+      std::vector<std::uint8_t> out(m + 16, 7);
+      const std::size_t done = step_at(level, in.data(), out.data(), m);
+      CHECK(done == (level == SimdLevel::avx512 ? m - m % 16 : 0));
+      int wrong = 0;
+      for (std::size_t j = 0; j < done; ++j) wrong += out[j] != mpr::linear_to_srgb8(in[j]) ? 1 : 0;
+      CHECK(wrong == 0);
+      for (std::size_t j = done; j < m + 16; ++j) CHECK(out[j] == 7); // nothing past what it reports
+    }
+  });
+}
