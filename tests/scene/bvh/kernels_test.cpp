@@ -79,7 +79,7 @@ TEST_CASE("4-wide edge functions: the walk's kernel computes the portable values
     kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     int kx = kz + 1 == 3 ? 0 : kz + 1, ky = kx + 1 == 3 ? 0 : kx + 1;
     if (dir[kz] < 0) std::swap(kx, ky);
-    d::Shear<float> sh;
+    d::Shear<float> sh{};
     REQUIRE(d::Shear<float>::make({eye, dir}, sh));
     REQUIRE((sh.kx == kx && sh.ky == ky && sh.kz == kz));
     const float sx = sh.sx, sy = sh.sy;

@@ -50,7 +50,7 @@ TEMPLATE_TEST_CASE("watertight test of one triangle: parameter, barycentrics, t 
   const auto query = [&](const mpr::Ray<T>& ray, T t_max) {
     mpr::scene::Hit<T> hit;
     hit.t = t_max;
-    d::Shear<T> sh;
+    d::Shear<T> sh{};
     if (!d::Shear<T>::make(ray, sh)) return hit;
     d::watertight_finish(d::edges_portable(block, 0, sh.kx, sh.ky, sh.kz, sh.sx, sh.sy, sh.ox, sh.oy, sh.oz), sh.sz, 7,
                          hit);
@@ -69,7 +69,7 @@ TEMPLATE_TEST_CASE("watertight test of one triangle: parameter, barycentrics, t 
   }
   CHECK(!query({V(1, 2, 5), V(0, 0, 1)}, inf).valid());  // behind the origin
   CHECK(!query({V(3, 3, 5), V(0, 0, -1)}, inf).valid()); // outside the hypotenuse
-  d::Shear<T> sh;
+  d::Shear<T> sh{};
   CHECK(!d::Shear<T>::make({V(0, 0, 0), V(0, 0, 0)}, sh));
   CHECK(!d::Shear<T>::make({V(0, 0, 0), V(0, 0, std::numeric_limits<T>::quiet_NaN())}, sh));
 }
