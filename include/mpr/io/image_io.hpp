@@ -96,8 +96,11 @@ inline void check_jpeg_tables(const std::filesystem::path& path, std::span<const
   }
 }
 
-/// Throws `io_error` naming `path` when `width` x `height` is above `limits.max_image_pixels`.
+/// Throws `io_error` naming `path` when the image is empty or `width` x `height` is above
+/// `limits.max_image_pixels`.
 inline void check_image_pixels(const std::filesystem::path& path, int width, int height, const LoadLimits& limits) {
+  if (width <= 0 || height <= 0) // stb_image accepts e.g. a BMP of height 0 (found by fuzzing)
+    throw io_error(path.string(), "empty image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   if (pixels > limits.max_image_pixels)
     throw io_error(path.string(), "image of " + std::to_string(width) + "x" + std::to_string(height) + " = " +
