@@ -52,3 +52,27 @@ TEST_CASE("image I/O errors name the file and the reason", "[io]") {
   CHECK_THROWS_WITH(mpr::write_png(temp_path("no_such_folder/x.png"), tiny), Catch::Contains("cannot write"));
   CHECK_THROWS_AS(mpr::write_png(temp_path("empty.png"), mpr::Image<mpr::Rgb8>()), mpr::io_error);
 }
+
+TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/regressions/png)", "[io][fuzz]") {
+  const std::filesystem::path dir = std::filesystem::path(MPR_TEST_SOURCE_DIR) / "tests/fuzz/regressions/png";
+  int jpegs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::filesystem::path path = entry.path();
+    INFO(path.string());
+    if (path.extension() == ".jpg") {
+      // Huffman tables of more than 256 codes: stb_image would write past its tables.
+      ++jpegs;
+      CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt JPEG: a Huffman table defines"));
+      CHECK_THROWS_WITH(mpr::read_image_info(path), Catch::Contains("corrupt JPEG"));
+    } else if (path.filename() == "bmp-zero-height.bmp") {
+      CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("empty image ("));
+    } else {
+      try {
+        (void)mpr::read_rgb8(path);
+      } catch (const mpr::io_error& e) {
+        CHECK_THAT(e.what(), Catch::Contains(path.filename().string()));
+      }
+    }
+  }
+  CHECK(jpegs >= 2);
+}

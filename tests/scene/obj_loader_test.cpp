@@ -112,6 +112,8 @@ TEST_CASE("add_obj never reads past what tinyobjloader parsed (issue 18)", "[sce
   expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\v9\n"), 4, "control character 0x0b");
   expect_error(std::string("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n") + std::string(1, '\0') + "f 1 2 77\n", 5,
                "control character 0x00");
+  // Found by fuzzing: a skin-weight joint id beyond int (tinyobjloader converts it to int).
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 7777777777777777777777 0.5\nf 1 2 3\n", 4, "malformed vertex weight");
   // Index overflow of a 64-bit integer is not a valid index either.
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999999\n", 4, "face vertex index");
 }

@@ -10,8 +10,10 @@
 #include <mpr/glc.hpp>
 #include <mpr/surface/planar_surface.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 #include <variant>
@@ -52,7 +54,14 @@ mpr::PlanarSurface<T> base_plane(const Job& job, const Loaded<T>& l, const Frame
   const T h =
       job.plane_size ? static_cast<T>(job.plane_size->second) : w * static_cast<T>(height) / static_cast<T>(width);
   if (!((look - centre).norm() > 0)) throw mpr::argument_error("--look-at", "equals the plane centre");
-  const V forward = (look - centre).normalized();
+  // Far from the origin the plane's own extent drowns in rounding (then every view would fail
+  // with a misleading "parallel" or "degenerate").
+  if (!(std::min(w, h) > std::max(centre.stableNorm(), look.stableNorm()) * std::numeric_limits<T>::epsilon() * 64))
+    throw mpr::argument_error(job.plane_size ? "--plane-size" : "--plane-centre",
+                              std::string("the image plane is too small for its distance from the origin in ") +
+                                  (std::is_same_v<T, float> ? "float; use --double or" : "double;") +
+                                  " move the scene near the origin");
+  const V forward = (look - centre) / (look - centre).stableNorm(); // no overflow for far points
   const V side = forward.cross(up);
   if (!(side.norm() > T(1e-6) * up.norm())) throw mpr::argument_error("--up", "parallel to the viewing direction");
   const V right = side.normalized();

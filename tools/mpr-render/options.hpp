@@ -29,7 +29,8 @@ inline const std::vector<OptionSpec>& options() {
       {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj bunny.obj"},
       {"raster", "CxR",
        "Scene/OBJ: sample a rasterized virtual camera array of C x R cameras (160x120 pixels each, on the image "
-       "plane) instead of ray casting; --interp, --radius and --focal-depth (in front of the plane) apply.",
+       "plane) instead of ray casting; --interp, --radius and --focal-depth (in front of the plane) apply. "
+       "Arrays estimated above 1 GiB (about 6,000 cameras) are refused before rendering.",
        "--raster 16x12 --interp cylinder --radius 0.5"},
       {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).", "--obj-scale 0.01"},
       {"par", "FILE_par.txt", "Sampler: a light field from a Middlebury-style _par.txt calibration.",

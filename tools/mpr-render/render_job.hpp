@@ -8,6 +8,7 @@
 #include "framing.hpp"
 #include "job.hpp"
 #include "loading.hpp"
+#include "preflight.hpp"
 #include "print_camera.hpp"
 #include "samplers.hpp"
 
@@ -40,6 +41,7 @@ using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr:
 template <std::floating_point T>
 void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
   const Loaded<T> l = load<T>(job);
+  preflight(job, l); // every frame checked before the first is rendered
   const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
   const mpr::RenderOptions options{job.threads};

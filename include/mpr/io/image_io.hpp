@@ -58,8 +58,49 @@ struct StbFree {
                                                 : std::string("corrupt or truncated data (stb gave no reason)");
 }
 
-/// Throws `io_error` naming `path` when `width` x `height` is above `limits.max_image_pixels`.
+/// Refuses a JPEG whose Huffman tables (DHT segments) define more than 256 codes: stb_image
+/// (Debian's 2022 version) writes past its tables for those (found by fuzzing, see
+/// docs/reliability.md). Walks the JPEG's marker segments, entropy-coded data included.
+inline void check_jpeg_tables(const std::filesystem::path& path, std::span<const unsigned char> b) {
+  // stb_image takes any number of 0xFF fill bytes before the start-of-image marker D8.
+  std::size_t i = 0;
+  while (i < b.size() && b[i] == 0xFF) ++i;
+  if (i < 1 || i >= b.size() || b[i] != 0xD8) return; // not a JPEG
+  ++i;
+  const auto refuse = [&](const std::string& reason) { throw io_error(path.string(), "corrupt JPEG: " + reason); };
+  const auto at = [&](std::size_t k) -> unsigned { return k < b.size() ? b[k] : 0u; }; // stb reads 0 past the end
+  while (i + 1 < b.size()) {
+    if (b[i] != 0xFF) { // entropy-coded data: skip to the next marker
+      ++i;
+      continue;
+    }
+    const unsigned marker = b[i + 1];
+    if (marker == 0x00 || marker == 0xFF || (marker >= 0xD0 && marker <= 0xD8) || marker == 0x01) {
+      i += marker == 0xFF ? 1 : 2; // stuffed byte, fill byte, restart marker, SOI, TEM
+      continue;
+    }
+    if (marker == 0xD9) return; // EOI
+    if (i + 3 >= b.size()) return;
+    const std::size_t length = (std::size_t(b[i + 2]) << 8) | b[i + 3];
+    if (length < 2) refuse("segment length below 2");
+    const std::size_t end = std::min(b.size(), i + 2 + length);
+    if (marker == 0xC4) { // DHT: tables of 1 + 16 counts + the values, read as stb reads them
+      for (std::size_t t = i + 4; t < i + 2 + length && t < b.size();) {
+        std::size_t codes = 0;
+        for (std::size_t k = 1; k <= 16; ++k) codes += at(t + k); // even past the segment's end
+        if (codes > 256) refuse("a Huffman table defines " + std::to_string(codes) + " codes (at most 256)");
+        t += 17 + codes;
+      }
+    }
+    i = end;
+  }
+}
+
+/// Throws `io_error` naming `path` when the image is empty or `width` x `height` is above
+/// `limits.max_image_pixels`.
 inline void check_image_pixels(const std::filesystem::path& path, int width, int height, const LoadLimits& limits) {
+  if (width <= 0 || height <= 0) // stb_image accepts e.g. a BMP of height 0 (found by fuzzing)
+    throw io_error(path.string(), "empty image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   if (pixels > limits.max_image_pixels)
     throw io_error(path.string(), "image of " + std::to_string(width) + "x" + std::to_string(height) + " = " +
@@ -79,10 +120,11 @@ struct ImageInfo {
 /// file when it is not a regular file within the limits, not an image stb_image can read, or
 /// larger than `limits.max_image_pixels`.
 [[nodiscard]] inline ImageInfo read_image_info(const std::filesystem::path& path, const LoadLimits& limits = {}) {
-  detail::require_regular_file(path, limits.max_image_file_bytes, "image");
+  const std::vector<unsigned char> bytes = detail::read_image_bytes(path, limits);
+  detail::check_jpeg_tables(path, bytes);
   ImageInfo info;
   int channels = 0;
-  if (stbi_info(path.string().c_str(), &info.width, &info.height, &channels) == 0)
+  if (stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &info.width, &info.height, &channels) == 0)
     throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
   detail::check_image_pixels(path, info.width, info.height, limits);
   return info;
@@ -108,6 +150,7 @@ inline void check_set_budget(std::span<const std::filesystem::path> paths, std::
 /// `io_error` with the path and the reason (stb's, or the limit exceeded).
 [[nodiscard]] inline Image<Rgb8> read_rgb8(const std::filesystem::path& path, const LoadLimits& limits = {}) {
   const std::vector<unsigned char> bytes = detail::read_image_bytes(path, limits);
+  detail::check_jpeg_tables(path, bytes);
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (stbi_info_from_memory(bytes.data(), length, &width, &height, &channels) == 0)

@@ -10,7 +10,8 @@
 /// with `io_error(path, reason, line)` naming the line: a `v` line needs 3 finite numbers
 /// (optionally 3 more: a vertex colour), `vt` 2 or 3, `vn` 3; a face `f` needs at least 3
 /// references `v`, `v/vt`, `v//vn` or `v/vt/vn` whose non-zero indices (negative: relative) name
-/// elements defined *before* the face; a `mtllib` must exist next to the OBJ file. Other keywords
+/// elements defined *before* the face; a `mtllib` must exist next to the OBJ file; `vw` (skin
+/// weights, a tinyobjloader extension) needs finite numbers within int's range. Other keywords
 /// (o, g, s, usemtl, l, p, ...) are accepted. A file without faces is an error too. Lines end
 /// at `\n`, `\r\n` or a bare `\r`; control characters other than tab are refused. After parsing,
 /// every index tinyobjloader returned is checked against the arrays it read (`io_error`
@@ -148,6 +149,14 @@ inline bool validate_obj(const std::filesystem::path& path, const std::string& t
           fail("face normal index '" + parts[2] + "' is not a normal defined so far (" + std::to_string(nvn) + ")");
       }
       ++faces;
+    } else if (key == "vw") {
+      // tinyobjloader's skin-weight extension: "vw v joint weight ...". Joint ids become int
+      // inside tinyobjloader, so every number must be finite and within int's range.
+      if (args.empty()) fail("malformed vertex weight: no vertex index");
+      double v;
+      for (const std::string& a : args)
+        if (!parse_number(a, v) || std::abs(v) > 2147483647.0)
+          fail("malformed vertex weight: '" + a + "' is not a finite number within int's range");
     } else if (key == "mtllib") {
       if (args.empty()) fail("mtllib without a file name");
       for (const std::string& a : args) {

@@ -1,0 +1,71 @@
+// mpr-render's checks before rendering (tools/mpr-render/preflight.hpp): a job that cannot
+// finish fails before the first frame reaches the sink.
+#include "mpr-render/render_job.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+namespace {
+
+mpr_cli::Job job_of(std::vector<std::string> args) {
+  std::vector<const char*> argv{"mpr-render"};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
+}
+
+/// Runs the job; returns the error message ("" if none) and counts the frames delivered.
+std::string run_counting(const mpr_cli::Job& job, int& frames) {
+  frames = 0;
+  try {
+    mpr_cli::run(job, [&](int, int, const mpr::Image<mpr::Rgb8>&) { ++frames; });
+  } catch (const mpr::argument_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST_CASE("raster estimate grows with cameras, pixels and triangles", "[tools][preflight]") {
+  const mpr_cli::RasterEstimate a = mpr_cli::estimate_raster(10, 10, 160, 120, 1000);
+  const mpr_cli::RasterEstimate b = mpr_cli::estimate_raster(20, 10, 160, 120, 1000);
+  const mpr_cli::RasterEstimate c = mpr_cli::estimate_raster(10, 10, 160, 120, 100000);
+  CHECK(b.bytes == Approx(2 * a.bytes));
+  CHECK(b.seconds == Approx(2 * a.seconds));
+  CHECK(c.bytes == a.bytes);
+  CHECK(c.seconds > a.seconds);
+  // The default budget refuses 100x100 cameras (1.7 GB measured) and accepts 16x12.
+  const mpr_cli::RasterBudget budget;
+  CHECK(mpr_cli::estimate_raster(100, 100, 160, 120, 20000).bytes > static_cast<double>(budget.max_bytes));
+  CHECK(mpr_cli::estimate_raster(16, 12, 160, 120, 20000).bytes < static_cast<double>(budget.max_bytes));
+}
+
+TEST_CASE("preflight refuses a job before any frame is rendered", "[tools][preflight]") {
+  int frames = -1;
+  // A tilt sweep that becomes impossible at frame 21: nothing is delivered.
+  std::string message = run_counting(
+      job_of({"--view", "G", "--tilt-x", "0:88.9", "--rectify", "plane", "--frames", "24", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --rectify: frame 21 of 24"));
+  CHECK(frames == 0);
+  // The same sweep to 60 degrees renders every frame.
+  CHECK(run_counting(
+            job_of({"--view", "G", "--tilt-x", "0:60", "--rectify", "plane", "--frames", "3", "--size", "16x12"}),
+            frames) == "");
+  CHECK(frames == 3);
+  // Too many virtual cameras: the estimate is in the message.
+  message = run_counting(job_of({"--raster", "100x100", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --raster: 100x100 cameras") && Catch::Contains("MiB (limit 1024 MiB)"));
+  CHECK(frames == 0);
+  // Values outside the scalar type's range name the option (not a library parameter).
+  message = run_counting(job_of({"--raster", "2x2", "--focal-depth", "1e-308", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --focal-depth: 1e-308 is outside the range of float"));
+  message = run_counting(
+      job_of({"--plane-centre", "0,0,1e39", "--look-at", "0,0,0", "--plane-size", "1,1", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --plane-centre: 1e+39 is outside the range of float"));
+  message = run_counting(
+      job_of({"--plane-centre", "0,0,1e30", "--look-at", "0,0,0", "--plane-size", "1,1", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --plane-size: the image plane is too small for its distance"));
+  CHECK(frames == 0);
+}
