@@ -110,6 +110,7 @@ TEST_CASE("real data: Stanford Chess loads as a 7x7 planar array", "[stanford_li
   const std::filesystem::path root = mpr_test::data_dir();
   const auto chess = root / "stanford" / "chess";
   if (root.empty() || !std::filesystem::is_directory(chess)) {
+    // ctest's io_real_data entry reports "skipped" on this message (tests/CMakeLists.txt).
     WARN("real data not found under '" << root.string() << "' (set MPR_DATA_DIR): skipped");
     return;
   }

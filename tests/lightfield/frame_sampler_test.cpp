@@ -286,7 +286,7 @@ struct Oracle {
     if (x < -0.5 || y < -0.5 || x >= img.width() - 0.5 || y >= img.height() - 0.5) return false;
     const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
     const double ax = x - x0, ay = y - y0;
-    const auto px = [&](int i, int j) {
+    const auto px = [&](int i, int j) -> Eigen::Array3d {
       return img(std::clamp(i, 0, img.width() - 1), std::clamp(j, 0, img.height() - 1)).cast<double>();
     };
     const Eigen::Array3d c = (1 - ax) * (1 - ay) * px(x0, y0) + ax * (1 - ay) * px(x0 + 1, y0) +

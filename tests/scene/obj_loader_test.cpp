@@ -60,7 +60,14 @@ TEMPLATE_TEST_CASE("add_obj loads a quad with vertex colours", "[scene][obj]", f
 
 TEST_CASE("add_obj applies MTL colours and diffuse textures", "[scene][obj]") {
   const auto dir = temp_folder();
-  mpr::Image<mpr::Rgb8> texels(2, 2, mpr::Rgb8{255, 0, 0});
+  // Four different texels: top-left A, top-right B, bottom-left C, bottom-right D (image rows
+  // run down; OBJ texture coordinates run up).
+  const mpr::Rgb8 A{255, 0, 0}, B{0, 255, 0}, C{0, 0, 255}, D{255, 255, 0};
+  mpr::Image<mpr::Rgb8> texels(2, 2);
+  texels(0, 0) = A;
+  texels(1, 0) = B;
+  texels(0, 1) = C;
+  texels(1, 1) = D;
   mpr::write_png(dir / "red.png", texels);
   write("mat.mtl", "newmtl green\nKd 0 1 0\nnewmtl textured\nKd 1 1 1\nmap_Kd red.png\n"
                    "newmtl missing\nKd 1 1 1\nmap_Kd nowhere.png\n");
@@ -76,6 +83,21 @@ TEST_CASE("add_obj applies MTL colours and diffuse textures", "[scene][obj]") {
   CHECK(textured == 1);
   CHECK(green == 1);
   CHECK(scene.textures().size() == 1);
+  // Sample the texture through the shading of the textured face (vt (0,0), (1,0), (0,1) on its
+  // vertices, so barycentrics (b1, b2) are its uv), lit by white ambient light only: the colour
+  // is Kd (1) times the texel's linear colour.
+  mpr::scene::Lighting<float> light;
+  light.ambient = mpr::Color(1, 1, 1);
+  light.diffuse = mpr::Color(0, 0, 0);
+  scene.set_lighting(light);
+  const std::size_t face = scene.triangles()[0].texture >= 0 ? 0 : 1;
+  const auto texel_at = [&](float u, float v) { return scene.shade(face, u, v, true); };
+  const auto same = [](const mpr::Color& a, const mpr::Rgb8& b) {
+    return ((a - mpr::to_color(b)).abs() <= 1e-6f).all();
+  };
+  CHECK(same(texel_at(0.25f, 0.25f), C)); // bottom-left
+  CHECK(same(texel_at(0.75f, 0.2f), D));  // bottom-right
+  CHECK(same(texel_at(0.2f, 0.75f), A));  // top-left
 
   const auto missing = write("missing.obj", "mtllib mat.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                                             "usemtl missing\nf 1/1 2/2 3/3\n");

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -189,7 +190,73 @@ TEST_CASE("a rasterized array converges to the ray-cast image as it gets denser"
   const double spacing = plane.width_vector().norm() / 16;
   const double cylinder = psnr_of(16, 12, 160, mpr::CylinderAperture{spacing});
   CHECK(cylinder > 19.0);
-  CHECK(cylinder != dense); // the aperture really blends several cameras
+  CHECK(cylinder != dense); // the aperture changes the image (its weights: the next test)
+}
+
+TEST_CASE("a rasterized cylinder aperture blends the array's frames with weights 1 - d / r", "[scene][rasterized]") {
+  using T = double;
+  const auto scene = std::make_shared<const Scene<T>>(mpr::scene::classroom<T>());
+  const mpr::PinholeCamera<T> view = view_camera<T>(64, 48);
+  const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 5;
+  config.rows = 4;
+  config.width = 64;
+  config.height = 48;
+  config.raster.threads = 2;
+  const double radius = 1.6 * plane.width_vector().norm() / 5; // reaches several cameras
+  const RasterSampler<T, mpr::CylinderAperture> sampler(*scene, plane, config,
+                                                        mpr::Rasterized<mpr::CylinderAperture>{{radius}});
+  const mpr::Image<mpr::Rgb8> image = render_view(view, sampler);
+  const mpr::Renderer renderer(plane, mpr::pinhole_glc(view, plane), sampler);
+  const mpr::Region region(0, 0, 64, 48);
+  const auto& frames = sampler.frames();
+  // The expectation, from the definition: the colour at X = ray.at(focal depth) is the mean of
+  // the frames' bilinear colours at X's projection (in linear colour), weighted by 1 - d / r over
+  // the cameras whose centre lies within r of the ray line and that see X (in front, inside the
+  // image).
+  int blended = 0, compared = 0;
+  for (int y = 1; y < 48; y += 5)
+    for (int x = 2; x < 64; x += 5) {
+      const mpr::Ray<T> ray = renderer.ray_at({x, y}, region);
+      const mpr::Vec3<T> X = ray.at(sampler.focal_depth());
+      const mpr::Vec3<T> dir = ray.direction.normalized();
+      Eigen::Array3d acc = Eigen::Array3d::Zero();
+      double wsum = 0;
+      int used = 0;
+      bool near_edge = false;
+      for (std::size_t k = 0; k < frames.size(); ++k) {
+        const mpr::PinholeCamera<T>& cam = frames.camera(k);
+        const double d = (cam.centre() - ray.origin).cross(dir).norm();
+        near_edge = near_edge || std::abs(d - radius) < 1e-6;
+        if (d >= radius || (cam.R() * X + cam.t()).z() <= 0) continue;
+        const mpr::Vec3<T> q = cam.K() * (cam.R() * X + cam.t());
+        const double px = q.x() / q.z(), py = q.y() / q.z();
+        if (px < -0.5 || py < -0.5 || px >= cam.width() - 0.5 || py >= cam.height() - 0.5) continue;
+        const int x0 = static_cast<int>(std::floor(px)), y0 = static_cast<int>(std::floor(py));
+        const double ax = px - x0, ay = py - y0;
+        const auto texel = [&](int i, int j) -> Eigen::Array3d {
+          const mpr::Rgb8 p = frames.image(k)(std::clamp(i, 0, cam.width() - 1), std::clamp(j, 0, cam.height() - 1));
+          return mpr::to_color(p).cast<double>();
+        };
+        const Eigen::Array3d c = (1 - ax) * (1 - ay) * texel(x0, y0) + ax * (1 - ay) * texel(x0 + 1, y0) +
+                                 (1 - ax) * ay * texel(x0, y0 + 1) + ax * ay * texel(x0 + 1, y0 + 1);
+        acc += (1 - d / radius) * c;
+        wsum += 1 - d / radius;
+        ++used;
+      }
+      if (near_edge || used == 0) continue;
+      blended += used >= 2 ? 1 : 0;
+      ++compared;
+      const mpr::Rgb8 want = mpr::to_rgb8(mpr::Color((acc / wsum).cast<float>()));
+      const mpr::Rgb8 got = image(x, y);
+      INFO("pixel " << x << ", " << y << ": " << used << " cameras, got " << int(got.r) << " " << int(got.g) << " "
+                    << int(got.b) << ", expected " << int(want.r) << " " << int(want.g) << " " << int(want.b));
+      CHECK(std::max({std::abs(got.r - want.r), std::abs(got.g - want.g), std::abs(got.b - want.b)}) <= 1);
+    }
+  INFO(compared << " pixels compared, " << blended << " of them blend two or more cameras");
+  CHECK(compared >= 100);
+  CHECK(blended >= compared / 2);
 }
 
 TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and samples identically",

@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -67,6 +68,52 @@ TEMPLATE_TEST_CASE("rasterizer and ray caster agree on a pinhole view of the cla
   // Depth: pixels where both hit the same surface; edges may hit different surfaces.
   CHECK(depth_ok >= 0.995 * both_hit);
   CHECK(coverage_mismatch <= 0.005 * total);
+}
+
+TEMPLATE_TEST_CASE("the same surface gives bit-identical colours in the rasterizer and the ray caster",
+                   "[scene][agreement]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  // Uniformly coloured, untextured boxes at different depths and a floor: a pixel's colour then
+  // depends only on which surface (triangle normal and colour) it hits, and both renderers call
+  // the one Scene::shade, so wherever they hit the same surface the colours must be equal
+  // exactly, not statistically.
+  mpr::scene::Scene<T> scene;
+  scene.add(mpr::scene::box<T>(V(-1.5, 0, -6), V(-0.5, 1, -5), mpr::Color(0.8f, 0.2f, 0.1f)));
+  scene.add(mpr::scene::box<T>(V(0.2, 0, -8), V(1.4, 1.5, -7), mpr::Color(0.1f, 0.6f, 0.3f)));
+  scene.add(mpr::scene::quad<T>(V(-4, 0, -2), V(8, 0, 0), V(0, 0, -10), mpr::Color(0.5f, 0.5f, 0.7f)));
+  const auto shared = std::make_shared<const mpr::scene::Scene<T>>(std::move(scene));
+  const int w = 80, h = 60;
+  const auto camera = classroom_camera<T>(w, h);
+  const mpr::scene::RasterImage raster = mpr::scene::rasterize(*shared, camera, {.threads = 2});
+  const T plane_depth = T(0.5);
+  const mpr::PlanarSurface<T> plane = camera.image_plane(plane_depth);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(camera, plane);
+  const mpr::Region region(0, 0, w, h);
+  mpr::Image<mpr::Color> cast(w, h);
+  mpr::Image<float> cast_depth(w, h);
+  mpr::Renderer(plane, glc, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>(shared))
+      .render(cast.view(), region, {2});
+  mpr::Renderer(plane, glc, mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>(shared))
+      .render(cast_depth.view(), region, {2});
+  int compared = 0, different = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float zr = raster.depth(x, y);
+      const double zc = static_cast<double>(cast_depth(x, y)) + static_cast<double>(plane_depth);
+      if (std::isinf(zr) || !std::isfinite(zc) || std::abs(zc - zr) > 1e-5 * zr) continue;
+      // Same depth, and away from edges between surfaces (all 4 neighbours show the same raster
+      // colour), where the two may round to different sides.
+      bool interior = x > 0 && y > 0 && x + 1 < w && y + 1 < h;
+      for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}})
+        interior = interior && (raster.color(x + dx, y + dy) == raster.color(x, y)).all();
+      if (!interior) continue;
+      ++compared;
+      different += (raster.color(x, y) == cast(x, y)).all() ? 0 : 1;
+    }
+  INFO(compared << " pixels compared");
+  CHECK(compared >= 400);
+  CHECK(different == 0);
 }
 
 TEST_CASE("stateless policies take no bytes; samplers declare what they compute", "[scene][compile]") {

@@ -195,9 +195,10 @@ TEMPLATE_TEST_CASE("vertex colours interpolate, uniform colours stay exact", "[s
   light.ambient = mpr::Color(1, 1, 1);
   light.diffuse = mpr::Color(0, 0, 0);
   s.set_lighting(light);
-  const mpr::Color c = s.shade(0, T(0.25), T(0.5), true);
-  CHECK(c[0] == Approx(0.25f));
-  CHECK(c[1] == Approx(0.25f));
+  // Weights 0.3, 0.2, 0.5 for p[0], p[1], p[2]: all different, so exchanging any two shows.
+  const mpr::Color c = s.shade(0, T(0.2), T(0.5), true);
+  CHECK(c[0] == Approx(0.3f));
+  CHECK(c[1] == Approx(0.2f));
   CHECK(c[2] == Approx(0.5f));
   CHECK(!s.triangles()[0].uniform_color);
   CHECK(s.triangles()[1].uniform_color);

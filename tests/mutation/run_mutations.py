@@ -1,0 +1,335 @@
+#!/usr/bin/env python3
+"""Mutation run: does the test suite fail when the library is deliberately broken?
+
+Each mutation below is a small source edit (exact text -> replacement, in one or more files).
+For each, the script copies the working tree once into build/mutation/src (build/ and .git
+left out), applies the edit there, rebuilds only the listed targets in build/mutation/src/build/test
+(ccache makes the unchanged translation units cheap) and runs the listed ctest entries, one
+test program at a time in the listed order, stopping at the first that fails (--all: run them
+all); then restores the file. It prints a table: mutation -> caught by (the failing tests) /
+MISSED (every listed test passed).
+
+A mutation whose text is not found, or that does not compile, is reported as such and counts
+as a failure of the run (the list has rotted: fix the pattern). The unmutated copy is built and
+tested first; the run stops if it does not pass.
+
+Not part of CI (it rebuilds test programs once per mutation: about 1 to 3 minutes each on two
+cores). Usage, from the repository root:
+
+    python3 tests/mutation/run_mutations.py              # every mutation
+    python3 tests/mutation/run_mutations.py --list       # names only
+    python3 tests/mutation/run_mutations.py --only NAME [NAME ...] [--jobs 2]
+    python3 tests/mutation/run_mutations.py --tests lightfield   # only that test program
+
+Exit status 0 when every mutation was caught. Python 3.8+, no packages beyond the standard
+library; needs cmake, ctest and a compiler (ccache used when installed).
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+WORK = ROOT / "build" / "mutation"
+SRC = WORK / "src"
+# The scratch build sits at the same place relative to the scratch sources as build/test does to
+# the tree, so that ccache (with base_dir at or above the tree) reuses the tree's objects for
+# every translation unit the mutation leaves unchanged.
+BUILD = SRC / "build" / "test"
+
+# Test program (CMake target) of each ctest entry used below.
+TEST_TARGET = {
+    "core": "mpr_test_core",
+    "selector": "mpr_test_selector",
+    "glc": "mpr_test_glc",
+    "lightfield": "mpr_test_lightfield",
+    "scene": "mpr_test_scene",
+    "io": "mpr_test_io",
+    "tools": "mpr_test_tools",
+    "camera": "mpr_test_camera",
+    "geometry": "mpr_test_geometry",
+    "surface": "mpr_test_surface",
+}
+CLI_TESTS = ["mpr_render_help", "mpr_render_bad_option", "mpr_render_bad_option_message",
+             "mpr_render_bad_value_fails", "mpr_render_impossible_camera", "mpr_render_missing_file",
+             "mpr_render_print_camera"]
+
+
+def M(name, area, edits, tests, why):
+    """A mutation: `edits` is a list of (file, old, new) or (file, old, new, occurrence); without
+    an occurrence every occurrence of `old` is replaced, with one only that (0-based) one."""
+    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why}
+
+
+SA = "include/mpr/lightfield/synthetic_aperture.hpp"
+CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
+KER = "include/mpr/lightfield/detail/kernels.hpp"
+SA_LOOP = "for (const auto& c : table.cameras())"
+
+MUTATIONS = [
+    # --- the eight of issue 19, adapted to the restructured tree ---
+    M("region_u_half_pixel_flipped", "core",
+      [("include/mpr/core/region.hpp", "return (static_cast<T>(column - x) + T(0.5))",
+        "return (static_cast<T>(column - x) - T(0.5))")],
+      ["core", "lightfield", "tools"] + CLI_TESTS, "u of a pixel centre off by one pixel"),
+    M("glc_u_v_swapped", "selector",
+      [("include/mpr/selector/glc_selector.hpp", "const T u = uv.x(), v = uv.y();",
+        "const T u = uv.y(), v = uv.x();")],
+      ["core", "selector", "glc"], "GLC ray field transposed"),
+    M("cylinder_falloff_quadratic_everywhere", "lightfield",
+      [(CYL, "static_cast<float>(T(1) - d / r)", "static_cast<float>(T(1) - (d / r) * (d / r))"),
+       (CYL, "static_cast<float>(T(1) - std::sqrt(d2) / r)", "static_cast<float>(T(1) - d2 / (r * r))"),
+       (KER, "std::max(T(1) - std::sqrt(d2) * inv_radius, T(0))",
+        "std::max(T(1) - d2 * inv_radius * inv_radius, T(0))"),
+       (KER, "_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one)",
+        "_mm256_fnmadd_ps(_mm256_mul_ps(d2, vinv), vinv, one)")],
+      ["lightfield", "tools"], "1 - (d/r)^2 instead of 1 - d/r in every path"),
+    M("par_t_one_field_early", "io",
+      [("include/mpr/io/par_file.hpp", "parse_number(par_file, line, 19 + k)", "parse_number(par_file, line, 18 + k)")],
+      ["io", "tools"], "translation read from the wrong columns"),
+    M("srgb_thresholds_one_step_low", "core",
+      [("include/mpr/core/color.hpp", "      threshold[k] = f;", "      threshold[k] = std::nextafter(f, 0.0f);")],
+      ["core"], "8-bit encoding boundaries one float too low"),
+    M("sa_tile_drops_last_camera", "lightfield",
+      [(SA, SA_LOOP + " {", SA_LOOP + " {\n      if (&c == &table.cameras().back()) continue;")],
+      ["lightfield", "tools"], "tile path of the synthetic aperture forgets the last camera"),
+    M("sa_drops_last_camera_every_path", "lightfield",
+      [(SA, SA_LOOP, SA_LOOP + " if (&c != &table.cameras().back())")],
+      ["lightfield", "tools"], "per-ray, batch and tile paths all forget the last camera"),
+    M("sa_drops_middle_camera_every_path", "lightfield",
+      [(SA, SA_LOOP,
+        SA_LOOP + " if (table.size() < 2 || &c != &table.cameras()[table.size() / 2])")],
+      ["lightfield", "tools"], "every path forgets the middle camera (invisible with symmetric fixtures)"),
+    # --- more, across the library ---
+    M("nearest_tie_to_highest_index", "lightfield",
+      [("include/mpr/lightfield/camera_index.hpp", "(d2 == best && i < best_index)", "(d2 == best && i > best_index)")],
+      ["lightfield"], "documented tie rule (lowest index) broken"),
+    M("sa_background_ignored", "lightfield",
+      [("include/mpr/lightfield/frame_table.hpp", "if (!(weight > 0)) return config_.background;",
+        "if (!(weight > 0)) return Color::Zero();")],
+      ["lightfield"], "points nobody sees are black instead of the configured background"),
+    M("glc_type_names_swapped", "glc",
+      [("include/mpr/glc/classify.hpp", 'return "pencil";', 'return "pushbroom";')],
+      ["glc"], "to_string of one GLC type wrong"),
+    M("scene_barycentric_weights_swapped", "scene",
+      [("include/mpr/scene/scene.hpp",
+        "const float w1 = static_cast<float>(b1), w2 = static_cast<float>(b2), w0 = 1.0f - w1 - w2;",
+        "const float w2 = static_cast<float>(b1), w1 = static_cast<float>(b2), w0 = 1.0f - w1 - w2;")],
+      ["scene"], "vertex colours/uv of p[1] and p[2] exchanged"),
+    M("texture_v_not_flipped", "scene",
+      [("include/mpr/scene/texture.hpp", "image_.height() - 1 - index(v, height_, image_.height())",
+        "index(v, height_, image_.height())")],
+      ["scene"], "texture rows read upside down"),
+    M("ssim_constant_c2_wrong", "core",
+      [("include/mpr/core/image_metrics.hpp", "c2 = (0.03 * 255) * (0.03 * 255)", "c2 = (0.3 * 255) * (0.3 * 255)")],
+      ["core"], "SSIM stabilising constant K2 = 0.3 instead of 0.03"),
+    M("bvh_keeps_farther_hit", "scene",
+      [("include/mpr/scene/bvh.hpp", "if (!(t < hit.t)) return;\n    hit.t = t;",
+        "if (!(t < hit.t)) return;\n    if (hit.valid()) return;\n    hit.t = t;")],
+      ["scene"], "the first triangle found is kept, not the nearest"),
+    M("cli_size_width_height_swapped", "tools",
+      [("tools/mpr-render/cli_args.hpp",
+        "return {parse_int(parts[0], option, 1, 16384), parse_int(parts[1], option, 1, 16384)};",
+        "return {parse_int(parts[1], option, 1, 16384), parse_int(parts[0], option, 1, 16384)};")],
+      ["tools"] + CLI_TESTS, "--size WxH read as HxW"),
+    M("renderer_tile_u_one_column_late", "core",
+      [("include/mpr/core/renderer.hpp",
+        "u_of_column[static_cast<std::size_t>(x - x_begin)] = region.column_to_u<scalar_type>(x);",
+        "u_of_column[static_cast<std::size_t>(x - x_begin)] = region.column_to_u<scalar_type>(x + 1);")],
+      ["core", "lightfield"], "the tile path shifts every ray by one column"),
+    M("bilinear_convergence_sign", "glc",
+      [("include/mpr/glc/cameras.hpp", "K << convergence, -twist, twist, convergence;",
+        "K << -convergence, -twist, twist, -convergence;")],
+      ["glc"], "bilinear camera spreads the other way (still classified bilinear)"),
+    M("twisted_orthographic_axes_swapped", "glc",
+      [("include/mpr/glc/cameras.hpp", "K = twist * w * w_perp.transpose();", "K = twist * w_perp * w.transpose();")],
+      ["glc"], "twisted orthographic rays turn about the wrong axis (still classified twisted orthographic)"),
+    M("tool_reference_camera_first", "tools",
+      [("tools/mpr-render/render_job.hpp", ": l.frames->size() / 2);", ": 0);")],
+      ["tools"], "mpr-render views a _par.txt light field from the first camera, not the middle one"),
+]
+
+
+def run(cmd, cwd, log, timeout=None):
+    with open(log, "a") as out:
+        out.write("\n$ " + " ".join(map(str, cmd)) + "\n")
+        out.flush()
+        try:
+            return subprocess.run(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            out.write("timed out\n")
+            return 124
+
+
+def copy_tree():
+    """Copies the working tree (without .git and build/) over SRC, keeping SRC/build."""
+    if SRC.exists():
+        for entry in SRC.iterdir():
+            if entry.name == "build":
+                continue
+            if entry.is_dir() and not entry.is_symlink():
+                shutil.rmtree(entry)
+            else:
+                entry.unlink()
+    ignore = shutil.ignore_patterns(".git", "build")
+    shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True)
+
+
+def configure(log):
+    env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"] if shutil.which("ccache") else []
+    # The same spelling as the tree's default (a compile definition: part of ccache's hash).
+    data = os.environ.get("MPR_DATA_DIR", str(ROOT) + "/../shared/data")
+    return run(["cmake", "-S", SRC, "-B", BUILD, "-DCMAKE_BUILD_TYPE=Release", "-DMPR_DATA_DIR=" + data,
+                "-DMPR_BUILD_EXAMPLES=OFF", "-DMPR_BUILD_BENCHMARKS=OFF", "-DMPR_INSTALL=OFF"] + env_launcher,
+               ROOT, log)
+
+
+def targets_of(tests):
+    out = []
+    for t in tests:
+        tgt = TEST_TARGET.get(t, "mpr-render" if t.startswith("mpr_render") else None)
+        if tgt is None:
+            raise SystemExit("no target known for test " + t)
+        if tgt not in out:
+            out.append(tgt)
+        if t == "tools" and "mpr-render" not in out:
+            out.append("mpr-render")
+    return out
+
+
+def groups_of(tests):
+    """The tests in order, grouped by the target that builds them (one build per group)."""
+    groups = []
+    for t in tests:
+        tgt = tuple(targets_of([t]))
+        if groups and groups[-1][0] == tgt:
+            groups[-1][1].append(t)
+        else:
+            groups.append((tgt, [t]))
+    return groups
+
+
+def build_and_test(tests, jobs, log, stop_at_first=True):
+    """(build ok, failing tests). Builds and runs one group of tests at a time, in the listed
+    order; with stop_at_first, stops at the first group with a failing test."""
+    failed = []
+    for targets, group in groups_of(tests):
+        if run(["cmake", "--build", BUILD, "-j", str(jobs), "--target"] + list(targets), ROOT, log) != 0:
+            return False, failed
+        regex = "^(" + "|".join(group) + ")$"
+        fail_log = BUILD / "Testing" / "Temporary" / "LastTestsFailed.log"
+        if fail_log.exists():
+            fail_log.unlink()
+        rc = run(["ctest", "--test-dir", BUILD, "-R", regex, "-j", str(jobs), "--timeout", "300"], ROOT, log)
+        now = []
+        if fail_log.exists():
+            now = [line.split(":", 1)[1].strip() for line in fail_log.read_text().splitlines() if ":" in line]
+        if rc != 0 and not now:
+            now = ["ctest exit %d" % rc]
+        failed += now
+        if failed and stop_at_first:
+            break
+    return True, failed
+
+
+def apply(mutation):
+    """Applies the edits in SRC; returns {path: original text} or raises ValueError."""
+    originals = {}
+    for edit in mutation["edits"]:
+        path, old, new = edit[0], edit[1], edit[2]
+        occurrence = edit[3] if len(edit) > 3 else None
+        p = SRC / path
+        text = p.read_text()
+        originals.setdefault(p, text)
+        count = text.count(old)
+        if count == 0:
+            raise ValueError("pattern not found in " + path + ": " + old)
+        if occurrence is None:
+            text = text.replace(old, new)
+        else:
+            if occurrence >= count:
+                raise ValueError("occurrence %d of %d in %s" % (occurrence, count, path))
+            at = -1
+            for _ in range(occurrence + 1):
+                at = text.index(old, at + 1)
+            text = text[:at] + new + text[at + len(old):]
+        p.write_text(text)
+    return originals
+
+
+def restore(originals):
+    for p, text in originals.items():
+        p.write_text(text)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--only", nargs="*", help="names of the mutations to run")
+    parser.add_argument("--list", action="store_true", help="list the mutations and exit")
+    parser.add_argument("--jobs", type=int, default=1, help="parallel build and test jobs (default 1)")
+    parser.add_argument("--all", action="store_true",
+                        help="run every listed test of a mutation (default: stop at the first test program that fails)")
+    parser.add_argument("--tests", nargs="*", help="run only these of each mutation's ctest entries")
+    parser.add_argument("--no-baseline", action="store_true", help="skip the unmutated build and test")
+    args = parser.parse_args()
+    chosen = [m for m in MUTATIONS if not args.only or m["name"] in args.only]
+    if args.tests:
+        chosen = [dict(m, tests=[t for t in m["tests"] if t in args.tests]) for m in chosen]
+        chosen = [m for m in chosen if m["tests"]]
+    if args.list:
+        for m in MUTATIONS:
+            print("%-40s %-10s %s" % (m["name"], m["area"], m["why"]))
+        return 0
+    if args.only and len(chosen) != len(args.only):
+        raise SystemExit("unknown mutation among " + " ".join(args.only))
+    WORK.mkdir(parents=True, exist_ok=True)
+    log = WORK / "log.txt"
+    log.write_text("")
+    print("copying the tree to", SRC, flush=True)
+    copy_tree()
+    if configure(log) != 0:
+        raise SystemExit("configure failed; see " + str(log))
+    if not args.no_baseline:
+        all_tests = sorted({t for m in chosen for t in m["tests"]})
+        print("baseline: building and testing the unmutated copy ...", flush=True)
+        ok, failed = build_and_test(all_tests, args.jobs, log, stop_at_first=False)
+        if not ok or failed:
+            raise SystemExit("baseline does not pass (%s); see %s" % ("build" if not ok else ", ".join(failed), log))
+    rows = []
+    for m in chosen:
+        start = time.time()
+        print("%-40s ..." % m["name"], end=" ", flush=True)
+        try:
+            originals = apply(m)
+        except ValueError as e:
+            rows.append((m, "PATTERN NOT FOUND: %s" % e, False, 0))
+            print("pattern not found", flush=True)
+            continue
+        try:
+            ok, failed = build_and_test(m["tests"], args.jobs, log, stop_at_first=not args.all)
+        finally:
+            restore(originals)
+        seconds = time.time() - start
+        if not ok:
+            rows.append((m, "DOES NOT COMPILE", False, seconds))
+        elif failed:
+            rows.append((m, "caught by " + ", ".join(failed), True, seconds))
+        else:
+            rows.append((m, "MISSED (ran " + ", ".join(m["tests"]) + ")", False, seconds))
+        print(rows[-1][1], "(%.0f s)" % seconds, flush=True)
+    print()
+    print("| mutation | area | result | s |")
+    print("|---|---|---|---|")
+    for m, result, _, seconds in rows:
+        print("| `%s` | %s | %s | %.0f |" % (m["name"], m["area"], result, seconds))
+    caught = sum(1 for r in rows if r[2])
+    print("\n%d of %d mutations caught (log: %s)" % (caught, len(rows), log.relative_to(ROOT)))
+    return 0 if caught == len(rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
