@@ -42,7 +42,7 @@ TEMPLATE_TEST_CASE("ArrayPlane::fit on a 3 x 2 grid", "[lightfield][array_plane]
       CHECK(std::sqrt(du * du + dv * dv) == Approx((centres[i] - centres[j]).norm()).margin(1e-5));
     }
   // hit(): a ray from (0.5, 0, 0.5) along (0, 2, 0) crosses y = 4 at (0.5, 4, 0.5), cosine 1.
-  V x;
+  V x = V::Zero();
   T cosine = 0;
   REQUIRE(plane->hit(mpr::Ray<T>{V(T(0.5), 0, T(0.5)), V(0, 2, 0)}, x, cosine));
   CHECK((x - V(T(0.5), 4, T(0.5))).norm() < T(1e-5));
