@@ -276,7 +276,8 @@ def main():
     parser.add_argument("--tests", nargs="*", help="run only these of each mutation's ctest entries")
     parser.add_argument("--no-baseline", action="store_true", help="skip the unmutated build and test")
     args = parser.parse_args()
-    chosen = [m for m in MUTATIONS if not args.only or m["name"] in args.only]
+    by_name = {m["name"]: m for m in MUTATIONS}
+    chosen = [by_name[n] for n in args.only if n in by_name] if args.only else list(MUTATIONS)  # --only: that order
     if args.tests:
         chosen = [dict(m, tests=[t for t in m["tests"] if t in args.tests]) for m in chosen]
         chosen = [m for m in chosen if m["tests"]]
