@@ -59,7 +59,7 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const std::filesystem::path path = entry.path();
     INFO(path.string());
-    if (path.extension() == ".jpg") {
+    if (path.filename().string().rfind("stb-jpeg-dht", 0) == 0) {
       // Huffman tables of more than 256 codes: stb_image would write past its tables.
       ++jpegs;
       CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt JPEG: a Huffman table defines"));
