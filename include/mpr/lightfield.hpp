@@ -11,6 +11,7 @@
 #include <mpr/io/par_file.hpp>
 #include <mpr/io/stanford_light_field.hpp>
 #include <mpr/lightfield/array_plane.hpp>
+#include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/camera_index.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>

@@ -43,7 +43,9 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
+  bool interpolation_given = false; ///< else: synthetic for refocusing, cylinder for other views
   Track radius{10};                 ///< cylinder aperture radius
+  bool radius_given = false;        ///< else: the array's camera spacing (light fields, --raster)
   std::optional<Track> focal_depth; ///< light fields: depth of the focal (image) plane
   double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
   double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
@@ -143,6 +145,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (!(job.obj_scale > 0)) throw mpr::argument_error("--obj-scale", "must be positive");
   }
   if (const auto v = args.get("interp")) {
+    job.interpolation_given = true;
     if (*v == "nearest")
       job.interpolation = Interpolation::nearest;
     else if (*v == "synthetic")
@@ -153,7 +156,10 @@ inline Job make_job(const ParsedArgs& args) {
       throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic or cylinder");
   }
   if (const auto v = args.get("radius")) {
-    if (job.interpolation != Interpolation::cylinder) throw mpr::argument_error("--radius", "needs --interp cylinder");
+    if (job.interpolation_given && job.interpolation != Interpolation::cylinder)
+      throw mpr::argument_error("--radius", "needs --interp cylinder");
+    job.interpolation = Interpolation::cylinder;
+    job.radius_given = true;
     job.radius = parse_track(*v, "--radius");
     for (const Track::Key& k : job.radius.keys())
       if (!(k.value > 0)) throw mpr::argument_error("--radius", "must be positive");

@@ -6,6 +6,7 @@
 
 #include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/lightfield.hpp>
+#include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/scene.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
@@ -25,7 +26,8 @@ struct Loaded {
   std::shared_ptr<const mpr::scene::Scene<T>> scene;
   std::optional<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>> scene_sampler;
   std::shared_ptr<const mpr::CameraFrameSet<T>> frames;
-  std::optional<mpr::PinholeCamera<T>> reference; ///< light fields: the camera the views start from
+  std::optional<mpr::PinholeCamera<T>> reference;  ///< light fields: the camera the views start from
+  std::optional<mpr::ArrayFootprint<T>> footprint; ///< light fields: where the cameras lie, seen from `reference`
   double default_focal_depth = 1;
   // Scene defaults (world units).
   mpr::Vec3<double> plane_centre{0, 3.1, 3}, look_at{0, 1.6, -8}, scene_centre{0, 1.6, -8};
@@ -118,6 +120,7 @@ Loaded<T> load(const Job& job) {
       l.reference = detail::array_centre_camera(*l.frames);
       l.default_focal_depth = job.reference_depth;
     }
+    l.footprint = mpr::array_footprint(*l.frames, *l.reference);
   }
   return l;
 }

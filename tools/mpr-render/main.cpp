@@ -64,7 +64,7 @@ int main(int argc, char** argv) try {
         else
           std::printf("wrote %s\n", path.string().c_str());
       },
-      &std::cout);
+      &std::cout, &std::cerr);
   if (animation) {
     std::printf("wrote %s ... %s\n", mpr_cli::frame_path(job.output, 0).string().c_str(),
                 mpr_cli::frame_path(job.output, job.frames - 1).string().c_str());

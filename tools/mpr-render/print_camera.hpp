@@ -4,17 +4,21 @@
 #include "framing.hpp"
 
 #include <mpr/glc.hpp>
+#include <mpr/lightfield/array_view.hpp>
 
 #include <cstdio>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <variant>
 
 namespace mpr_cli {
 
-/// Prints the classification of a planar GLC view.
+/// Prints the classification of a planar GLC view and, on a light field (`array`), how its rays
+/// cover the camera array.
 template <std::floating_point T>
-void print_camera(std::ostream& out, const std::string& spec, const CameraVariant<T>& camera) {
+void print_camera(std::ostream& out, const std::string& spec, const CameraVariant<T>& camera,
+                  const std::optional<mpr::ArrayFootprint<T>>& array = std::nullopt) {
   const auto v3 = [](const mpr::Vec3<T>& v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", static_cast<double>(v.x()), static_cast<double>(v.y()),
@@ -38,6 +42,17 @@ void print_camera(std::ostream& out, const std::string& spec, const CameraVarian
         << "\n";
   if (c.type == mpr::glc::Type::pinhole) out << "  centre: " << v3(c.centre) << ", depth " << c.depths[0] << "\n";
   if (c.type == mpr::glc::Type::orthographic) out << "  direction: " << v3(c.direction) << "\n";
+  if (array) {
+    const mpr::ArrayCoverage cov =
+        std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, *array); }, camera);
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "  array coverage: %zu cameras over %.4g x %.4g, spacing %.4g; the rays cross %.0f%% x %.0f%% of "
+                  "it, %.1f%% off it\n",
+                  array->cameras, static_cast<double>(2 * array->half_u), static_cast<double>(2 * array->half_v),
+                  static_cast<double>(array->spacing), 100 * cov.span_u, 100 * cov.span_v, 100 * cov.outside);
+    out << buf;
+  }
 }
 
 } // namespace mpr_cli

@@ -7,6 +7,7 @@
 
 #include "framing.hpp"
 #include "job.hpp"
+#include "light_field_views.hpp"
 #include "loading.hpp"
 #include "preflight.hpp"
 #include "print_camera.hpp"
@@ -39,9 +40,11 @@ void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sample
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
 
 template <std::floating_point T>
-void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
-  const Loaded<T> l = load<T>(job);
+void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings) {
+  const Loaded<T> l = load<T>(given);
+  const Job job = with_array_defaults(given, l);
   preflight(job, l); // every frame checked before the first is rendered
+  if (warnings != nullptr) warn_job(*warnings, job, l);
   const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
   const mpr::RenderOptions options{job.threads};
@@ -51,7 +54,8 @@ void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
     mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
     for (std::size_t k = 0; k < job.views.size(); ++k) {
       const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
-      if (info != nullptr && job.print_camera && f == 0) print_camera(*info, job.views[k], camera);
+      if (info != nullptr && job.print_camera && f == 0) print_camera(*info, job.views[k], camera, l.footprint);
+      if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
       const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
       render_view(camera, sampler, image.view(), mpr::Region(col * w, row * h, w, h), options);
     }
@@ -59,12 +63,13 @@ void run_typed(const Job& job, const FrameSink& sink, std::ostream* info) {
   }
 }
 
-/// Runs the job: every frame goes to `sink`; --print-camera text to `info` (when not null).
-inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr) {
+/// Runs the job: every frame goes to `sink`; --print-camera text to `info` and warnings about
+/// the views (light_field_views.hpp) to `warnings` (each when not null).
+inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr) {
   if (job.use_double)
-    run_typed<double>(job, sink, info);
+    run_typed<double>(job, sink, info, warnings);
   else
-    run_typed<float>(job, sink, info);
+    run_typed<float>(job, sink, info, warnings);
 }
 
 /// All frames in memory (tests).

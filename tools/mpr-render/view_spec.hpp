@@ -78,7 +78,11 @@ mpr::GlcSelector<T> make_selector(const std::string& spec, const std::string& op
       }
       if (job.scene_centre) centre = job.scene_centre->template cast<T>();
       if (job.scene_scale) scale = static_cast<T>(*job.scene_scale);
-      return mpr::glc::gallery_view(letter, plane, centre, scale);
+      const mpr::GlcSelector<T> view = mpr::glc::gallery_view(letter, plane, centre, scale);
+      // A light field: the same view in two-plane terms, its rays crossing the camera plane inside
+      // the array (lightfield/array_view.hpp); the reference view itself stays the reference camera.
+      if (l.footprint) return mpr::fit_to_array(plane, view, *l.footprint);
+      return view;
     }
     const std::vector<std::string> parts = split(spec, ':');
     const std::string type = detail::normalized_name(parts[0]);

@@ -1,0 +1,177 @@
+// mpr-render's views of camera arrays (tools/mpr-render/light_field_views.hpp): the nine gallery
+// letters on a light field and on a rasterized array render nine different images whose rays
+// stay inside the array; the defaults (synthetic aperture for refocusing, a cylinder of the
+// camera spacing for other views); the warnings for rays off the array and for a ray-independent
+// interpolation under non-pinhole views.
+#include "io/light_field_test_files.hpp"
+#include "mpr-render/render_job.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <unistd.h>
+
+namespace {
+
+using Image = mpr::Image<mpr::Rgb8>;
+
+mpr_cli::Job job_of(std::vector<std::string> args) {
+  std::vector<const char*> argv{"mpr-render"};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
+}
+
+/// Renders a job; --print-camera text and warnings are returned through the streams.
+Image render(const mpr_cli::Job& job, std::ostream& info, std::ostream& warnings) {
+  std::vector<Image> frames;
+  mpr_cli::run(
+      job, [&](int, int, const Image& image) { frames.push_back(image); }, &info, &warnings);
+  REQUIRE(frames.size() == 1);
+  return frames[0];
+}
+
+/// Pixels that differ between tiles a and b of a 3 x 3 contact sheet.
+int tile_difference(const Image& sheet, int a, int b) {
+  const int w = sheet.width() / 3, h = sheet.height() / 3;
+  int n = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      n += sheet((a % 3) * w + x, (a / 3) * h + y) == sheet((b % 3) * w + x, (b / 3) * h + y) ? 0 : 1;
+  return n;
+}
+
+/// A 5 x 5 Stanford-style folder of smooth random images (positions 5 units apart).
+std::filesystem::path stanford_folder() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("mpr_lf_views_test_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::mt19937 rng(5);
+  for (int r = 0; r < 5; ++r)
+    for (int c = 0; c < 5; ++c) {
+      Image img(40, 30);
+      const double fx = 0.2 + 0.05 * static_cast<double>(rng() % 7), fy = 0.25 + 0.04 * static_cast<double>(rng() % 5);
+      for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+          const auto v = [&](double phase) {
+            return static_cast<std::uint8_t>(127.5 + 120 * std::sin(fx * x + fy * y + phase + 0.7 * (r * 5 + c)));
+          };
+          img(x, y) = mpr::Rgb8{v(0), v(2), v(4)};
+        }
+      char name[96];
+      std::snprintf(name, sizeof name, "out_%02d_%02d_%.1f_%.1f.png", r, c, -5.0 * r, 5.0 * c);
+      mpr::write_png(dir / name, img);
+    }
+  return dir;
+}
+
+const std::string nine = "A,B,C,D,E,F,G,H,I";
+
+} // namespace
+
+TEST_CASE("light-field views: the nine gallery letters differ and stay inside the array", "[tools][lf_views]") {
+  const std::filesystem::path dir = stanford_folder();
+  const mpr_cli::Job job =
+      job_of({"--stanford", dir.string(), "--layout", "3x3", "--views", nine, "--size", "40x30", "--print-camera"});
+  std::ostringstream info, warnings;
+  const Image sheet = render(job, info, warnings);
+  for (int a = 0; a < 9; ++a)
+    for (int b = a + 1; b < 9; ++b) {
+      INFO("views " << static_cast<char>('A' + a) << " and " << static_cast<char>('A' + b));
+      CHECK(tile_difference(sheet, a, b) > 40);
+    }
+  // Every view's coverage line says no ray leaves the array, and no warning says otherwise.
+  const std::string text = info.str();
+  const std::regex coverage("array coverage: 25 cameras over 20 x 20, spacing 5; .* 0\\.0% off it");
+  CHECK(std::distance(std::sregex_iterator(text.begin(), text.end(), coverage), std::sregex_iterator()) == 9);
+  CHECK(warnings.str().find("off the array") == std::string::npos);
+  CHECK(warnings.str().find("ignores the ray") == std::string::npos);
+  // The types the array cannot hold are named where they change.
+  CHECK(warnings.str().find("view B (orthographic) is a pinhole on this array") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("light-field views: defaults per use and the warnings", "[tools][lf_views]") {
+  const std::filesystem::path dir = stanford_folder();
+  {
+    // Refocusing keeps the synthetic aperture; other views get a cylinder of the camera spacing.
+    const mpr_cli::Job refocus = job_of({"--stanford", dir.string(), "--size", "40x30"});
+    const mpr_cli::Loaded<float> l = mpr_cli::load<float>(refocus);
+    CHECK(mpr_cli::with_array_defaults(refocus, l).interpolation == mpr_cli::Interpolation::synthetic);
+    const mpr_cli::Job g = job_of({"--stanford", dir.string(), "--view", "G"});
+    const mpr_cli::Job resolved = mpr_cli::with_array_defaults(g, l);
+    CHECK(resolved.interpolation == mpr_cli::Interpolation::cylinder);
+    CHECK(resolved.radius.at(0) == Approx(5).epsilon(1e-5));
+    // --radius alone means the cylinder, with that radius; --interp is kept as given.
+    const mpr_cli::Job r = mpr_cli::with_array_defaults(job_of({"--stanford", dir.string(), "--radius", "3"}), l);
+    CHECK(r.interpolation == mpr_cli::Interpolation::cylinder);
+    CHECK(r.radius.at(0) == 3);
+    CHECK(mpr_cli::with_array_defaults(job_of({"--stanford", dir.string(), "--view", "G", "--interp", "nearest"}), l)
+              .interpolation == mpr_cli::Interpolation::nearest);
+  }
+  {
+    // A ray-independent interpolation: all views alike, and the user is told so.
+    std::ostringstream info, warnings;
+    const Image sheet = render(job_of({"--stanford", dir.string(), "--layout", "3x3", "--views", nine, "--size",
+                                       "40x30", "--interp", "synthetic"}),
+                               info, warnings);
+    CHECK(tile_difference(sheet, 0, 6) == 0);
+    CHECK(warnings.str().find("--interp synthetic averages every camera") != std::string::npos);
+  }
+  {
+    // An explicit cross-slit far outside the 20 x 20 array: the share of rays off it.
+    std::ostringstream info, warnings;
+    (void)render(job_of({"--stanford", dir.string(), "--view", "cross_slit:0,0,-500:0,1,0:0,0,-2000:1,0,0", "--size",
+                         "40x30", "--interp", "nearest"}),
+                 info, warnings);
+    const std::regex off("warning: view cross_slit:[^ ]*: ([0-9]+)% of its rays cross the camera plane off the array");
+    std::smatch m;
+    const std::string w = warnings.str();
+    REQUIRE(std::regex_search(w, m, off));
+    CHECK(std::atoi(m[1].str().c_str()) > 50);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("light-field views: rasterized classroom array, nine different letters", "[tools][lf_views]") {
+  const mpr_cli::Job job = job_of({"--raster", "4x3", "--layout", "3x3", "--views", nine, "--size", "32x24"});
+  const mpr_cli::Loaded<float> l = mpr_cli::load<float>(job);
+  const mpr_cli::Job resolved = mpr_cli::with_array_defaults(job, l);
+  CHECK(resolved.interpolation == mpr_cli::Interpolation::cylinder);
+  CHECK(resolved.radius.at(0) == Approx(2).epsilon(1e-5)); // the 8 m plane over 4 columns
+  std::ostringstream info, warnings;
+  const Image sheet = render(job, info, warnings);
+  for (int a = 0; a < 9; ++a)
+    for (int b = a + 1; b < 9; ++b) {
+      INFO("views " << static_cast<char>('A' + a) << " and " << static_cast<char>('A' + b));
+      CHECK(tile_difference(sheet, a, b) > 20);
+    }
+  CHECK(warnings.str().empty());
+}
+
+TEST_CASE("light-field views: Stanford Chess, nine letters inside the array", "[tools][lf_views][real_data]") {
+  const std::filesystem::path root = mpr_test::data_dir();
+  const std::filesystem::path chess = root / "stanford" / "chess";
+  if (root.empty() || !std::filesystem::is_directory(chess)) {
+    // ctest's tools_real_data entry reports "skipped" on this message (tests/CMakeLists.txt).
+    WARN("real data not found under '" << root.string() << "' (set MPR_DATA_DIR): skipped");
+    return;
+  }
+  std::ostringstream info, warnings;
+  const Image sheet = render(
+      job_of({"--stanford", chess.string(), "--layout", "3x3", "--views", nine, "--size", "140x80", "--print-camera"}),
+      info, warnings);
+  for (int a = 0; a < 9; ++a)
+    for (int b = a + 1; b < 9; ++b) {
+      INFO("views " << static_cast<char>('A' + a) << " and " << static_cast<char>('A' + b));
+      CHECK(tile_difference(sheet, a, b) > 140);
+    }
+  const std::string text = info.str();
+  const std::regex coverage("array coverage: 49 cameras .* 0\\.0% off it");
+  CHECK(std::distance(std::sregex_iterator(text.begin(), text.end(), coverage), std::sregex_iterator()) == 9);
+  CHECK(warnings.str().find("off the array") == std::string::npos);
+}

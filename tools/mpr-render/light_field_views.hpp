@@ -1,0 +1,125 @@
+#pragma once
+// mpr-render's views of camera arrays (light fields and --raster): the interpolation and radius
+// a view gets when none is given, and the warnings a view earns before it is rendered -- rays
+// that miss the array, a ray-independent interpolation under a non-pinhole view, a gallery view
+// whose type the array cannot hold (lightfield/array_view.hpp, docs/mpr-render.md).
+
+#include "framing.hpp"
+#include "job.hpp"
+#include "loading.hpp"
+#include "view_spec.hpp"
+
+#include <mpr/glc.hpp>
+#include <mpr/lightfield/array_view.hpp>
+
+#include <cstdio>
+#include <ostream>
+#include <string>
+#include <variant>
+
+namespace mpr_cli {
+
+namespace detail {
+
+/// True when a view spec is the light field's own reference view (refocusing).
+inline bool refocusing_view(const std::string& spec) { return spec == "default"; }
+
+inline bool any_other_view(const Job& job) {
+  for (const std::string& v : job.views)
+    if (!refocusing_view(v)) return true;
+  return job.morph_to.has_value() && !refocusing_view(*job.morph_to);
+}
+
+template <std::floating_point T>
+const mpr::PlanarSurface<T>& plane_of(const CameraVariant<T>& camera) {
+  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).surface
+                                                         : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
+}
+
+template <std::floating_point T>
+const mpr::GlcSelector<T>& glc_of(const CameraVariant<T>& camera) {
+  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).selector
+                                                         : std::get<mpr::glc::Rectified<T>>(camera).selector.selector();
+}
+
+} // namespace detail
+
+/// The job with the array defaults filled in: without --interp, the reference view (refocusing)
+/// gets the synthetic aperture and any other view a cylinder aperture (the nearest camera on a
+/// ring or unstructured set); without --radius, the
+/// cylinder's radius is the camera spacing (a light field's median nearest-neighbour distance,
+/// or the --raster grid's cell width), so a ray blends the few cameras around its crossing.
+template <std::floating_point T>
+Job with_array_defaults(const Job& job, const Loaded<T>& l) {
+  const bool array = l.frames != nullptr || job.raster.has_value();
+  if (!array) return job;
+  Job out = job;
+  // A ring or unstructured set is sparse in angle (Middlebury's sparse rings: 22.5 degrees between
+  // cameras): blending neighbours at one focal plane ghosts, the nearest camera shows seams instead.
+  if (!job.interpolation_given && !job.radius_given && detail::any_other_view(job))
+    out.interpolation = l.footprint && !l.footprint->planar ? Interpolation::nearest : Interpolation::cylinder;
+  if (out.interpolation == Interpolation::cylinder && !job.radius_given) {
+    double spacing = 0;
+    if (l.footprint) {
+      spacing = static_cast<double>(l.footprint->spacing);
+    } else if (job.raster) {
+      const auto [w, h] = view_size(job, l);
+      const FrameParams p = frame_params(job, l.default_focal_depth, 0);
+      spacing = static_cast<double>(base_plane(job, l, p, w, h).width_vector().norm()) / job.raster->first;
+    }
+    if (spacing > 0 && std::isfinite(spacing)) out.radius = Track(spacing);
+  }
+  return out;
+}
+
+/// Warnings about the job as a whole, before anything is rendered.
+template <std::floating_point T>
+void warn_job(std::ostream& warn, const Job& job, const Loaded<T>& l) {
+  const bool array = l.frames != nullptr || job.raster.has_value();
+  if (!array) return;
+  if (job.interpolation == Interpolation::synthetic && detail::any_other_view(job))
+    warn << "mpr-render: warning: --interp synthetic averages every camera at the focal-plane point and ignores "
+            "the ray, so all views on one focal plane render alike; use --interp nearest or cylinder\n";
+  if (l.footprint && l.footprint->one_dimensional() && detail::any_other_view(job))
+    warn << "mpr-render: warning: the cameras lie on a " << (l.footprint->planar ? "line" : "ring")
+         << ": every view's rays pass through it, so views differ only along it\n";
+}
+
+/// Warnings about one view (frame 0): rays that cross the camera plane off the array, and a
+/// gallery view that is another GLC type on this array than in the gallery.
+template <std::floating_point T>
+void warn_view(std::ostream& warn, const Job& job, const Loaded<T>& l, const std::string& spec,
+               const CameraVariant<T>& camera) {
+  if (!l.footprint || job.raster) return;
+  const mpr::ArrayCoverage c =
+      std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, *l.footprint); }, camera);
+  char line[256];
+  if (c.outside > 0.01) {
+    std::snprintf(line, sizeof line,
+                  "mpr-render: warning: view %s: %.0f%% of its rays cross the camera plane off the array (those "
+                  "pixels show the edge cameras or nothing)\n",
+                  spec.c_str(), 100 * c.outside);
+    warn << line;
+  }
+  const char letter = detail::gallery_letter(spec);
+  if (letter == 0) return;
+  const mpr::glc::GalleryEntry& entry = mpr::glc::gallery[static_cast<std::size_t>(letter - 'A')];
+  const mpr::glc::Type type = mpr::glc::classify(detail::plane_of(camera), detail::glc_of(camera)).type;
+  if (type == entry.type) return;
+  const std::string now(mpr::glc::to_string(type));
+  const bool parallel = entry.type == mpr::glc::Type::orthographic || entry.type == mpr::glc::Type::pushbroom ||
+                        entry.type == mpr::glc::Type::twisted_orthographic;
+  const double width = static_cast<double>(detail::plane_of(camera).width_vector().norm());
+  const double array_width = 2 * static_cast<double>(std::max(l.footprint->half_u, l.footprint->half_v));
+  if (parallel)
+    std::snprintf(line, sizeof line,
+                  "mpr-render: note: view %s (%s) is a %s on this array: rays parallel across a view %.3g wide "
+                  "cannot all meet an array %.3g wide\n",
+                  spec.c_str(), std::string(entry.name).c_str(), now.c_str(), width, array_width);
+  else
+    std::snprintf(line, sizeof line, "mpr-render: note: view %s (%s) is a %s on this array\n", spec.c_str(),
+                  std::string(entry.name).c_str(), now.c_str());
+  warn << line;
+}
+
+} // namespace mpr_cli
