@@ -55,7 +55,7 @@ TEST_CASE("image I/O errors name the file and the reason", "[io]") {
 
 TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/regressions/png)", "[io][fuzz]") {
   const std::filesystem::path dir = std::filesystem::path(MPR_TEST_SOURCE_DIR) / "tests/fuzz/regressions/png";
-  int jpegs = 0;
+  int jpegs = 0, chunks = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const std::filesystem::path path = entry.path();
     INFO(path.string());
@@ -64,6 +64,11 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
       ++jpegs;
       CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt JPEG: a Huffman table defines"));
       CHECK_THROWS_WITH(mpr::read_image_info(path), Catch::Contains("corrupt JPEG"));
+    } else if (path.filename().string().rfind("stb-png-idat-length", 0) == 0) {
+      // A chunk longer than the file: stb_image would first grow its buffer to that length (2 GiB).
+      ++chunks;
+      CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt PNG: chunk") && Catch::Contains("claims"));
+      CHECK_THROWS_WITH(mpr::read_image_info(path), Catch::Contains("corrupt PNG: chunk"));
     } else if (path.filename() == "bmp-zero-height.bmp") {
       CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("empty image ("));
     } else {
@@ -75,4 +80,5 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
     }
   }
   CHECK(jpegs >= 2);
+  CHECK(chunks == 2);
 }
