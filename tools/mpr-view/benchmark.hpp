@@ -1,0 +1,126 @@
+#pragma once
+// mpr-view --benchmark: the viewer's render thread without a window. Measures full- and
+// quarter-resolution frame times of the job's view, and the time from an input event (a new
+// request arriving while a full-resolution frame is being rendered) to the first
+// quarter-resolution frame of the new view, which includes abandoning the frame in flight.
+
+#include "render_thread.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace mpr_view {
+
+namespace detail {
+
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// The 1-minute load average, or -1 when /proc/loadavg cannot be read.
+inline double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double load = -1;
+  in >> load;
+  return in ? load : -1;
+}
+
+} // namespace detail
+
+/// Runs the benchmark and prints its figures; returns the exit status.
+template <std::floating_point T>
+int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int frames) {
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::vector<RenderedFrame> received;
+  RenderThread<T>* thread = nullptr;
+  RenderThread<T> render_thread(l, [&] {
+    // Called on the render thread: collect every frame, so no quarter frame is missed.
+    const std::lock_guard lock(mutex);
+    if (thread == nullptr) return;
+    if (std::optional<RenderedFrame> f = thread->take()) {
+      f->image = mpr::Image<mpr::Rgb8>();
+      received.push_back(std::move(*f));
+    }
+    arrived.notify_all();
+  });
+  {
+    const std::lock_guard lock(mutex);
+    thread = &render_thread;
+  }
+  const auto [view_w, view_h] = mpr_cli::view_size(job, l);
+  std::uint64_t generation = 0;
+  const auto submit = [&] {
+    RenderRequest r;
+    r.job = job;
+    r.params = mpr_cli::frame_params(job, l.default_focal_depth, 0);
+    r.view_width = view_w;
+    r.view_height = view_h;
+    r.generation = ++generation;
+    r.submitted = Clock::now();
+    render_thread.submit(std::move(r));
+  };
+  // Waits for the frame of the current generation at the given resolution; nullptr on error.
+  const auto wait_for = [&](bool full) -> RenderedFrame {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      for (const RenderedFrame& f : received)
+        if (f.generation == generation && (f.full == full || !f.error.empty())) return f;
+      arrived.wait(lock);
+    }
+  };
+
+  std::vector<double> full_ms, quarter_ms, latency_ms;
+  submit(); // warm-up: loads caches, builds the sampler
+  if (const RenderedFrame f = wait_for(true); !f.error.empty()) {
+    std::fprintf(stderr, "mpr-view: %s\n", f.error.c_str());
+    return 1;
+  }
+  const Clock::time_point start = Clock::now();
+  for (int i = 0; i < frames; ++i) {
+    submit();
+    quarter_ms.push_back(wait_for(false).milliseconds);
+    full_ms.push_back(wait_for(true).milliseconds);
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  // Input events while a full-resolution frame is in flight: after a quarter frame arrives, the
+  // next request comes at a different point of the full frame each time.
+  const double full = detail::median(full_ms);
+  for (int i = 0; i < frames; ++i) {
+    submit();
+    (void)wait_for(false);
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(full * (i % 8 + 0.5) / 8));
+    submit();
+    latency_ms.push_back(wait_for(false).latency_ms);
+    (void)wait_for(true);
+  }
+  const char* interp = job.interpolation == mpr_cli::Interpolation::nearest     ? "nearest"
+                       : job.interpolation == mpr_cli::Interpolation::synthetic ? "synthetic"
+                                                                                : "cylinder";
+  const bool focus = job.raster || job.sampler == mpr_cli::SamplerKind::par ||
+                     job.sampler == mpr_cli::SamplerKind::stanford || job.sampler == mpr_cli::SamplerKind::lfca;
+  std::printf("mpr-view benchmark: %dx%d, %d view(s), %s, threads %d, %s%s, load average %.2f\n", view_w * job.cols,
+              view_h * job.rows, job.cols * job.rows, sizeof(T) == 4 ? "float" : "double", job.threads,
+              job.sampler == mpr_cli::SamplerKind::scene ? "scene" : job.input.filename().string().c_str(),
+              focus ? (std::string(" ") + interp).c_str() : "", detail::load_average());
+  std::printf("full resolution:    median %.2f ms = %.1f frames/s (%d frames)\n", full, 1000 / std::max(full, 1e-9),
+              frames);
+  std::printf("quarter resolution: median %.2f ms = %.1f frames/s\n", detail::median(quarter_ms),
+              1000 / std::max(detail::median(quarter_ms), 1e-9));
+  std::printf("quarter then full per view change: %.1f changes/s\n", frames / std::max(seconds, 1e-9));
+  std::printf("input event -> first quarter frame: median %.2f ms, max %.2f ms (%d events during full frames)\n",
+              detail::median(latency_ms), *std::max_element(latency_ms.begin(), latency_ms.end()), frames);
+  return 0;
+}
+
+} // namespace mpr_view
