@@ -351,6 +351,8 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
         screenshot_waiting = false;
         if (const auto parent = c.path.parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
         mpr::write_png(c.path, screen);
+        std::printf("screenshot %s: HUD '%s'\n", c.path.string().c_str(), hud_text(state, ctx, shown).c_str());
+        std::fflush(stdout);
         ++next_command;
         continue;
       }

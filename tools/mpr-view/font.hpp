@@ -118,6 +118,12 @@ static_assert(glyphs_well_formed(), "every glyph row has kGlyphWidth columns");
   return static_cast<int>(text.size()) * kAdvance * scale;
 }
 
+/// Font scale for a window: 2 from 640 pixels wide, else 1.
+[[nodiscard]] inline int font_scale(int window_width) noexcept { return window_width >= 640 ? 2 : 1; }
+
+/// Height of the HUD bar in pixels.
+[[nodiscard]] inline int hud_height(int window_width) noexcept { return (kLineHeight + 2) * font_scale(window_width); }
+
 /// Draws `text` with its top-left corner at (x, y), each font pixel a scale x scale square of
 /// `ink`. Parts outside `out` are clipped.
 inline void draw_text(mpr::ImageView<mpr::Rgb8> out, int x, int y, std::string_view text, mpr::Rgb8 ink,

@@ -60,8 +60,12 @@ inline const std::vector<std::string>& control_lines() {
       break;
     }
   }
-  std::snprintf(text, sizeof text, "%s %s | focus %s | aperture %s | %.1f ms%s", view.c_str(), frame.type.c_str(),
-                focus.c_str(), aperture.c_str(), frame.milliseconds, frame.full ? "" : " (1/4)");
+  if (ctx.has_focus())
+    std::snprintf(text, sizeof text, "%s %s | focus %s | %s | %.1f ms%s", view.c_str(), frame.type.c_str(),
+                  focus.c_str(), aperture.c_str(), frame.milliseconds, frame.full ? "" : " (1/4)");
+  else
+    std::snprintf(text, sizeof text, "%s %s | %.1f ms%s", view.c_str(), frame.type.c_str(), frame.milliseconds,
+                  frame.full ? "" : " (1/4)");
   std::string out = text;
   if (s.job.morph_to && s.job.morph.at(s.time()) != 0) {
     std::snprintf(text, sizeof text, " | morph %.3g to %s", s.job.morph.at(s.time()), s.job.morph_to->c_str());
@@ -70,12 +74,6 @@ inline const std::vector<std::string>& control_lines() {
   if (s.job.frames > 1) out += " | frame " + std::to_string(s.frame + 1) + "/" + std::to_string(s.job.frames);
   return out;
 }
-
-/// Font scale for a window: 2 from 640 pixels wide, else 1.
-[[nodiscard]] inline int font_scale(int window_width) noexcept { return window_width >= 640 ? 2 : 1; }
-
-/// Height of the HUD bar in pixels.
-[[nodiscard]] inline int hud_height(int window_width) noexcept { return (kLineHeight + 2) * font_scale(window_width); }
 
 /// Draws `picture` (any size; scaled to fill `out` by nearest pixel), then the HUD bar at the
 /// bottom and, when `help`, the controls over a darkened picture.
