@@ -1,12 +1,14 @@
 #pragma once
 // mpr-view's render thread: renders the latest requested view with mpr-render's own code path
 // (framing.hpp's make_camera, samplers.hpp's make_sampler, render_job.hpp's render_view), first
-// at quarter resolution (half width, half height), then at full resolution, in bands of rows.
-// Between bands it checks whether a newer view was requested and, if so, abandons the frame.
+// at quarter resolution (half width, half height), then at full resolution, in bands of rows
+// shared out by a BandPool. Between bands it checks whether a newer view was requested and, if
+// so, abandons the frame.
 // The thread never waits on the event loop: finished frames are left in a slot that the event
 // loop takes, and a callback (an SDL user event) says one is there.
 
 #include "../mpr-render/render_job.hpp"
+#include "band_pool.hpp"
 
 #include <mpr/core/image.hpp>
 #include <mpr/glc.hpp>
@@ -47,8 +49,9 @@ struct RenderedFrame {
   std::string error;            ///< why the view cannot be rendered (one line), or empty
 };
 
-/// Rows per band between two checks of the cancel flag (a multiple of mpr::kTileRows).
-inline constexpr int kBandRows = 32;
+/// Rows per band: the unit of work of a pool thread, between two checks of the cancel flag (a
+/// multiple of mpr::kTileRows, so tiles fall where mpr-render puts them).
+inline constexpr int kBandRows = 16;
 
 template <std::floating_point T>
 class RenderThread {
@@ -168,17 +171,28 @@ private:
       frame.focal_depth = static_cast<double>(rc->focal_depth());
     frame.type = type_of(cameras.front());
     frame.image = mpr::Image<mpr::Rgb8>(w * r.job.cols, h * r.job.rows);
-    const mpr::RenderOptions options{r.job.threads};
-    const int height = frame.image.height();
-    for (int y0 = 0; y0 < height; y0 += kBandRows) {
-      if (cancelled(r.generation)) return std::nullopt;
-      const int rows = std::min(kBandRows, height - y0);
+    const int threads = mpr::detail::resolve_thread_count(r.job.threads, 1 << 20);
+    if (!pool_ || pool_->threads() != threads) {
+      pool_.reset();
+      pool_.emplace(threads);
+    }
+    const mpr::RenderOptions one_thread{1}; // the pool spreads the bands
+    const int height = frame.image.height(), bands = (height + kBandRows - 1) / kBandRows;
+    std::atomic<bool> abandoned{false};
+    pool_->run(bands, [&](int b) {
+      if (abandoned.load(std::memory_order_relaxed)) return;
+      if (cancelled(r.generation)) {
+        abandoned.store(true, std::memory_order_relaxed);
+        return;
+      }
+      const int y0 = b * kBandRows, rows = std::min(kBandRows, height - y0);
       const mpr::ImageView<mpr::Rgb8> band = frame.image.view().subview(0, y0, frame.image.width(), rows);
       for (std::size_t k = 0; k < cameras.size(); ++k) {
         const int col = static_cast<int>(k) % r.job.cols, row = static_cast<int>(k) / r.job.cols;
-        mpr_cli::render_view(cameras[k], *sampler, band, mpr::Region(col * w, row * h - y0, w, h), options);
+        mpr_cli::render_view(cameras[k], *sampler, band, mpr::Region(col * w, row * h - y0, w, h), one_thread);
       }
-    }
+    });
+    if (abandoned.load()) return std::nullopt;
     const Clock::time_point end = Clock::now();
     frame.milliseconds = std::chrono::duration<double, std::milli>(end - start).count();
     frame.latency_ms = std::chrono::duration<double, std::milli>(end - r.submitted).count();
@@ -216,6 +230,7 @@ private:
   std::atomic<std::uint64_t> latest_{0};
   std::optional<mpr_cli::SamplerVariant<T>> sampler_; // render thread only
   std::string sampler_key_;                           // render thread only
+  std::optional<BandPool> pool_;                      // render thread only
   std::thread thread_;                                // last: starts after the members above
 };
 
