@@ -34,6 +34,15 @@ mpr_view_test(glc_key SCRIPT glc_key.txt ARGS "--size|320x240|--threads|2"
 mpr_view_test(focus_wheel SCRIPT focus_wheel.txt ARGS "--raster|4x3|--size|320x240|--threads|2"
               "-DCHECKS=differ,near.png,far.png,picture"
               "-DEXPECT_REGEX=near.png: HUD '[^']*focus [0-9.]+ \\| synthetic.*far.png: HUD '[^']*focus [0-9.]+ \\|")
+# On a real light field (Stanford Chess, when present) the wheel moves the sharp band: focused
+# at the reference plane the back rows are sharper, focused nearer the front rows are.
+if(EXISTS "${MPR_DATA_DIR}/stanford/chess")
+  mpr_view_test(chess_focus SCRIPT chess_focus.txt ARGS "--stanford|${MPR_DATA_DIR}/stanford/chess|--size|280x160|--threads|2"
+                "-DCHECKS=sharper,back.png,front.png,0:5:280:40|sharper,front.png,back.png,0:95:280:50"
+                "-DEXPECT_REGEX=back.png: HUD '[^']*focus 1000 .*front.png: HUD '[^']*focus 789.4 ")
+else()
+  message(STATUS "mpr-view: ${MPR_DATA_DIR}/stanford/chess not found, the light-field focus test is skipped")
+endif()
 # The help overlay covers the picture and goes away again.
 mpr_view_test(help_overlay SCRIPT help.txt ARGS "--size|320x240|--threads|2"
               "-DCHECKS=differ,a.png,help.png,picture|same,a.png,back.png,picture")
