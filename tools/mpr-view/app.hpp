@@ -150,7 +150,8 @@ template <std::floating_point T>
 int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const ViewerSettings& settings,
                const std::vector<ScriptCommand>& script) {
   using Clock = std::chrono::steady_clock;
-  const auto [view_w, view_h] = mpr_cli::view_size(job, l);
+  const std::pair<int, int> view_size = mpr_cli::view_size(job, l); // not a structured binding: Clang 14
+  const int view_w = view_size.first, view_h = view_size.second;    // captures none
   const int W = view_w * job.cols, H = view_h * job.rows;
   const detail::SdlSession sdl;
   const Uint32 frame_event = SDL_RegisterEvents(1);

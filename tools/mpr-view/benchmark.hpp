@@ -58,7 +58,8 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
     const std::lock_guard lock(mutex);
     thread = &render_thread;
   }
-  const auto [view_w, view_h] = mpr_cli::view_size(job, l);
+  const std::pair<int, int> view_size = mpr_cli::view_size(job, l); // not a structured binding: Clang 14
+  const int view_w = view_size.first, view_h = view_size.second;    // captures none
   std::uint64_t generation = 0;
   const auto submit = [&] {
     RenderRequest r;
