@@ -207,7 +207,10 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
     const std::string command = render_command(state.job, state.time(), W / state.job.cols, H / state.job.rows, png);
     std::filesystem::path txt = png;
     txt.replace_extension(".txt");
-    std::ofstream(txt) << command << "\n";
+    std::ofstream out(txt);
+    out << command << "\n";
+    out.close();
+    if (!out) throw mpr::io_error(txt.string(), "write failed");
     std::printf("saved %s and %s:\n%s\n", png.string().c_str(), txt.string().c_str(), command.c_str());
     std::fflush(stdout);
   };
@@ -317,9 +320,13 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
     }
     const bool settled = shown.generation == generation && (shown.full || !shown.error.empty());
     if (pending_save && settled) {
-      if (shown.error.empty())
-        save();
-      else
+      if (shown.error.empty()) {
+        try {
+          save();
+        } catch (const std::exception& e) { // the window stays open
+          std::fprintf(stderr, "mpr-view: not saved: %s\n", e.what());
+        }
+      } else
         std::printf("not saved: %s\n", shown.error.c_str());
       pending_save = false;
     }

@@ -1,8 +1,9 @@
 #pragma once
-// mpr-view --benchmark: the viewer's render thread without a window. Measures full- and
-// quarter-resolution frame times of the job's view, and the time from an input event (a new
-// request arriving while a full-resolution frame is being rendered) to the first
-// quarter-resolution frame of the new view, which includes abandoning the frame in flight.
+// mpr-view --benchmark: the viewer's render thread without a window. Measures full-resolution
+// and preview frame times of the job's view, and the time from an input event (a new request
+// arriving while a full-resolution frame is being rendered) to the first preview frame of the
+// new view (quarter resolution or coarser, render_thread.hpp), which includes abandoning the
+// frame in flight.
 
 #include "render_thread.hpp"
 
@@ -45,7 +46,7 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
   std::vector<RenderedFrame> received;
   RenderThread<T>* thread = nullptr;
   RenderThread<T> render_thread(l, [&] {
-    // Called on the render thread: collect every frame, so no quarter frame is missed.
+    // Called on the render thread: collect every frame, so no preview is missed.
     const std::lock_guard lock(mutex);
     if (thread == nullptr) return;
     if (std::optional<RenderedFrame> f = thread->take()) {
@@ -81,7 +82,8 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
     }
   };
 
-  std::vector<double> full_ms, quarter_ms, latency_ms;
+  std::vector<double> full_ms, preview_ms, latency_ms;
+  int preview_scale = 2;
   submit(); // warm-up: loads caches, builds the sampler
   if (const RenderedFrame f = wait_for(true); !f.error.empty()) {
     std::fprintf(stderr, "mpr-view: %s\n", f.error.c_str());
@@ -90,11 +92,13 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
   const Clock::time_point start = Clock::now();
   for (int i = 0; i < frames; ++i) {
     submit();
-    quarter_ms.push_back(wait_for(false).milliseconds);
+    const RenderedFrame preview = wait_for(false);
+    preview_ms.push_back(preview.milliseconds);
+    preview_scale = preview.scale;
     full_ms.push_back(wait_for(true).milliseconds);
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  // Input events while a full-resolution frame is in flight: after a quarter frame arrives, the
+  // Input events while a full-resolution frame is in flight: after a preview arrives, the
   // next request comes at a different point of the full frame each time.
   const double full = detail::median(full_ms);
   for (int i = 0; i < frames; ++i) {
@@ -116,10 +120,10 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
               focus ? (std::string(" ") + interp).c_str() : "", detail::load_average());
   std::printf("full resolution:    median %.2f ms = %.1f frames/s (%d frames)\n", full, 1000 / std::max(full, 1e-9),
               frames);
-  std::printf("quarter resolution: median %.2f ms = %.1f frames/s\n", detail::median(quarter_ms),
-              1000 / std::max(detail::median(quarter_ms), 1e-9));
-  std::printf("quarter then full per view change: %.1f changes/s\n", frames / std::max(seconds, 1e-9));
-  std::printf("input event -> first quarter frame: median %.2f ms, max %.2f ms (%d events during full frames)\n",
+  std::printf("preview (1/%d of the pixels): median %.2f ms = %.1f frames/s\n", preview_scale * preview_scale,
+              detail::median(preview_ms), 1000 / std::max(detail::median(preview_ms), 1e-9));
+  std::printf("preview then full per view change: %.1f changes/s\n", frames / std::max(seconds, 1e-9));
+  std::printf("input event -> first preview frame: median %.2f ms, max %.2f ms (%d events during full frames)\n",
               detail::median(latency_ms), *std::max_element(latency_ms.begin(), latency_ms.end()), frames);
   return 0;
 }

@@ -60,12 +60,13 @@ inline const std::vector<std::string>& control_lines() {
       break;
     }
   }
+  const std::string preview = frame.full ? "" : " (1/" + std::to_string(frame.scale * frame.scale) + ")";
   if (ctx.has_focus())
     std::snprintf(text, sizeof text, "%s %s | focus %s | %s | %.1f ms%s", view.c_str(), frame.type.c_str(),
-                  focus.c_str(), aperture.c_str(), frame.milliseconds, frame.full ? "" : " (1/4)");
+                  focus.c_str(), aperture.c_str(), frame.milliseconds, preview.c_str());
   else
     std::snprintf(text, sizeof text, "%s %s | %.1f ms%s", view.c_str(), frame.type.c_str(), frame.milliseconds,
-                  frame.full ? "" : " (1/4)");
+                  preview.c_str());
   std::string out = text;
   if (s.job.morph_to && s.job.morph.at(s.time()) != 0) {
     std::snprintf(text, sizeof text, " | morph %.3g to %s", s.job.morph.at(s.time()), s.job.morph_to->c_str());

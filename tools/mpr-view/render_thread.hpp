@@ -1,7 +1,8 @@
 #pragma once
 // mpr-view's render thread: renders the latest requested view with mpr-render's own code path
 // (framing.hpp's make_camera, samplers.hpp's make_sampler, render_job.hpp's render_view), first
-// at quarter resolution (half width, half height), then at full resolution, in bands of rows
+// as a preview at quarter resolution (half width, half height; coarser when even that would take
+// longer than kPreviewBudgetMs), then at full resolution, in bands of rows
 // shared out by a BandPool. Between bands it checks whether a newer view was requested and, if
 // so, abandons the frame.
 // The thread never waits on the event loop: finished frames are left in a slot that the event
@@ -13,8 +14,10 @@
 #include <mpr/core/image.hpp>
 #include <mpr/glc.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -39,9 +42,10 @@ struct RenderRequest {
 
 /// A finished frame (or the reason the view cannot be rendered).
 struct RenderedFrame {
-  mpr::Image<mpr::Rgb8> image;  ///< quarter or full resolution; empty when `error` is set
+  mpr::Image<mpr::Rgb8> image;  ///< a preview or full resolution; empty when `error` is set
   std::uint64_t generation = 0; ///< of the request
-  bool full = false;            ///< full resolution (else quarter)
+  bool full = false;            ///< full resolution (else a preview)
+  int scale = 1;                ///< pixels of the view per pixel of the image, across and down
   double milliseconds = 0;      ///< render time of this frame (cameras, sampler and pixels)
   double latency_ms = 0;        ///< from the request's submission to this frame
   std::string type;             ///< GLC type of the first view (mpr::glc::classify), e.g. "cross_slit"
@@ -49,9 +53,12 @@ struct RenderedFrame {
   std::string error;            ///< why the view cannot be rendered (one line), or empty
 };
 
+/// Render time a preview frame aims at, milliseconds (input-to-preview target: 50 ms).
+inline constexpr double kPreviewBudgetMs = 20;
+
 /// Rows per band: the unit of work of a pool thread, between two checks of the cancel flag (a
 /// multiple of mpr::kTileRows, so tiles fall where mpr-render puts them).
-inline constexpr int kBandRows = 16;
+inline constexpr int kBandRows = 8;
 
 template <std::floating_point T>
 class RenderThread {
@@ -147,7 +154,8 @@ private:
     frame.generation = r.generation;
     frame.full = full;
     frame.focal_depth = r.params.focal_depth;
-    const int scale = full ? 1 : 2;
+    const int scale = full ? 1 : preview_scale();
+    frame.scale = scale;
     const int w = (r.view_width + scale - 1) / scale, h = (r.view_height + scale - 1) / scale;
     std::vector<mpr_cli::CameraVariant<T>> cameras;
     const mpr_cli::SamplerVariant<T>* sampler = nullptr;
@@ -194,9 +202,17 @@ private:
     });
     if (abandoned.load()) return std::nullopt;
     const Clock::time_point end = Clock::now();
+    if (full) last_full_ms_ = std::chrono::duration<double, std::milli>(end - start).count();
     frame.milliseconds = std::chrono::duration<double, std::milli>(end - start).count();
     frame.latency_ms = std::chrono::duration<double, std::milli>(end - r.submitted).count();
     return frame;
+  }
+
+  /// The preview's scale: 2 (a quarter of the pixels), coarser when the last full frame took so
+  /// long that a quarter-resolution preview would exceed kPreviewBudgetMs.
+  [[nodiscard]] int preview_scale() const noexcept {
+    const double ratio = std::sqrt(std::max(last_full_ms_, 0.0) / kPreviewBudgetMs);
+    return std::clamp(static_cast<int>(std::ceil(ratio)), 2, 8);
   }
 
   static std::string type_of(const mpr_cli::CameraVariant<T>& camera) {
@@ -230,8 +246,9 @@ private:
   std::atomic<std::uint64_t> latest_{0};
   std::optional<mpr_cli::SamplerVariant<T>> sampler_; // render thread only
   std::string sampler_key_;                           // render thread only
-  std::optional<BandPool> pool_;                      // render thread only
-  std::thread thread_;                                // last: starts after the members above
+  std::optional<BandPool> pool_;
+  double last_full_ms_ = 0; // render thread only                      // render thread only
+  std::thread thread_;      // last: starts after the members above
 };
 
 } // namespace mpr_view
