@@ -16,10 +16,12 @@
 #include <SDL.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -214,27 +216,44 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
     std::printf("saved %s and %s:\n%s\n", png.string().c_str(), txt.string().c_str(), command.c_str());
     std::fflush(stdout);
   };
-  const auto print_ray = [&](int x, int y) {
+  // A click prints the ray under the cursor and, on scenes, the depth of the first surface it
+  // hits (a BVH built on the first click); on a --raster array that depth becomes the focal
+  // depth (click-to-focus: the rasterized sampler reads ray.at(focal_depth)).
+  std::optional<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>> depth;
+  const auto click = [&](int x, int y) -> std::optional<double> {
     const int vw = W / state.job.cols, vh = H / state.job.rows;
     const std::size_t k = static_cast<std::size_t>((y / vh) * state.job.cols + x / vw);
     const mpr_cli::FrameParams p = mpr_cli::frame_params(state.job, l.default_focal_depth, state.time());
+    std::optional<double> focus;
     try {
       const mpr_cli::CameraVariant<T> camera = mpr_cli::make_camera(state.job, l, p, k, vw, vh);
-      std::visit(
+      const mpr::Ray<T> ray = std::visit(
           [&](const auto& cam) {
             const mpr::Region region(0, 0, vw, vh);
             const mpr::Pixel px{x % vw, y % vh};
             const mpr::Vec2<T> uv = region.pixel_to_uv<T>(px);
-            const mpr::Ray<T> ray = cam.selector.ray_at(px, uv, cam.surface.point_at(uv));
-            std::printf("pixel %d,%d: ray from %g,%g,%g along %g,%g,%g\n", x, y, double(ray.origin.x()),
-                        double(ray.origin.y()), double(ray.origin.z()), double(ray.direction.x()),
-                        double(ray.direction.y()), double(ray.direction.z()));
+            return cam.selector.ray_at(px, uv, cam.surface.point_at(uv));
           },
           camera);
+      std::printf("pixel %d,%d: ray from %g,%g,%g along %g,%g,%g", x, y, double(ray.origin.x()), double(ray.origin.y()),
+                  double(ray.origin.z()), double(ray.direction.x()), double(ray.direction.y()),
+                  double(ray.direction.z()));
+      if (l.scene) {
+        if (!depth) depth.emplace(l.scene);
+        const double t = static_cast<double>(depth->sample(ray));
+        if (std::isfinite(t) && t > 0) {
+          std::printf(", first hit at ray parameter %g", t);
+          if (ctx.raster) focus = t;
+        } else {
+          std::printf(", no hit");
+        }
+      }
+      std::printf("\n");
     } catch (const std::exception& e) {
       std::printf("pixel %d,%d: no ray (%s)\n", x, y, e.what());
     }
     std::fflush(stdout);
+    return focus;
   };
 
   submit();
@@ -292,7 +311,10 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
       } else if (e.type == SDL_MOUSEBUTTONUP && dragging) {
         dragging = false;
         if (!drag_moved && e.button.x >= 0 && e.button.y >= 0 && e.button.x < W && e.button.y < H)
-          print_ray(e.button.x, e.button.y);
+          if (const std::optional<double> focus = click(e.button.x, e.button.y)) {
+            state.job.focal_depth = mpr_cli::Track(*focus);
+            act(Action::changed);
+          }
       } else if (e.type == SDL_MOUSEWHEEL) {
         const int notches = e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -e.wheel.y : e.wheel.y;
         act(on_wheel(state, ctx, notches, (SDL_GetModState() & KMOD_SHIFT) != 0));

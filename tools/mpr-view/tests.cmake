@@ -43,6 +43,11 @@ if(EXISTS "${MPR_DATA_DIR}/stanford/chess")
 else()
   message(STATUS "mpr-view: ${MPR_DATA_DIR}/stanford/chess not found, the light-field focus test is skipped")
 endif()
+# Click-to-focus on a --raster array: the depth under the cursor (ray cast) becomes the focal
+# depth, and the clicked board turns sharp.
+mpr_view_test(click_focus SCRIPT click_focus.txt ARGS "--raster|8x6|--size|320x240|--threads|2"
+              "-DCHECKS=sharper,after.png,before.png,100:70:120:50"
+              "-DEXPECT_REGEX=pixel 160,60: ray from [^\n]*first hit at ray parameter 16.6.*after.png: HUD '[^']*focus 16.6")
 # The help overlay covers the picture and goes away again.
 mpr_view_test(help_overlay SCRIPT help.txt ARGS "--size|320x240|--threads|2"
               "-DCHECKS=differ,a.png,help.png,picture|same,a.png,back.png,picture")
