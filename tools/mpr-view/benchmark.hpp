@@ -72,12 +72,13 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
     r.submitted = Clock::now();
     render_thread.submit(std::move(r));
   };
-  // Waits for the frame of the current generation at the given resolution; nullptr on error.
+  // Waits for the full frame of the current generation (full), or for its first frame, the
+  // preview unless the render thread skips it (!full); or for an error frame.
   const auto wait_for = [&](bool full) -> RenderedFrame {
     std::unique_lock lock(mutex);
     for (;;) {
       for (const RenderedFrame& f : received)
-        if (f.generation == generation && (f.full == full || !f.error.empty())) return f;
+        if (f.generation == generation && (f.full || !full || !f.error.empty())) return f;
       arrived.wait(lock);
     }
   };
@@ -93,8 +94,10 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
   for (int i = 0; i < frames; ++i) {
     submit();
     const RenderedFrame preview = wait_for(false);
-    preview_ms.push_back(preview.milliseconds);
-    preview_scale = preview.scale;
+    if (!preview.full) {
+      preview_ms.push_back(preview.milliseconds);
+      preview_scale = preview.scale;
+    }
     full_ms.push_back(wait_for(true).milliseconds);
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -120,11 +123,16 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
               focus ? (std::string(" ") + interp).c_str() : "", detail::load_average());
   std::printf("full resolution:    median %.2f ms = %.1f frames/s (%d frames)\n", full, 1000 / std::max(full, 1e-9),
               frames);
-  std::printf("preview (1/%d of the pixels): median %.2f ms = %.1f frames/s\n", preview_scale * preview_scale,
-              detail::median(preview_ms), 1000 / std::max(detail::median(preview_ms), 1e-9));
+  if (preview_ms.empty())
+    std::printf("preview: skipped (no faster than the full frame)\n");
+  else
+    std::printf("preview (1/%d of the pixels): median %.2f ms = %.1f frames/s (%zu frames)\n",
+                preview_scale * preview_scale, detail::median(preview_ms),
+                1000 / std::max(detail::median(preview_ms), 1e-9), preview_ms.size());
   std::printf("preview then full per view change: %.1f changes/s\n", frames / std::max(seconds, 1e-9));
-  std::printf("input event -> first preview frame: median %.2f ms, max %.2f ms (%d events during full frames)\n",
-              detail::median(latency_ms), *std::max_element(latency_ms.begin(), latency_ms.end()), frames);
+  std::printf(
+      "input event -> first frame (preview or full): median %.2f ms, max %.2f ms (%d events during full frames)\n",
+      detail::median(latency_ms), *std::max_element(latency_ms.begin(), latency_ms.end()), frames);
   return 0;
 }
 

@@ -73,7 +73,7 @@ mpr_view_test(bad_script_key SCRIPT bad_key.txt -DDRIVER=no_such_driver -DEXPECT
               "-DEXPECT_REGEX=^mpr-view: [^\n]*bad_key.txt:1: 'NoSuchKey' is not an SDL key name")
 # The benchmark mode runs (numbers belong in docs/mpr-view.md, not here).
 mpr_view_test(benchmark_smoke ARGS "--benchmark|--benchmark-frames|2|--size|64x48|--threads|2"
-              "-DEXPECT_REGEX=full resolution: +median [0-9.]+ ms = [0-9.]+ frames/s.*input event -> first preview frame")
+              "-DEXPECT_REGEX=full resolution: +median [0-9.]+ ms = [0-9.]+ frames/s.*input event -> first frame")
 
 # Real X events: xdotool types into the window under Xvfb.
 find_program(MPR_XVFB_RUN xvfb-run)
