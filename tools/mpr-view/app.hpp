@@ -283,6 +283,9 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
     while (have_event) {
       if (e.type == SDL_QUIT) {
         running = false;
+      } else if (e.type == SDL_WINDOWEVENT) {
+        if (e.window.event == SDL_WINDOWEVENT_CLOSE) running = false;
+        if (e.window.event == SDL_WINDOWEVENT_EXPOSED) dirty = true;
       } else if (e.type == SDL_KEYDOWN) {
         const std::string name = SDL_GetKeyName(e.key.keysym.sym);
         if (name == "0") { // reset to the command line's view
