@@ -1,0 +1,73 @@
+#include "mpr-view/command_line.hpp"
+#include "mpr-view/controls.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+namespace {
+mpr_cli::Job job_of(std::vector<std::string> args) {
+  std::vector<const char*> argv{"mpr-render"};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
+}
+
+/// The command line of `job` parsed back by mpr-render's parser.
+mpr_cli::Job round_trip(const mpr_cli::Job& job, double time = 0) {
+  return job_of(mpr_view::render_arguments(job, time, 64, 48, "out.png"));
+}
+} // namespace
+
+TEST_CASE("render_arguments reads back as the same view", "[view]") {
+  mpr_view::ViewContext ctx;
+  ctx.plane_centre = {0, 3.1, 3};
+  ctx.look_at = {0, 1.6, -8};
+  ctx.plane_width = 8;
+  ctx.plane_height = 6;
+  mpr_view::ViewState s;
+  s.job = job_of({"--view", "A", "--size", "64x48", "--threads", "2"});
+  // A view found by hand: gallery G, orbited and panned, tilted, rectified, morphed.
+  CHECK(mpr_view::on_key(s, ctx, "G") == mpr_view::Action::changed);
+  CHECK(mpr_view::on_drag(s, ctx, mpr_view::Button::left, 13, -7, 64, 48) == mpr_view::Action::changed);
+  CHECK(mpr_view::on_drag(s, ctx, mpr_view::Button::right, 5, 3, 64, 48) == mpr_view::Action::changed);
+  CHECK(mpr_view::on_key(s, ctx, "Up") == mpr_view::Action::changed);
+  CHECK(mpr_view::on_key(s, ctx, "R") == mpr_view::Action::changed);
+  CHECK(mpr_view::on_key(s, ctx, "M") == mpr_view::Action::changed);
+  const mpr_cli::Job back = round_trip(s.job);
+  CHECK(back.views == std::vector<std::string>{"G"});
+  CHECK(*back.plane_centre == *s.job.plane_centre); // exact: shortest round-trip numbers
+  CHECK(*back.look_at == *s.job.look_at);
+  CHECK(back.plane_size == s.job.plane_size);
+  CHECK(back.tilt_x.at(0) == s.job.tilt_x.at(0));
+  CHECK(back.rectify_to_plane);
+  CHECK(back.morph_to == std::optional<std::string>("A"));
+  CHECK(back.morph.at(0) == s.job.morph.at(0));
+  CHECK(back.threads == 2);
+  CHECK((back.width == 64 && back.height == 48));
+  CHECK(back.output == "out.png");
+  CHECK(mpr_view::render_arguments(back, 0, 64, 48, "out.png") ==
+        mpr_view::render_arguments(s.job, 0, 64, 48, "out.png"));
+}
+
+TEST_CASE("render_arguments writes animated values at the frame's time and keeps light-field options", "[view]") {
+  const mpr_cli::Job job =
+      job_of({"--raster", "4x3", "--interp", "cylinder", "--radius", "2:4", "--focal-depth", "5", "--tilt-y", "0:10",
+              "--layout", "2x1", "--views", "A,pinhole:0;1.6;10", "--frames", "3", "--double"});
+  const mpr_cli::Job back = round_trip(job, 0.5);
+  CHECK(back.frames == 0); // one image
+  CHECK(back.radius.at(0) == 3);
+  CHECK(back.tilt_y.at(0) == 5);
+  CHECK(back.focal_depth->at(0) == 5);
+  CHECK(back.interpolation == mpr_cli::Interpolation::cylinder);
+  CHECK(back.raster == std::optional<std::pair<int, int>>({4, 3}));
+  CHECK((back.cols == 2 && back.rows == 1));
+  CHECK(back.views == std::vector<std::string>{"A", "pinhole:0,1.6,10"});
+  CHECK(back.use_double);
+}
+
+TEST_CASE("render_command quotes what a shell would split", "[view]") {
+  const mpr_cli::Job job = job_of({"--view", "A"});
+  const std::string line = mpr_view::render_command(job, 0, 8, 6, "my views/it's.png");
+  CHECK(line == "mpr-render --size 8x6 --view A --output 'my views/it'\\''s.png'");
+}
