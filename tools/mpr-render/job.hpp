@@ -6,6 +6,7 @@
 #include "animation.hpp"
 #include "cli_args.hpp"
 #include "options.hpp"
+#include "output.hpp"
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
@@ -37,6 +38,7 @@ struct Job {
   bool print_camera = false;
   bool video = true; ///< also write an MP4 of an animation when ffmpeg is on PATH
   int frames = 0;    ///< 0: a single image; N >= 1: an animation of N frames
+  double fps = 12;   ///< frame rate of the MP4 of an animation
   // Sampler.
   SamplerKind sampler = SamplerKind::scene;
   std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
@@ -76,6 +78,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (v->empty()) throw mpr::argument_error("--output", "empty file name");
     job.output = *v;
   }
+  (void)image_format(job.output); // .png, .jpg, .jpeg or none; anything else is refused
   if (const auto v = args.get("size")) {
     std::tie(job.width, job.height) = parse_size(*v, "--size");
     job.size_given = true;
@@ -102,6 +105,12 @@ inline Job make_job(const ParsedArgs& args) {
   job.print_camera = args.has("print-camera");
   job.video = !args.has("no-video");
   if (const auto v = args.get("frames")) job.frames = parse_int(*v, "--frames", 1, 100000);
+  if (const auto v = args.get("fps")) {
+    if (job.frames == 0) throw mpr::argument_error("--fps", "applies to animations (--frames N)");
+    job.fps = parse_number(*v, "--fps");
+    if (!(job.fps > 0 && job.fps <= 1000))
+      throw mpr::argument_error("--fps", "must lie in (0, 1000] frames per second");
+  }
 
   int samplers = 0;
   if (const auto v = args.get("scene")) {

@@ -12,7 +12,10 @@ namespace mpr_cli {
 inline const std::vector<OptionSpec>& options() {
   static const std::vector<OptionSpec> specs = {
       {"help", "", "Print this help and exit.", "mpr-render --help"},
-      {"output", "FILE.png", "Output PNG (default mpr-render.png). With --frames N: FILE_0001.png ... FILE_NNNN.png.",
+      {"output", "FILE.png|FILE.jpg",
+       "Output image, PNG or JPEG (quality 95) by the extension (.png, .jpg, .jpeg; default mpr-render.png). "
+       "With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames FILE_NNNN.png beyond N of an earlier run "
+       "are removed).",
        "--output out/cross.png"},
       {"size", "WxH", "Size of one view in pixels (default 480x360).", "--size 640x480"},
       {"layout", "CxR", "Tile C x R views side by side in one image (default 1x1); list them with --views.",
@@ -80,6 +83,8 @@ inline const std::vector<OptionSpec>& options() {
       {"morph-to", "VIEW", "Animation: morph from the view to this VIEW by interpolating corner directions.",
        "--view A --morph-to G --frames 24"},
       {"morph", "A:B|T=V,...", "Morph weight over the animation (default 0:1).", "--morph 0=0,0.5=1,1=0"},
+      {"fps", "F", "Animation: frame rate of the MP4 in frames per second (default 12).",
+       "--tilt-x 0:30 --frames 3 --fps 24"},
       {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--no-video"},
   };
   return specs;
