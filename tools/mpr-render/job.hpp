@@ -71,6 +71,35 @@ inline Track parse_track(const std::string& text, const std::string& option) {
   return Track::parse(text, option);
 }
 
+/// True when the track takes more than one value over the animation.
+[[nodiscard]] inline bool animated(const Track& track) noexcept {
+  for (const Track::Key& k : track.keys())
+    if (k.value != track.keys().front().value) return true;
+  return false;
+}
+
+/// The first option of `job` whose value changes over an animation ("--tilt-x", "--morph-to",
+/// ...), or "" when nothing is animated.
+[[nodiscard]] inline std::string animated_option(const Job& job) {
+  if (job.morph_to && animated(job.morph)) return "--morph-to";
+  if (animated(job.tilt_x)) return "--tilt-x";
+  if (animated(job.tilt_y)) return "--tilt-y";
+  if (animated(job.radius)) return "--radius";
+  if (job.focal_depth && animated(*job.focal_depth)) return "--focal-depth";
+  return "";
+}
+
+/// An animated value needs --frames (without it only the start would be rendered), and
+/// --frames needs an animated value (otherwise every frame would be the same image).
+inline void check_animation(const Job& job) {
+  const std::string option = animated_option(job);
+  if (!option.empty() && job.frames == 0)
+    throw mpr::argument_error(option, "is animated (it changes over time): give --frames N to render N frames");
+  if (option.empty() && job.frames > 0)
+    throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
+                                          "--tilt-y, --radius, --focal-depth or --morph, or --morph-to VIEW)");
+}
+
 /// Builds the Job from a parsed command line; throws argument_error naming the option.
 inline Job make_job(const ParsedArgs& args) {
   Job job;
@@ -221,6 +250,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (!job.morph_to) throw mpr::argument_error("--morph", "needs --morph-to");
     job.morph = parse_track(*v, "--morph");
   }
+  check_animation(job);
   return job;
 }
 
