@@ -50,6 +50,7 @@ struct Job {
   double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
   double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
   std::optional<int> camera;        ///< light fields: the reference camera (index)
+  double zoom = 1;                  ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
   // Surface.
   std::optional<mpr::Vec3<double>> plane_centre, look_at;
   std::optional<std::pair<double, double>> plane_size;
@@ -171,7 +172,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");
   }
-  for (const char* name : {"reference-depth", "position-scale", "camera"}) lf_only(name);
+  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom"}) lf_only(name);
   if (!job.raster)
     for (const char* name : {"interp", "radius", "focal-depth"}) lf_only(name);
   if (args.has("obj-scale") && job.sampler != SamplerKind::obj)
@@ -210,6 +211,10 @@ inline Job make_job(const ParsedArgs& args) {
     if (!(job.position_scale > 0)) throw mpr::argument_error("--position-scale", "must be positive");
   }
   if (const auto v = args.get("camera")) job.camera = parse_int(*v, "--camera", 0, 1000000);
+  if (const auto v = args.get("zoom")) {
+    job.zoom = parse_number(*v, "--zoom");
+    if (!(job.zoom > 0 && job.zoom <= 1e6)) throw mpr::argument_error("--zoom", "must lie in (0, 1e6]");
+  }
 
   if (const auto v = args.get("plane-centre")) job.plane_centre = parse_vec3(*v, "--plane-centre");
   if (const auto v = args.get("look-at")) job.look_at = parse_vec3(*v, "--look-at");

@@ -17,7 +17,10 @@ inline const std::vector<OptionSpec>& options() {
        "With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames FILE_NNNN.png beyond N of an earlier run "
        "are removed).",
        "--output out/cross.png"},
-      {"size", "WxH", "Size of one view in pixels (default 480x360).", "--size 640x480"},
+      {"size", "WxH",
+       "Size of one view in pixels (default 480x360; light fields: the reference camera's size, and another "
+       "aspect ratio crops the camera's view instead of stretching it).",
+       "--size 640x480"},
       {"layout", "CxR", "Tile C x R views side by side in one image (default 1x1); list them with --views.",
        "--layout 3x3 --views A,B,C,D,E,F,G,H,I"},
       {"view", "VIEW", "The camera (selector) of a single view; see VIEW below (default: 'default').", "--view G"},
@@ -60,6 +63,10 @@ inline const std::vector<OptionSpec>& options() {
        "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
        "the middle camera for _par.txt).",
        "--camera 3"},
+      {"zoom", "F",
+       "Light fields: magnification of the view about its centre (default 1: the reference camera's view, "
+       "cropped to the aspect ratio of --size; 2 shows the middle half).",
+       "--stanford $MPR_DATA_DIR/stanford/chess --zoom 2"},
       {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).",
        "--plane-centre 0,3.1,3"},
       {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).", "--look-at 0,1.6,-8"},
