@@ -91,7 +91,7 @@ template <std::floating_point T = double>
   std::vector<Vec2<double>> positions;
   std::unordered_map<std::string, std::size_t> first_line; // id -> line: linear, not quadratic
   for (const detail::TextLine& line : lines) {
-    detail::require_fields(positions_file, line, 3);
+    detail::require_fields(positions_file, line, 3, "id X Y");
     const auto [at, inserted] = first_line.emplace(line.fields[0], line.number);
     if (!inserted)
       throw io_error(positions_file.string(),
