@@ -7,14 +7,52 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace lf_example {
 
 using T = float;
+
+/// The default output folder of the light-field examples (in .gitignore).
+inline constexpr const char* default_output = "lightfield-output";
+
+/// The command line of a light-field example: PROGRAM [DATA_DIR] [OUTPUT_FOLDER] followed by up
+/// to `extra_names.size()` more positional arguments (named in the usage; e.g. "VIEW_A").
+/// `--help` or `-h` anywhere prints the usage (with `extra_help`, one line per extra argument)
+/// and exits with status 0; any other option, or too many arguments, throws argument_error.
+/// Returns the positional arguments.
+inline std::vector<std::string> positional_args(int argc, char** argv, const std::vector<std::string>& extra_names = {},
+                                                const char* extra_help = "") {
+  const std::string program = argc > 0 ? std::filesystem::path(argv[0]).filename().string() : "example";
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::string names;
+      for (const std::string& n : extra_names) names += " [" + n + "]";
+      const char* env = std::getenv("MPR_DATA_DIR");
+      std::printf("usage: %s [DATA_DIR] [OUTPUT_FOLDER]%s\n"
+                  "  DATA_DIR       folder holding stanford/ and middlebury/ (default: $MPR_DATA_DIR, now %s;\n"
+                  "                 else %s)\n"
+                  "  OUTPUT_FOLDER  where the images go (default: %s, created if missing)\n%s",
+                  program.c_str(), names.c_str(), env != nullptr && *env != 0 ? env : "unset", MPR_EXAMPLE_DATA_DIR,
+                  default_output, extra_help);
+      std::fflush(stdout);
+      std::exit(0);
+    }
+    if (arg.size() > 1 && arg[0] == '-')
+      throw mpr::argument_error(arg, "unknown option (the arguments are DATA_DIR OUTPUT_FOLDER; see --help)");
+    positional.push_back(arg);
+  }
+  if (positional.size() > 2 + extra_names.size())
+    throw mpr::argument_error(positional[2 + extra_names.size()], "unexpected argument (see --help)");
+  return positional;
+}
 
 /// The data folder: `argument` if given, else $MPR_DATA_DIR, else the folder configured in CMake.
 inline std::filesystem::path data_dir(const char* argument) {
@@ -44,15 +82,16 @@ inline mpr::GlcSelector<T> two_plane_glc(const mpr::PlanarSurface<T>& plane, con
                              mpr::Vec3<T>(plane.point_at({1, 0}) - s10), mpr::Vec3<T>(plane.point_at({0, 1}) - s01));
 }
 
-/// The output folder: the second argument or "lightfield-output", created if missing.
+/// The output folder: the second argument or `default_output`, created if missing.
 inline std::filesystem::path output_dir(int argc, char** argv) {
-  const std::filesystem::path out = argc > 2 ? argv[2] : "lightfield-output";
+  const std::filesystem::path out = argc > 2 ? argv[2] : default_output;
   std::filesystem::create_directories(out);
   return out;
 }
 
 /// What every Chess example starts from: the output folder, the 49 frames and the refocusing
-/// camera at the array centre. Arguments: [DATA_DIR] [OUTPUT_FOLDER].
+/// camera at the array centre. Arguments: [DATA_DIR] [OUTPUT_FOLDER] (`--help`: the usage, see
+/// positional_args).
 struct ChessExample {
   std::filesystem::path out;
   std::shared_ptr<const mpr::CameraFrameSet<T>> frames;
@@ -60,6 +99,7 @@ struct ChessExample {
 };
 
 inline ChessExample open_chess(int argc, char** argv) {
+  (void)positional_args(argc, argv);
   const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
   std::filesystem::path out = output_dir(argc, argv);
   auto frames = load_chess(data);
