@@ -13,7 +13,9 @@
 #endif
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -75,9 +77,13 @@ Loaded<T> load(const Job& job) {
         lo = lo.cwiseMin(p.template cast<double>());
         hi = hi.cwiseMax(p.template cast<double>());
       }
+    // Default framing: the bounding box's centre seen from the +z side, 30 degrees above the
+    // horizontal (y up), from 1.2 box diagonals away, so a ground plane shows as a surface rather
+    // than a line; the image plane is one diagonal wide (gallery view A frames 1.2 diagonals).
     const double diag = std::max((hi - lo).norm(), 1e-6);
+    constexpr double elevation = 30 * std::numbers::pi / 180;
     l.scene_centre = l.look_at = 0.5 * (lo + hi);
-    l.plane_centre = l.scene_centre + mpr::Vec3<double>(0, 0, 1.2 * diag);
+    l.plane_centre = l.scene_centre + 1.2 * diag * mpr::Vec3<double>(0, std::sin(elevation), std::cos(elevation));
     l.plane_width = diag;
     l.scene_scale = diag;
     break;
