@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -61,13 +62,26 @@ inline std::filesystem::path data_dir(const char* argument) {
   return MPR_EXAMPLE_DATA_DIR;
 }
 
+/// Load limits whose progress callback draws "loading images k/n" on stderr when stderr is a
+/// terminal (a 49-image Chess load takes a few seconds).
+inline mpr::LoadLimits load_limits_with_progress() {
+  mpr::LoadLimits limits;
+  if (isatty(STDERR_FILENO))
+    limits.progress = [](std::size_t loaded, std::size_t total) {
+      std::fprintf(stderr, "\rloading images %zu/%zu", loaded, total);
+      if (loaded == total) std::fprintf(stderr, "\r%*s\r", 40, "");
+      std::fflush(stderr);
+    };
+  return limits;
+}
+
 /// Loads Stanford Chess (7x7, 1400x800) with the default planar-array options: camera plane
 /// z = 0, positions in file units (about 5 per grid step), reference plane at z = 1000
 /// (the board spans about z = 700 to 950).
 inline std::shared_ptr<const mpr::CameraFrameSet<T>> load_chess(const std::filesystem::path& data) {
   const auto start = std::chrono::steady_clock::now();
-  auto frames =
-      std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_stanford_light_field<T>(data / "stanford" / "chess"));
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
+      mpr::read_stanford_light_field<T>(data / "stanford" / "chess", {}, load_limits_with_progress()));
   std::printf("loaded %zu Chess views in %.2f s\n", frames->size(),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return frames;

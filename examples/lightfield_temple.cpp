@@ -30,8 +30,8 @@ int main(int argc, char** argv) try {
   const std::filesystem::path data = data_dir(args.empty() ? nullptr : args[0].c_str());
   const std::filesystem::path out = args.size() > 1 ? args[1] : default_output;
   std::filesystem::create_directories(out);
-  const auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-      mpr::read_par_file<T>(data / "middlebury" / "templeSparseRing" / "templeSR_par.txt"));
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(
+      data / "middlebury" / "templeSparseRing" / "templeSR_par.txt", load_limits_with_progress()));
   if (a + 1 >= frames->size())
     throw mpr::argument_error("VIEW_A", "must be below " + std::to_string(frames->size() - 1));
   const mpr::PinholeCamera<T>& ca = frames->camera(a);

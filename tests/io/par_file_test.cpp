@@ -53,6 +53,12 @@ TEST_CASE("_par.txt writer and reader round-trip cameras and images", "[par_file
   REQUIRE(again.size() == 2);
   CHECK(again[1].R == cams[1].R());
   CHECK(again[1].line == 3);
+  // LoadLimits::progress: called once per decoded image with (loaded, total).
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  mpr::LoadLimits limits;
+  limits.progress = [&](std::size_t loaded, std::size_t total) { calls.emplace_back(loaded, total); };
+  (void)mpr::read_par_file<double>(dir / "a_par.txt", limits);
+  CHECK(calls == std::vector<std::pair<std::size_t, std::size_t>>{{1, 2}, {2, 2}});
   // float cameras read the same file.
   const auto f = mpr::read_par_file<float>(dir / "a_par.txt");
   CHECK(f.camera(1).centre().isApprox(cams[1].centre().cast<float>(), 1e-5f));

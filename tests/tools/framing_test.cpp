@@ -81,6 +81,19 @@ TEMPLATE_TEST_CASE("mpr-render: a light field's view keeps its aspect ratio unde
   std::filesystem::remove_all(par.parent_path());
 }
 
+TEST_CASE("mpr-render: the progress of loading a light field reaches Job::load_progress", "[tools][loading]") {
+  const std::filesystem::path par = tiny_par();
+  mpr_cli::Job job = job_of({"--par", par.string(), "--focal-depth", "2"});
+  std::vector<std::size_t> loaded;
+  job.load_progress = [&](std::size_t done, std::size_t total) {
+    CHECK(total == 3);
+    loaded.push_back(done);
+  };
+  CHECK(mpr_cli::render_frames(job).size() == 1);
+  CHECK(loaded == std::vector<std::size_t>{1, 2, 3});
+  std::filesystem::remove_all(par.parent_path());
+}
+
 TEST_CASE("mpr-render: a square in a light field stays square at another --size", "[tools][framing]") {
   // With --interp nearest the view through camera 1 is camera 1's image (a ramp: red 30 per
   // camera pixel to the right, green 40 per pixel down). At --size 16x6 (wider than 8x6) the view

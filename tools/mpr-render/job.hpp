@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -50,7 +51,10 @@ struct Job {
   double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
   double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
   std::optional<int> camera;        ///< light fields: the reference camera (index)
-  double zoom = 1;                  ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
+  /// Light fields: called after each image is loaded with (loaded, total); not set from the
+  /// command line (main.cpp draws a progress line on a terminal with it).
+  std::function<void(std::size_t loaded, std::size_t total)> load_progress;
+  double zoom = 1; ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
   // Surface.
   std::optional<mpr::Vec3<double>> plane_centre, look_at;
   std::optional<std::pair<double, double>> plane_size;

@@ -59,6 +59,8 @@ mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) 
 template <std::floating_point T>
 Loaded<T> load(const Job& job) {
   Loaded<T> l;
+  mpr::LoadLimits limits;
+  limits.progress = job.load_progress;
   switch (job.sampler) {
   case SamplerKind::scene:
     l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
@@ -92,16 +94,16 @@ Loaded<T> load(const Job& job) {
 #endif
   }
   case SamplerKind::par:
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input));
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input, limits));
     break;
   case SamplerKind::stanford:
     l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job)));
+        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job), limits));
     break;
   case SamplerKind::lfca: {
     mpr::LfcaOptions o;
     o.array = detail::array_options(job);
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o));
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o, limits));
     break;
   }
   }

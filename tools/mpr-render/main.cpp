@@ -35,6 +35,13 @@ void progress(int done, int count) {
   std::fflush(stderr);
 }
 
+/// The progress of loading a light field's images on stderr, drawn only when stderr is a terminal.
+void loading_progress(std::size_t done, std::size_t count) {
+  std::fprintf(stderr, "\rloading images %zu/%zu", done, count);
+  if (done == count) std::fprintf(stderr, "\r%*s\r", 40, "");
+  std::fflush(stderr);
+}
+
 } // namespace
 
 int main(int argc, char** argv) try {
@@ -43,7 +50,8 @@ int main(int argc, char** argv) try {
       print_help();
       return 0;
     }
-  const mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
+  mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
+  if (isatty(STDERR_FILENO)) job.load_progress = loading_progress;
   if (const auto parent = job.output.parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
   const bool animation = job.frames >= 1;
   mpr_cli::run(

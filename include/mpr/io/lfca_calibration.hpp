@@ -176,6 +176,7 @@ template <std::floating_point T = double>
       throw io_error(h_path.string(), std::string("homography gives no valid camera: ") + err.what());
     }
     images.push_back(std::move(image));
+    if (limits.progress) limits.progress(i + 1, ids.size());
   }
   // Built on z = 0 (planar_camera_array.hpp): hand the plane over instead of letting the samplers fit it.
   return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), ids)

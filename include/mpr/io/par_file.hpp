@@ -128,6 +128,7 @@ template <std::floating_point T = double>
     cameras.push_back(par_camera(par_file, e, image.width(), image.height()));
     images.push_back(std::move(image));
     names.push_back(e.image_name);
+    if (limits.progress) limits.progress(i + 1, entries.size());
   }
   return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names));
 }
