@@ -94,6 +94,25 @@ TEST_CASE("mpr-render: the progress of loading a light field reaches Job::load_p
   std::filesystem::remove_all(par.parent_path());
 }
 
+TEST_CASE("mpr-render: --rectify on the focal plane itself points to --zoom", "[tools][framing]") {
+  // The tiny array's reference camera looks along +z; its focal plane at depth 2 is z = 2.
+  const std::filesystem::path par = tiny_par();
+  try {
+    (void)mpr_cli::render_frames(job_of(
+        {"--par", par.string(), "--focal-depth", "2", "--rectify", "-0.5,-0.4,2;0.5,-0.4,2;0.5,0.4,2;-0.5,0.4,2"}));
+    FAIL("no error");
+  } catch (const mpr::argument_error& e) {
+    // Before: "corner 0 lies behind the image plane".
+    CHECK_THAT(e.what(), Catch::Contains("invalid --rectify: the quadrilateral lies on the image plane itself") &&
+                             Catch::Contains("--zoom"));
+  }
+  // In front of the plane it is a rectification as before.
+  CHECK(mpr_cli::render_frames(job_of({"--par", par.string(), "--focal-depth", "2", "--rectify",
+                                       "-0.5,-0.4,3;0.5,-0.4,3;0.5,0.4,3;-0.5,0.4,3"}))
+            .size() == 1);
+  std::filesystem::remove_all(par.parent_path());
+}
+
 TEST_CASE("mpr-render: a square in a light field stays square at another --size", "[tools][framing]") {
   // With --interp nearest the view through camera 1 is camera 1's image (a ramp: red 30 per
   // camera pixel to the right, green 40 per pixel down). At --size 16x6 (wider than 8x6) the view

@@ -133,6 +133,16 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
   if (job.rectify) {
     std::array<mpr::Vec3<T>, 4> quad;
     for (std::size_t i = 0; i < 4; ++i) quad[i] = (*job.rectify)[i].template cast<T>();
+    // A quadrilateral on the image plane itself (e.g. on a light field's focal plane) is not in
+    // front of it; the library would say "behind". Say what it is and what frames part of a plane.
+    const T size = std::max(plane.width_vector().norm(), plane.height_vector().norm());
+    bool on_plane = true;
+    for (const mpr::Vec3<T>& q : quad)
+      on_plane = on_plane && std::abs(plane.normal().dot(q - plane.centre())) <= T(1e-4) * size;
+    if (on_plane)
+      throw mpr::argument_error("--rectify", "the quadrilateral lies on the image plane itself, but must lie in front "
+                                             "of it; to show part of the image plane use --zoom (light fields) or "
+                                             "--plane-size (scenes)");
     try {
       return mpr::glc::rectify(plane, glc, mpr::glc::target_region(plane, glc, quad));
     } catch (const mpr::argument_error& e) {
