@@ -107,6 +107,7 @@ void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>
 } // namespace
 
 int main(int argc, char** argv) try {
+  (void)positional_args(argc, argv);
   const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
   const std::filesystem::path out = output_dir(argc, argv);
   std::vector<Row> rows;

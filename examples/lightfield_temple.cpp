@@ -5,23 +5,33 @@
 // Writes temple_novel.png: [captured view A | nearest | cylinder | synthetic aperture |
 // captured view B], and temple_novel_<policy>.png.
 //
-// usage: lightfield_temple [DATA_DIR] [OUTPUT_FOLDER] [VIEW_A]   (VIEW_A: 0-based, default 3)
+// usage: lightfield_temple [DATA_DIR] [OUTPUT_FOLDER] [VIEW_A]   (VIEW_A: 0-based, default 3; --help)
 #include "lightfield_common.hpp"
 
+#include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <string>
+#include <system_error>
+#include <vector>
 
 using namespace lf_example;
 
 int main(int argc, char** argv) try {
-  const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
-  const std::filesystem::path out = argc > 2 ? argv[2] : "lightfield-output";
-  const std::size_t a = argc > 3 ? static_cast<std::size_t>(std::atoi(argv[3])) : 3;
+  const std::vector<std::string> args = positional_args(
+      argc, argv, {"VIEW_A"}, "  VIEW_A         0-based index of the first of the two views (default 3)\n");
+  std::size_t a = 3;
+  if (args.size() > 2) {
+    const std::string& text = args[2];
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), a);
+    if (ec != std::errc{} || end != text.data() + text.size())
+      throw mpr::argument_error("VIEW_A", "'" + text + "' is not a view index (0, 1, 2, ...)");
+  }
+  const std::filesystem::path data = data_dir(args.empty() ? nullptr : args[0].c_str());
+  const std::filesystem::path out = args.size() > 1 ? args[1] : default_output;
   std::filesystem::create_directories(out);
-  const auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-      mpr::read_par_file<T>(data / "middlebury" / "templeSparseRing" / "templeSR_par.txt"));
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(
+      data / "middlebury" / "templeSparseRing" / "templeSR_par.txt", load_limits_with_progress()));
   if (a + 1 >= frames->size())
     throw mpr::argument_error("VIEW_A", "must be below " + std::to_string(frames->size() - 1));
   const mpr::PinholeCamera<T>& ca = frames->camera(a);

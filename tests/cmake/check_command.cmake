@@ -3,10 +3,11 @@
 # PASS_REGULAR_EXPRESSION (the exit status is ignored).
 #
 #   cmake -DEXPECT_RC=<n> [-DEXPECT_REGEX=<regex>] [-DPNG=<file> [-DPNG_SIZE=<W>x<H>]]
-#         [-DNO_FILE=<file>] -P check_command.cmake -- <command> [args...]
+#         [-DJPEG=<file>] [-DNO_FILE=<file>] -P check_command.cmake -- <command> [args...]
 #
 # EXPECT_REGEX is matched against stdout and stderr together. PNG: the file must be written by
 # this run (it is removed first) with a PNG signature and, with PNG_SIZE, that width and height.
+# JPEG: likewise, a file starting with a JPEG's SOI marker and a segment marker (FF D8 FF).
 # NO_FILE: the file must not exist afterwards (a failed run leaves no partial output).
 
 set(_cmd)
@@ -25,7 +26,7 @@ endif()
 if(NOT DEFINED EXPECT_RC)
   message(FATAL_ERROR "check_command: EXPECT_RC not set")
 endif()
-foreach(f IN ITEMS "${PNG}" "${NO_FILE}")
+foreach(f IN ITEMS "${PNG}" "${JPEG}" "${NO_FILE}")
   if(f)
     file(REMOVE "${f}")
   endif()
@@ -60,5 +61,14 @@ if(PNG)
     if(NOT "${w}x${h}" STREQUAL PNG_SIZE)
       message(FATAL_ERROR "check_command: ${PNG} is ${w}x${h}, expected ${PNG_SIZE}")
     endif()
+  endif()
+endif()
+if(JPEG)
+  if(NOT EXISTS "${JPEG}")
+    message(FATAL_ERROR "check_command: ${JPEG} was not written")
+  endif()
+  file(READ "${JPEG}" head LIMIT 3 HEX)
+  if(NOT head STREQUAL "ffd8ff")
+    message(FATAL_ERROR "check_command: ${JPEG} is not a JPEG (starts with ${head})")
   endif()
 endif()

@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -81,4 +83,45 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
   }
   CHECK(jpegs >= 2);
   CHECK(chunks == 2);
+}
+
+TEST_CASE("JPEG writing: magic bytes, close round trip, strided views, errors", "[io]") {
+  // A smooth image (JPEG's quantization is gentle on gradients).
+  mpr::Image<mpr::Rgb8> image(40, 24);
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 40; ++x)
+      image(x, y) = {static_cast<std::uint8_t>(40 + 4 * x), static_cast<std::uint8_t>(30 + 5 * y),
+                     static_cast<std::uint8_t>(120)};
+  const auto path = temp_path("roundtrip.jpg");
+  mpr::write_jpeg(path, image);
+  {
+    std::ifstream in(path, std::ios::binary);
+    unsigned char magic[3] = {};
+    in.read(reinterpret_cast<char*>(magic), 3);
+    CHECK(magic[0] == 0xFF); // SOI marker, then the first segment's marker
+    CHECK(magic[1] == 0xD8);
+    CHECK(magic[2] == 0xFF);
+  }
+  const mpr::Image<mpr::Rgb8> back = mpr::read_rgb8(path);
+  REQUIRE(back.width() == 40);
+  REQUIRE(back.height() == 24);
+  int worst = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 40; ++x)
+      worst = std::max({worst, std::abs(back(x, y).r - image(x, y).r), std::abs(back(x, y).g - image(x, y).g),
+                        std::abs(back(x, y).b - image(x, y).b)});
+  CHECK(worst <= 8);
+
+  // A strided view is packed first: the same pixels as writing a copy.
+  const mpr::ImageView<const mpr::Rgb8> sub(image.view().subview(5, 2, 10, 6));
+  mpr::Image<mpr::Rgb8> copy(10, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x) copy(x, y) = sub(x, y);
+  CHECK(mpr::encode_jpeg(sub) == mpr::encode_jpeg(copy.view()));
+  CHECK(mpr::encode_jpeg(image.view(), 50).size() < mpr::encode_jpeg(image.view(), 100).size());
+
+  CHECK_THROWS_WITH(mpr::write_jpeg(temp_path("q.jpg"), image, 0), Catch::Contains("quality"));
+  CHECK_THROWS_WITH(mpr::write_jpeg(temp_path("no_such_folder/x.jpg"), image), Catch::Contains("cannot write"));
+  CHECK_THROWS_AS(mpr::write_jpeg(temp_path("empty.jpg"), mpr::Image<mpr::Rgb8>()), mpr::io_error);
+  CHECK(mpr::encode_jpeg(image.view(), 101).empty());
 }

@@ -85,6 +85,18 @@ TEST_CASE("LFCA positions + homographies give cameras that see the reference pla
   }
   // Centres: mean-centred, X right, Y down (not negated for LFCA).
   CHECK(frames.camera(3).centre().isApprox(mpr::Vec3<double>(5, 5, 0)));
+  // LoadLimits::progress: called once per decoded image with (loaded, total).
+  std::size_t calls = 0, last = 0;
+  mpr::LoadLimits limits;
+  limits.progress = [&](std::size_t loaded, std::size_t total) {
+    ++calls;
+    CHECK(loaded == calls);
+    CHECK(total == 4);
+    last = loaded;
+  };
+  (void)mpr::read_lfca<double>(dir / "positions.txt", options, limits);
+  CHECK(calls == 4);
+  CHECK(last == 4);
 }
 
 TEST_CASE("LFCA errors name the file and line", "[lfca_calibration]") {

@@ -53,6 +53,12 @@ TEST_CASE("_par.txt writer and reader round-trip cameras and images", "[par_file
   REQUIRE(again.size() == 2);
   CHECK(again[1].R == cams[1].R());
   CHECK(again[1].line == 3);
+  // LoadLimits::progress: called once per decoded image with (loaded, total).
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  mpr::LoadLimits limits;
+  limits.progress = [&](std::size_t loaded, std::size_t total) { calls.emplace_back(loaded, total); };
+  (void)mpr::read_par_file<double>(dir / "a_par.txt", limits);
+  CHECK(calls == std::vector<std::pair<std::size_t, std::size_t>>{{1, 2}, {2, 2}});
   // float cameras read the same file.
   const auto f = mpr::read_par_file<float>(dir / "a_par.txt");
   CHECK(f.camera(1).centre().isApprox(cams[1].centre().cast<float>(), 1e-5f));
@@ -100,11 +106,19 @@ TEST_CASE("_par.txt reader names the file and line of every error", "[par_file]"
     expect_error("", 0, "empty");
     expect_error("two\n" + par_line("a.png"), 1, "not a count");
     expect_error("3\n" + par_line("a.png") + par_line("b.png"), 1, "3 images");
-    expect_error("1 2\n" + par_line("a.png"), 1, "expected 1 fields");
+    expect_error("1 2\n" + par_line("a.png"), 1, "expected the image count alone on the first line, found 2 fields");
+    // A file of another format (here: a calibration line without the count) says what a
+    // _par.txt file looks like, in correct grammar (before: "expected 1 fields, found 22").
+    expect_error(par_line("a.png") + par_line("b.png"), 1, "found 22 fields: is this a _par.txt file?");
+    expect_error("0 0 0 0 0 0 0 0 0 0\n", 1, "found 10 fields: is this a _par.txt file? (the image count, then");
+    const mpr::detail::TextLine two{7, {"a", "b"}};
+    CHECK_THROWS_WITH(mpr::detail::require_fields("x.txt", two, 1), Catch::Contains("expected 1 field, found 2"));
+    CHECK_THROWS_WITH(mpr::detail::require_fields("x.txt", two, 3, "id X Y"),
+                      Catch::Contains("expected 3 fields (id X Y), found 2"));
   }
   SECTION("fields and numbers") {
     expect_error("2\n" + par_line("a.png") + "b.png 10 0 2.5 0 10 1.5 0 0 1 1 0 0 0 1 0 0 0 1 0 0\n", 3,
-                 "expected 22 fields");
+                 "expected 22 fields (image name, K (9 numbers), R (9), t (3)), found 21");
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 1O 1.5 0 0 1"), 2, "field 6 ('1O')");
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 1", "0 0 nan"), 2, "field 22");
     expect_error("1\n" + par_line("a.png", "10 0 2.5 0 10 1.5 0 0 1", "1 0 0 0 1 0 0 0 1", "0 0 2x"), 2,

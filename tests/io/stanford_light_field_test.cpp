@@ -52,6 +52,13 @@ TEST_CASE("Stanford folder: planar array with zero disparity on the reference pl
   CHECK(frames.array_plane()->point == mpr::Vec3<double>::Zero());
   CHECK(frames.without(2).array_plane().has_value());
   CHECK(frames.cast<float>().array_plane()->normal == mpr::Vec3<float>::UnitZ());
+  // LoadLimits::progress: called once per decoded image, in order, with the total.
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  mpr::LoadLimits limits;
+  limits.progress = [&](std::size_t loaded, std::size_t total) { calls.emplace_back(loaded, total); };
+  CHECK(mpr::read_stanford_light_field<double>(dir.path(), options, limits).size() == 6);
+  REQUIRE(calls.size() == 6);
+  for (std::size_t i = 0; i < 6; ++i) CHECK(calls[i] == std::pair<std::size_t, std::size_t>(i + 1, 6));
   options.negate_x = true;
   options.negate_y = true;
   CHECK(mpr::read_stanford_light_field<double>(dir.path(), options)

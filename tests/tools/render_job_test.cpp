@@ -86,7 +86,7 @@ TEST_CASE("mpr-render options: good command lines", "[tools]") {
   CHECK(b.views == std::vector<std::string>(4, "H"));
   CHECK(b.sampler == mpr_cli::SamplerKind::scene);
 
-  const mpr_cli::Job c = job_of({"--view", "A", "--morph-to", "G", "--morph", "0=0,0.5=1,1=0"});
+  const mpr_cli::Job c = job_of({"--view", "A", "--morph-to", "G", "--morph", "0=0,0.5=1,1=0", "--frames", "3"});
   CHECK(c.morph.at(0.5) == 1);
   CHECK(c.morph.at(1) == 0);
 }

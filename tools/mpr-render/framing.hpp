@@ -31,10 +31,6 @@ struct PlanarCamera {
 template <std::floating_point T>
 using CameraVariant = std::variant<PlanarCamera<T>, mpr::glc::Rectified<T>>;
 
-/// The surface+selector pair of one view: planar, or rectified through a homography.
-template <std::floating_point T>
-using CameraVariant = std::variant<PlanarCamera<T>, mpr::glc::Rectified<T>>;
-
 /// The output size of one view.
 template <std::floating_point T>
 std::pair<int, int> view_size(const Job& job, const Loaded<T>& l) {
@@ -42,10 +38,31 @@ std::pair<int, int> view_size(const Job& job, const Loaded<T>& l) {
   return {job.width, job.height};
 }
 
+/// `full` (a light field's reference view on the focal plane) fitted to a `width` x `height`
+/// output: the largest centred rectangle of the output's aspect ratio inside `full` (so square
+/// things stay square whatever --size is, and no part of the view lies outside the reference
+/// camera's), then scaled by 1 / `zoom` about its centre. Unchanged when the aspect ratios agree
+/// (to 1e-9) and `zoom` is 1.
+template <std::floating_point T>
+mpr::PlanarSurface<T> fit_to_output(const mpr::PlanarSurface<T>& full, int width, int height, double zoom = 1) {
+  const double fw = static_cast<double>(full.width_vector().norm());
+  const double fh = static_cast<double>(full.height_vector().norm());
+  const double want = static_cast<double>(width) / height, have = fw / fh;
+  if (std::abs(want / have - 1) <= 1e-9 && zoom == 1) return full;
+  double sx = 1, sy = 1; // scale of the width and height vectors
+  if (want > have)
+    sy = have / want; // the output is wider: keep the width, crop the height
+  else
+    sx = want / have; // the output is taller: keep the height, crop the width
+  return mpr::PlanarSurface<T>::centred(full.centre(), static_cast<T>(sx / zoom) * full.width_vector(),
+                                        static_cast<T>(sy / zoom) * full.height_vector());
+}
+
 /// The image plane of a frame, before tilting (see job.hpp for the defaults).
 template <std::floating_point T>
 mpr::PlanarSurface<T> base_plane(const Job& job, const Loaded<T>& l, const FrameParams& p, int width, int height) {
-  if (l.reference) return l.reference->image_plane(static_cast<T>(p.focal_depth));
+  if (l.reference)
+    return fit_to_output(l.reference->image_plane(static_cast<T>(p.focal_depth)), width, height, job.zoom);
   using V = mpr::Vec3<T>;
   const V centre = (job.plane_centre ? *job.plane_centre : l.plane_centre).template cast<T>();
   const V look = (job.look_at ? *job.look_at : l.look_at).template cast<T>();
@@ -116,6 +133,16 @@ CameraVariant<T> make_camera(const Job& job, const Loaded<T>& l, const FramePara
   if (job.rectify) {
     std::array<mpr::Vec3<T>, 4> quad;
     for (std::size_t i = 0; i < 4; ++i) quad[i] = (*job.rectify)[i].template cast<T>();
+    // A quadrilateral on the image plane itself (e.g. on a light field's focal plane) is not in
+    // front of it; the library would say "behind". Say what it is and what frames part of a plane.
+    const T size = std::max(plane.width_vector().norm(), plane.height_vector().norm());
+    bool on_plane = true;
+    for (const mpr::Vec3<T>& q : quad)
+      on_plane = on_plane && std::abs(plane.normal().dot(q - plane.centre())) <= T(1e-4) * size;
+    if (on_plane)
+      throw mpr::argument_error("--rectify", "the quadrilateral lies on the image plane itself, but must lie in front "
+                                             "of it; to show part of the image plane use --zoom (light fields) or "
+                                             "--plane-size (scenes)");
     try {
       return mpr::glc::rectify(plane, glc, mpr::glc::target_region(plane, glc, quad));
     } catch (const mpr::argument_error& e) {

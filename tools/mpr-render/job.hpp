@@ -6,6 +6,7 @@
 #include "animation.hpp"
 #include "cli_args.hpp"
 #include "options.hpp"
+#include "output.hpp"
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
@@ -13,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -37,6 +39,7 @@ struct Job {
   bool print_camera = false;
   bool video = true; ///< also write an MP4 of an animation when ffmpeg is on PATH
   int frames = 0;    ///< 0: a single image; N >= 1: an animation of N frames
+  double fps = 12;   ///< frame rate of the MP4 of an animation
   // Sampler.
   SamplerKind sampler = SamplerKind::scene;
   std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
@@ -50,6 +53,10 @@ struct Job {
   double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
   double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
   std::optional<int> camera;        ///< light fields: the reference camera (index)
+  /// Light fields: called after each image is loaded with (loaded, total); not set from the
+  /// command line (main.cpp draws a progress line on a terminal with it).
+  std::function<void(std::size_t loaded, std::size_t total)> load_progress;
+  double zoom = 1; ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
   // Surface.
   std::optional<mpr::Vec3<double>> plane_centre, look_at;
   std::optional<std::pair<double, double>> plane_size;
@@ -71,6 +78,35 @@ inline Track parse_track(const std::string& text, const std::string& option) {
   return Track::parse(text, option);
 }
 
+/// True when the track takes more than one value over the animation.
+[[nodiscard]] inline bool animated(const Track& track) noexcept {
+  for (const Track::Key& k : track.keys())
+    if (k.value != track.keys().front().value) return true;
+  return false;
+}
+
+/// The first option of `job` whose value changes over an animation ("--tilt-x", "--morph-to",
+/// ...), or "" when nothing is animated.
+[[nodiscard]] inline std::string animated_option(const Job& job) {
+  if (job.morph_to && animated(job.morph)) return "--morph-to";
+  if (animated(job.tilt_x)) return "--tilt-x";
+  if (animated(job.tilt_y)) return "--tilt-y";
+  if (animated(job.radius)) return "--radius";
+  if (job.focal_depth && animated(*job.focal_depth)) return "--focal-depth";
+  return "";
+}
+
+/// An animated value needs --frames (without it only the start would be rendered), and
+/// --frames needs an animated value (otherwise every frame would be the same image).
+inline void check_animation(const Job& job) {
+  const std::string option = animated_option(job);
+  if (!option.empty() && job.frames == 0)
+    throw mpr::argument_error(option, "is animated (it changes over time): give --frames N to render N frames");
+  if (option.empty() && job.frames > 0)
+    throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
+                                          "--tilt-y, --radius, --focal-depth or --morph, or --morph-to VIEW)");
+}
+
 /// Builds the Job from a parsed command line; throws argument_error naming the option.
 inline Job make_job(const ParsedArgs& args) {
   Job job;
@@ -78,6 +114,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (v->empty()) throw mpr::argument_error("--output", "empty file name");
     job.output = *v;
   }
+  (void)image_format(job.output); // .png, .jpg, .jpeg or none; anything else is refused
   if (const auto v = args.get("size")) {
     std::tie(job.width, job.height) = parse_size(*v, "--size");
     job.size_given = true;
@@ -104,6 +141,12 @@ inline Job make_job(const ParsedArgs& args) {
   job.print_camera = args.has("print-camera");
   job.video = !args.has("no-video");
   if (const auto v = args.get("frames")) job.frames = parse_int(*v, "--frames", 1, 100000);
+  if (const auto v = args.get("fps")) {
+    if (job.frames == 0) throw mpr::argument_error("--fps", "applies to animations (--frames N)");
+    job.fps = parse_number(*v, "--fps");
+    if (!(job.fps > 0 && job.fps <= 1000))
+      throw mpr::argument_error("--fps", "must lie in (0, 1000] frames per second");
+  }
 
   int samplers = 0;
   if (const auto v = args.get("scene")) {
@@ -135,7 +178,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");
   }
-  for (const char* name : {"reference-depth", "position-scale", "camera"}) lf_only(name);
+  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom"}) lf_only(name);
   if (!job.raster)
     for (const char* name : {"interp", "radius", "focal-depth"}) lf_only(name);
   if (args.has("obj-scale") && job.sampler != SamplerKind::obj)
@@ -178,6 +221,10 @@ inline Job make_job(const ParsedArgs& args) {
     if (!(job.position_scale > 0)) throw mpr::argument_error("--position-scale", "must be positive");
   }
   if (const auto v = args.get("camera")) job.camera = parse_int(*v, "--camera", 0, 1000000);
+  if (const auto v = args.get("zoom")) {
+    job.zoom = parse_number(*v, "--zoom");
+    if (!(job.zoom > 0 && job.zoom <= 1e6)) throw mpr::argument_error("--zoom", "must lie in (0, 1e6]");
+  }
 
   if (const auto v = args.get("plane-centre")) job.plane_centre = parse_vec3(*v, "--plane-centre");
   if (const auto v = args.get("look-at")) job.look_at = parse_vec3(*v, "--look-at");
@@ -218,6 +265,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (!job.morph_to) throw mpr::argument_error("--morph", "needs --morph-to");
     job.morph = parse_track(*v, "--morph");
   }
+  check_animation(job);
   return job;
 }
 

@@ -14,7 +14,9 @@
 #endif
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -59,6 +61,8 @@ mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) 
 template <std::floating_point T>
 Loaded<T> load(const Job& job) {
   Loaded<T> l;
+  mpr::LoadLimits limits;
+  limits.progress = job.load_progress;
   switch (job.sampler) {
   case SamplerKind::scene:
     l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
@@ -77,9 +81,13 @@ Loaded<T> load(const Job& job) {
         lo = lo.cwiseMin(p.template cast<double>());
         hi = hi.cwiseMax(p.template cast<double>());
       }
+    // Default framing: the bounding box's centre seen from the +z side, 30 degrees above the
+    // horizontal (y up), from 1.2 box diagonals away, so a ground plane shows as a surface rather
+    // than a line; the image plane is one diagonal wide (gallery view A frames 1.2 diagonals).
     const double diag = std::max((hi - lo).norm(), 1e-6);
+    constexpr double elevation = 30 * std::numbers::pi / 180;
     l.scene_centre = l.look_at = 0.5 * (lo + hi);
-    l.plane_centre = l.scene_centre + mpr::Vec3<double>(0, 0, 1.2 * diag);
+    l.plane_centre = l.scene_centre + 1.2 * diag * mpr::Vec3<double>(0, std::sin(elevation), std::cos(elevation));
     l.plane_width = diag;
     l.scene_scale = diag;
     break;
@@ -88,16 +96,16 @@ Loaded<T> load(const Job& job) {
 #endif
   }
   case SamplerKind::par:
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input));
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input, limits));
     break;
   case SamplerKind::stanford:
     l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job)));
+        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job), limits));
     break;
   case SamplerKind::lfca: {
     mpr::LfcaOptions o;
     o.array = detail::array_options(job);
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o));
+    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o, limits));
     break;
   }
   }

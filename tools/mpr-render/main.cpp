@@ -15,8 +15,8 @@
 namespace {
 
 void print_help() {
-  std::printf(
-      "usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field to PNG.\n\n");
+  std::printf("usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field to PNG "
+              "or JPEG.\n\n");
   for (const mpr_cli::OptionSpec& s : mpr_cli::options()) {
     std::string head = "--" + s.name + (s.value.empty() ? "" : " " + s.value);
     std::printf("  %s\n      %s\n      e.g. %s\n", head.c_str(), s.help.c_str(), s.example.c_str());
@@ -35,12 +35,11 @@ void progress(int done, int count) {
   std::fflush(stderr);
 }
 
-bool ffmpeg_available() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+/// The progress of loading a light field's images on stderr, drawn only when stderr is a terminal.
+void loading_progress(std::size_t done, std::size_t count) {
+  std::fprintf(stderr, "\rloading images %zu/%zu", done, count);
+  if (done == count) std::fprintf(stderr, "\r%*s\r", 40, "");
+  std::fflush(stderr);
 }
 
 } // namespace
@@ -51,14 +50,15 @@ int main(int argc, char** argv) try {
       print_help();
       return 0;
     }
-  const mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
+  mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
+  if (isatty(STDERR_FILENO)) job.load_progress = loading_progress;
   if (const auto parent = job.output.parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
   const bool animation = job.frames >= 1;
   mpr_cli::run(
       job,
       [&](int index, int count, const mpr::Image<mpr::Rgb8>& image) {
         const std::filesystem::path path = animation ? mpr_cli::frame_path(job.output, index) : job.output;
-        mpr::write_png(path, image);
+        mpr_cli::write_image(path, image);
         if (animation)
           progress(index + 1, count);
         else
@@ -68,17 +68,22 @@ int main(int argc, char** argv) try {
   if (animation) {
     std::printf("wrote %s ... %s\n", mpr_cli::frame_path(job.output, 0).string().c_str(),
                 mpr_cli::frame_path(job.output, job.frames - 1).string().c_str());
-    if (job.video && ffmpeg_available()) {
-      std::filesystem::path mp4 = job.output;
-      mp4.replace_extension(".mp4");
-      std::filesystem::path pattern = job.output;
-      pattern.replace_filename(job.output.stem().string() + "_%04d.png");
-      const std::string cmd = "ffmpeg -loglevel error -y -framerate 12 -i " + quoted(pattern.string()) +
-                              " -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' " + quoted(mp4.string());
-      if (std::system(cmd.c_str()) == 0)
+    // Frames beyond N of an earlier, longer run with the same name would mix with this one.
+    if (const int removed = mpr_cli::remove_stale_frames(job.output, job.frames); removed > 0)
+      std::printf("removed %d stale frame%s of an earlier run (%s onwards)\n", removed, removed == 1 ? "" : "s",
+                  mpr_cli::frame_path(job.output, job.frames).filename().string().c_str());
+    if (job.video) {
+      const std::filesystem::path mp4 = mpr_cli::video_path(job.output);
+      if (!mpr_cli::ffmpeg_available()) {
+        std::fprintf(stderr,
+                     "mpr-render: skipped %s: ffmpeg is not on PATH (the frames are complete; --no-video "
+                     "silences this)\n",
+                     mp4.string().c_str());
+      } else if (std::system(mpr_cli::ffmpeg_command(job.output, job.frames, job.fps).c_str()) == 0) {
         std::printf("wrote %s\n", mp4.string().c_str());
-      else
-        std::fprintf(stderr, "mpr-render: ffmpeg failed; the PNG frames are complete\n");
+      } else {
+        std::fprintf(stderr, "mpr-render: ffmpeg failed; the frames are complete\n");
+      }
     }
   }
   return 0;

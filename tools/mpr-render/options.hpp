@@ -12,65 +12,82 @@ namespace mpr_cli {
 inline const std::vector<OptionSpec>& options() {
   static const std::vector<OptionSpec> specs = {
       {"help", "", "Print this help and exit.", "mpr-render --help"},
-      {"output", "FILE.png", "Output PNG (default mpr-render.png). With --frames N: FILE_0001.png ... FILE_NNNN.png.",
+      {"output", "FILE.png|FILE.jpg",
+       "Output image, PNG or JPEG (quality 95) by the extension (.png, .jpg, .jpeg; default mpr-render.png). "
+       "With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames FILE_NNNN.png beyond N of an earlier run "
+       "are removed).",
        "--output out/cross.png"},
-      {"size", "WxH", "Size of one view in pixels (default 480x360).", "--size 640x480"},
+      {"size", "WxH",
+       "Size of one view in pixels (default 480x360; light fields: the reference camera's size, and another "
+       "aspect ratio crops the camera's view instead of stretching it).",
+       "--size 640x480"},
       {"layout", "CxR", "Tile C x R views side by side in one image (default 1x1); list them with --views.",
        "--layout 3x3 --views A,B,C,D,E,F,G,H,I"},
       {"view", "VIEW", "The camera (selector) of a single view; see VIEW below (default: 'default').", "--view G"},
-      {"views", "V1,V2,...", "One VIEW per tile of --layout, row-major (',' separates views; use ';' inside).",
-       "--views A,G,pinhole:0;1.6;10"},
+      {"views", "V1,V2,...",
+       "One VIEW per tile of --layout, row-major (',' separates views; use ';' inside, and quote the list for "
+       "the shell).",
+       "--layout 3x1 --views 'A,G,pinhole:0;1.6;10'"},
       {"threads", "N", "Worker threads, 0 = all (default 0). Images are identical for any N.", "--threads 2"},
       {"double", "", "Render in double precision (default float).", "--double"},
       {"print-camera", "", "Print each view's GLC type, slits and centre (mpr::glc::classify) to stdout.",
        "--view G --print-camera"},
       {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",
        "--scene classroom"},
-      {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj bunny.obj"},
+      {"obj", "FILE.obj", "Sampler: a Wavefront OBJ mesh (with MTL/texture), ray cast.", "--obj examples/boxes.obj"},
       {"raster", "CxR",
        "Scene/OBJ: sample a rasterized virtual camera array of C x R cameras (160x120 pixels each, on the image "
        "plane) instead of ray casting; --interp, --radius and --focal-depth (in front of the plane) apply. "
        "Arrays estimated above 1 GiB (about 6,000 cameras) are refused before rendering.",
        "--raster 16x12 --interp cylinder --radius 0.5"},
-      {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).", "--obj-scale 0.01"},
+      {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).",
+       "--obj examples/boxes.obj --obj-scale 0.01"},
       {"par", "FILE_par.txt", "Sampler: a light field from a Middlebury-style _par.txt calibration.",
-       "--par data/templeSR/templeSR_par.txt"},
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt"},
       {"stanford", "FOLDER", "Sampler: a Stanford light-field archive folder of out_RR_CC_Y_X.png images.",
-       "--stanford data/stanford/chess"},
+       "--stanford $MPR_DATA_DIR/stanford/chess --focal-depth 820"},
       {"lfca", "POSITIONS.txt",
        "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
-       "--lfca rig/positions.txt"},
+       "--lfca $MPR_DATA_DIR/lfca/positions.txt"},
       {"interp", "nearest|synthetic|cylinder",
        "Light-field interpolation: nearest camera, full synthetic aperture, or cylinder aperture of --radius "
        "(default synthetic).",
-       "--interp cylinder --radius 10"},
-      {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.", "--radius 5:40"},
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3"},
+      {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.",
+       "--raster 8x6 --interp cylinder --radius 0.5:3 --frames 9"},
       {"focal-depth", "D|A:B|T=V,...",
        "Light fields: depth of the focal (image) plane in front of the reference camera (default: the reference "
        "plane); animatable.",
-       "--focal-depth 700:950"},
+       "--stanford $MPR_DATA_DIR/stanford/chess --focal-depth 700:950 --frames 9"},
       {"reference-depth", "D", "Stanford/LFCA: depth of the rectified reference plane (default 1000).",
-       "--reference-depth 1000"},
+       "--stanford $MPR_DATA_DIR/stanford/chess --reference-depth 1000 --position-scale 1"},
       {"position-scale", "S", "Stanford/LFCA: world units per stored camera-position unit (default 1).",
-       "--position-scale 1"},
+       "--stanford $MPR_DATA_DIR/stanford/chess --reference-depth 1000 --position-scale 1"},
       {"camera", "K",
        "Light fields: index of the reference camera (default: the array centre for Stanford/LFCA, "
        "the middle camera for _par.txt).",
-       "--camera 3"},
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --camera 3"},
+      {"zoom", "F",
+       "Light fields: magnification of the view about its centre (default 1: the reference camera's view, "
+       "cropped to the aspect ratio of --size; 2 shows the middle half).",
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --zoom 2"},
       {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).",
-       "--plane-centre 0,3.1,3"},
-      {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).", "--look-at 0,1.6,-8"},
-      {"plane-size", "W,H", "Extent of the image plane in world units.", "--plane-size 8,6"},
+       "--plane-centre 0,3.1,3 --look-at 0,1.6,-8 --plane-size 8,6"},
+      {"look-at", "X,Y,Z", "The image plane faces this point (its normal points at it).",
+       "--plane-centre 0,1.6,3 --look-at 0,1.6,-8 --plane-size 8,6"},
+      {"plane-size", "W,H", "Extent of the image plane in world units.",
+       "--plane-centre 0,3.1,3 --look-at 0,1.6,-8 --plane-size 12,9"},
       {"up", "X,Y,Z", "Up direction of the image plane (default 0,1,0).", "--up 0,1,0"},
       {"tilt-x", "DEG|A:B|T=V,...", "Tilt the image plane about its horizontal axis, degrees; animatable.",
-       "--tilt-x 0:30"},
+       "--view G --tilt-x 0:30 --rectify plane --frames 24"},
       {"tilt-y", "DEG|A:B|T=V,...", "Tilt the image plane about its vertical axis, degrees; animatable.",
-       "--tilt-y -20:20"},
+       "--tilt-y -20:20 --rectify plane --frames 24"},
       {"rectify", "P1;P2;P3;P4",
        "Rectifying homography: the world quadrilateral (top-left, top-right, bottom-right, bottom-left; each "
-       "X,Y,Z) that fills each view (mpr::glc::rectify). 'plane': the untilted image plane's corners, so a "
+       "X,Y,Z; quote it for the shell) that fills each view (mpr::glc::rectify). 'plane': the untilted image plane's "
+       "corners, so a "
        "tilted focal plane keeps the untilted framing.",
-       "--rectify -4.4,5.4,-14;4.4,5.4,-14;4.4,-1.2,-14;-4.4,-1.2,-14"},
+       "--view C --rectify '-4.4,5.4,-14;4.4,5.4,-14;4.4,-1.2,-14;-4.4,-1.2,-14'"},
       {"scene-centre", "X,Y,Z", "Where the gallery views aim (default: the middle of the scene).",
        "--scene-centre 0,1.6,-8"},
       {"scene-scale", "S", "Size of the scene the gallery views frame, world units (default: the scene's).",
@@ -79,13 +96,17 @@ inline const std::vector<OptionSpec>& options() {
        "--frames 24 --tilt-x 0:30"},
       {"morph-to", "VIEW", "Animation: morph from the view to this VIEW by interpolating corner directions.",
        "--view A --morph-to G --frames 24"},
-      {"morph", "A:B|T=V,...", "Morph weight over the animation (default 0:1).", "--morph 0=0,0.5=1,1=0"},
-      {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--no-video"},
+      {"morph", "A:B|T=V,...", "Morph weight over the animation (default 0:1).",
+       "--view A --morph-to G --morph 0=0,0.5=1,1=0 --frames 24"},
+      {"fps", "F", "Animation: frame rate of the MP4 in frames per second (default 12).",
+       "--tilt-x 0:30 --frames 3 --fps 24"},
+      {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--tilt-y -20:20 --frames 24 --no-video"},
   };
   return specs;
 }
 
-/// The text after the options in --help.
+/// The text after the options in --help. Every "e.g." above and below, and every command under
+/// "Examples:", runs in ctest (tools/mpr-render/run_examples.cmake).
 inline const char* view_help() {
   return R"(VIEW (a camera, i.e. a GLC ray selector on the image plane):
   default            scene: gallery view A; light field: the reference camera's pinhole
@@ -95,20 +116,27 @@ inline const char* view_help() {
   orthographic:D     parallel rays along D                          e.g. orthographic:0,-0.1,-1
   oblique:AU,AV      rays tilted AU, AV degrees from the normal     e.g. oblique:30,10
   pushbroom:P:D      slit through P along D                         e.g. pushbroom:0,1.6,10:1,0,0
-  cross_slit:P1:D1:P2:D2  two slits                                 e.g. cross_slit:0,1.6,8:0,1,0:0,1.6,12:1,0,0
+  cross_slit:P1:D1:P2:D2  two slits                                 e.g. cross_slit:0,1.6,10:0,11,-1.5:0,1.6,20:1,0,0
   pencil:P:D:K       slit through P along D, twist K (1/length)     e.g. pencil:0,1.6,10:1,0,0:0.05
-  twisted:D:W:K      twisted orthographic: direction D, tilt W, twist K
+  twisted:D:W:K      twisted orthographic: direction D, in-plane tilt direction W (a vector), twist K
+                                                                    e.g. twisted:0,-0.1,-1:1,0,0:0.05
   bilinear:D:C:K     bilinear: direction D, convergence C, twist K  e.g. bilinear:0,0,-1:-0.05:0.05
   corners:D00:D10:D01  explicit ray directions at the top-left, top-right and bottom-left corners
-In --views, separate the numbers of a vector with ';' instead of ',' (e.g. pinhole:0;1.6;10).
+                                                                    e.g. corners:-0.3,-0.1,-1:0.3,-0.1,-1:-0.3,-0.5,-1
+Slits (D, D1, D2) must be parallel to the image plane: the default scene plane faces 0,-1.5,-11 (from
+0,3.1,3 towards 0,1.6,-8), so its horizontal is 1,0,0 and its vertical 0,11,-1.5.
+In --views, separate the numbers of a vector with ';' instead of ',' (e.g. pinhole:0;1.6;10) and
+quote the list, since ';' ends a shell command.
 ANIMATABLE values are a number, FROM:TO (linear over the frames) or keyframes T=V,T=V,... with
-times from 0 to 1.
+times from 0 to 1; an animated value needs --frames N, and --frames needs an animated value.
+$MPR_DATA_DIR below is the folder of the real data sets (../shared/data in the repository).
 
 Examples:
   mpr-render --view G --print-camera --output cross_slit.png
   mpr-render --layout 3x3 --views A,B,C,D,E,F,G,H,I --size 320x240 --output gallery.png
-  mpr-render --stanford /data/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
-  mpr-render --stanford /data/stanford/chess --focal-depth 820 --tilt-x -30:30 --frames 24 --output tilt.png
+  mpr-render --obj examples/boxes.obj --output boxes.jpg
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --focal-depth 820 --tilt-x 0:-28 --rectify plane --frames 24 --output tilt.png
 )";
 }
 

@@ -9,6 +9,7 @@
 #include "job.hpp"
 #include "light_field_views.hpp"
 #include "loading.hpp"
+#include "output.hpp"
 #include "preflight.hpp"
 #include "print_camera.hpp"
 #include "samplers.hpp"
@@ -80,12 +81,13 @@ inline std::vector<mpr::Image<mpr::Rgb8>> render_frames(const Job& job, std::ost
   return frames;
 }
 
-/// The numbered PNG path of frame `index` (0-based) of an animation: out.png -> out_0001.png.
+/// The numbered path of frame `index` (0-based) of an animation: out.png -> out_0001.png,
+/// out.jpg -> out_0001.jpg (frame_extension).
 inline std::filesystem::path frame_path(const std::filesystem::path& output, int index) {
   char number[16];
   std::snprintf(number, sizeof number, "_%04d", index + 1);
   std::filesystem::path p = output;
-  p.replace_filename(output.stem().string() + number + ".png");
+  p.replace_filename(output.stem().string() + number + frame_extension(output));
   return p;
 }
 

@@ -10,16 +10,21 @@
 
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <string>
 
 namespace {
 
 template <std::floating_point T>
-int run_typed(const mpr_cli::Job& job, const mpr_view::ViewerSettings& settings,
+int run_typed(const mpr_cli::Job& given, const mpr_view::ViewerSettings& settings,
               const std::vector<mpr_view::ScriptCommand>& script) {
   // Data and every camera are checked before any window opens (mpr-render's preflight).
-  const mpr_cli::Loaded<T> loaded = mpr_cli::load<T>(job);
+  const mpr_cli::Loaded<T> loaded = mpr_cli::load<T>(given);
+  // An array's defaults as in mpr-render (light_field_views.hpp): a cylinder of the camera
+  // spacing for views other than the reference, and its warnings on stderr.
+  const mpr_cli::Job job = mpr_cli::with_array_defaults(given, loaded);
   mpr_cli::preflight(job, loaded);
+  mpr_cli::warn_job(std::cerr, job, loaded);
   if (settings.benchmark) return mpr_view::run_benchmark(job, loaded, settings.benchmark_frames);
   return mpr_view::run_window(job, loaded, settings, script);
 }

@@ -76,11 +76,19 @@ struct TextLine {
   return value;
 }
 
-/// Throws `io_error` unless `line` has exactly `count` fields.
-inline void require_fields(const std::filesystem::path& path, const TextLine& line, std::size_t count) {
+/// "1 field", "10 fields".
+[[nodiscard]] inline std::string count_of_fields(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " field" : " fields");
+}
+
+/// Throws `io_error` unless `line` has exactly `count` fields; `layout` (if not empty) says what
+/// they are, e.g. "id X Y".
+inline void require_fields(const std::filesystem::path& path, const TextLine& line, std::size_t count,
+                           const std::string& layout = {}) {
   if (line.fields.size() != count)
     throw io_error(path.string(),
-                   "expected " + std::to_string(count) + " fields, found " + std::to_string(line.fields.size()),
+                   "expected " + count_of_fields(count) + (layout.empty() ? "" : " (" + layout + ")") + ", found " +
+                       std::to_string(line.fields.size()),
                    line.number);
 }
 

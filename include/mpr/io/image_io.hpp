@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// Reading images (PNG, JPEG, BMP, TGA, ... through stb_image) and writing PNG (stb_image_write).
+/// Reading images (PNG, JPEG, BMP, TGA, ... through stb_image) and writing PNG and JPEG
+/// (stb_image_write).
 ///
 /// This header only declares stb's functions: link Debian's `libstb` (the CMake target `mpr::mpr`
 /// does this) or compile `src/stb_implementation.cpp` once into your program.
@@ -234,5 +235,44 @@ inline void write_png(const std::filesystem::path& path, ImageView<const Color> 
 
 inline void write_png(const std::filesystem::path& path, const Image<Rgb8>& image) { write_png(path, image.view()); }
 inline void write_png(const std::filesystem::path& path, const Image<Color>& image) { write_png(path, image.view()); }
+
+/// Encodes 8-bit sRGB pixels as baseline JPEG bytes (in memory) at `quality` in [1, 100]
+/// (stb_image_write; 4:2:0 chroma subsampling below 90, none from 90). Empty on failure.
+[[nodiscard]] inline std::vector<unsigned char> encode_jpeg(ImageView<const Rgb8> image, int quality = 95) {
+  static_assert(sizeof(Rgb8) == 3, "Rgb8 must be tightly packed for stb");
+  std::vector<unsigned char> bytes;
+  if (image.empty() || quality < 1 || quality > 100) return bytes;
+  // stb's JPEG writer takes no row stride: copy a strided view into contiguous rows.
+  Image<Rgb8> packed;
+  const Rgb8* pixels = image.data();
+  if (image.stride() != image.width()) {
+    packed = Image<Rgb8>(image.width(), image.height());
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) packed(x, y) = image(x, y);
+    pixels = packed.data();
+  }
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    const auto* first = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), first, first + size);
+  };
+  if (stbi_write_jpg_to_func(append, &bytes, image.width(), image.height(), 3, pixels, quality) == 0) bytes.clear();
+  return bytes;
+}
+
+/// Writes 8-bit sRGB pixels as a JPEG file at `quality` in [1, 100] (default 95), through
+/// `write_file_atomically` like `write_png`: a failed write throws `io_error` naming the file and
+/// never leaves a partial file under `path`. Throws `argument_error` ("quality") outside [1, 100].
+inline void write_jpeg(const std::filesystem::path& path, ImageView<const Rgb8> image, int quality = 95) {
+  if (quality < 1 || quality > 100) throw argument_error("quality", "must lie in [1, 100]");
+  if (image.empty()) throw io_error(path.string(), "cannot write an empty image");
+  const std::vector<unsigned char> bytes = encode_jpeg(image, quality);
+  if (bytes.empty()) throw io_error(path.string(), "cannot encode JPEG");
+  write_file_atomically(path, bytes);
+}
+
+inline void write_jpeg(const std::filesystem::path& path, const Image<Rgb8>& image, int quality = 95) {
+  write_jpeg(path, image.view(), quality);
+}
 
 } // namespace mpr

@@ -91,7 +91,7 @@ template <std::floating_point T = double>
   std::vector<Vec2<double>> positions;
   std::unordered_map<std::string, std::size_t> first_line; // id -> line: linear, not quadratic
   for (const detail::TextLine& line : lines) {
-    detail::require_fields(positions_file, line, 3);
+    detail::require_fields(positions_file, line, 3, "id X Y");
     const auto [at, inserted] = first_line.emplace(line.fields[0], line.number);
     if (!inserted)
       throw io_error(positions_file.string(),
@@ -176,6 +176,7 @@ template <std::floating_point T = double>
       throw io_error(h_path.string(), std::string("homography gives no valid camera: ") + err.what());
     }
     images.push_back(std::move(image));
+    if (limits.progress) limits.progress(i + 1, ids.size());
   }
   // Built on z = 0 (planar_camera_array.hpp): hand the plane over instead of letting the samplers fit it.
   return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), ids)

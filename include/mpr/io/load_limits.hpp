@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <system_error>
 
@@ -32,6 +33,12 @@ struct LoadLimits {
   std::uint64_t max_line_bytes = std::uint64_t(1) << 20;
   /// Size in bytes of one (encoded) image file. Default 1 GiB.
   std::uint64_t max_image_file_bytes = std::uint64_t(1) << 30;
+  /// Not a limit: called by the frame-set loaders (read_par_file, read_stanford_light_field,
+  /// read_lfca) after each image is decoded, with the images decoded so far and the total, so a
+  /// program can show the progress of a long load (a 289-image Stanford set takes tens of
+  /// seconds). Empty by default (nothing is called). It lives here because every loader takes
+  /// a LoadLimits; an exception it throws ends the load.
+  std::function<void(std::size_t loaded, std::size_t total)> progress;
 };
 
 namespace detail {

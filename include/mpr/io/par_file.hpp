@@ -45,7 +45,13 @@ template <std::floating_point T = double>
                                                         const LoadLimits& limits = {}) {
   const std::vector<detail::TextLine> lines = detail::read_text_lines(par_file, limits);
   if (lines.empty()) throw io_error(par_file.string(), "empty file: expected the image count on line 1");
-  detail::require_fields(par_file, lines[0], 1);
+  constexpr const char* layout = "image name, K (9 numbers), R (9), t (3)";
+  if (lines[0].fields.size() != 1)
+    throw io_error(par_file.string(),
+                   "expected the image count alone on the first line, found " +
+                       detail::count_of_fields(lines[0].fields.size()) +
+                       ": is this a _par.txt file? (the image count, then one line per image: " + layout + ")",
+                   lines[0].number);
   const long count = detail::parse_count(par_file, lines[0], 0);
   if (static_cast<std::size_t>(count) != lines.size() - 1)
     throw io_error(par_file.string(),
@@ -55,7 +61,7 @@ template <std::floating_point T = double>
   std::vector<ParEntry<T>> entries;
   for (std::size_t i = 1; i < lines.size(); ++i) {
     const detail::TextLine& line = lines[i];
-    detail::require_fields(par_file, line, 22);
+    detail::require_fields(par_file, line, 22, layout);
     ParEntry<T> e;
     e.image_name = line.fields[0];
     e.line = line.number;
@@ -122,6 +128,7 @@ template <std::floating_point T = double>
     cameras.push_back(par_camera(par_file, e, image.width(), image.height()));
     images.push_back(std::move(image));
     names.push_back(e.image_name);
+    if (limits.progress) limits.progress(i + 1, entries.size());
   }
   return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names));
 }

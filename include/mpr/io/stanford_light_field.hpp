@@ -138,6 +138,7 @@ template <std::floating_point T = double>
     }
     images.push_back(std::move(image));
     names.push_back(entries[i].path.filename().string());
+    if (limits.progress) limits.progress(i + 1, entries.size());
   }
   // Built on z = 0 (planar_camera_array.hpp): hand the plane over instead of letting the samplers fit it.
   return CameraFrameSet<T, Rgb8>(std::move(cameras), std::move(images), std::move(names))
