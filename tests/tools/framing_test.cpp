@@ -1,6 +1,7 @@
 // mpr-render's framing (tools/mpr-render/framing.hpp): a light field's view keeps its aspect
 // ratio under any --size (cropped, not stretched) and --zoom magnifies it about its centre.
 #include "mpr-render/render_job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -11,11 +12,7 @@
 
 namespace {
 
-mpr_cli::Job job_of(std::vector<std::string> args) {
-  std::vector<const char*> argv{"mpr-render"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
-}
+using mpr_tools_test::job_of;
 
 /// A _par.txt light field of three 8x6 cameras (fx = fy = 8, so square pixels) in a fresh folder;
 /// every image is a ramp, red 30 x and green 40 y (pixel codes).

@@ -1,6 +1,7 @@
 // mpr-render's Job (tools/mpr-render/job.hpp): command-line combinations that would silently
 // render something other than what was asked are refused with one line naming the option.
 #include "mpr-render/job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -9,11 +10,7 @@
 
 namespace {
 
-mpr_cli::Job job_of(std::vector<std::string> args) {
-  std::vector<const char*> argv{"mpr-render"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
-}
+using mpr_tools_test::job_of;
 
 std::string error_of(std::vector<std::string> args) {
   try {

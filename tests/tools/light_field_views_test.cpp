@@ -5,6 +5,7 @@
 // interpolation under non-pinhole views.
 #include "io/light_field_test_files.hpp"
 #include "mpr-render/render_job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -19,11 +20,7 @@ namespace {
 
 using Image = mpr::Image<mpr::Rgb8>;
 
-mpr_cli::Job job_of(std::vector<std::string> args) {
-  std::vector<const char*> argv{"mpr-render"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
-}
+using mpr_tools_test::job_of;
 
 /// Renders a job; --print-camera text and warnings are returned through the streams.
 Image render(const mpr_cli::Job& job, std::ostream& info, std::ostream& warnings) {

@@ -1,5 +1,6 @@
 // mpr-render's loading (tools/mpr-render/loading.hpp): the default framing of an OBJ scene.
 #include "mpr-render/render_job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -11,11 +12,7 @@
 #ifdef MPR_HAVE_TINYOBJLOADER
 
 namespace {
-mpr_cli::Job job_of(std::vector<std::string> args) {
-  std::vector<const char*> argv{"mpr-render"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
-}
+using mpr_tools_test::job_of;
 } // namespace
 
 TEST_CASE("mpr-render: an OBJ is framed from above at an angle by default", "[tools][loading]") {

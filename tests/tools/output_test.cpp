@@ -2,6 +2,7 @@
 // an earlier run, the ffmpeg command.
 #include "mpr-render/output.hpp"
 #include "mpr-render/render_job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -9,13 +10,7 @@
 #include <unistd.h>
 
 namespace {
-std::filesystem::path temp_folder(const std::string& name) {
-  const std::filesystem::path p =
-      std::filesystem::temp_directory_path() / ("mpr_output_test_" + std::to_string(getpid()) + "_" + name);
-  std::filesystem::remove_all(p);
-  std::filesystem::create_directories(p);
-  return p;
-}
+using mpr_tools_test::temp_folder;
 } // namespace
 
 TEST_CASE("mpr-render: the output format follows the extension", "[tools][output]") {

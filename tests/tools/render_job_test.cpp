@@ -2,6 +2,7 @@
 // the same render written directly against the C++ API (identical pixels), for every sampler
 // kind; option errors; a 3-frame animation.
 #include "mpr-render/render_job.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -17,25 +18,14 @@ namespace {
 
 using Image = mpr::Image<mpr::Rgb8>;
 
-mpr_cli::Job job_of(std::vector<std::string> args) {
-  std::vector<const char*> argv{"mpr-render"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  return mpr_cli::parse_job(static_cast<int>(argv.size()), argv.data());
-}
+using mpr_tools_test::job_of;
 
 bool identical(const Image& a, const Image& b) {
   return a.width() == b.width() && a.height() == b.height() &&
          std::memcmp(a.data(), b.data(), sizeof(mpr::Rgb8) * static_cast<std::size_t>(a.width() * a.height())) == 0;
 }
 
-/// A fresh temporary folder for this test process.
-std::filesystem::path temp_folder(const std::string& name) {
-  const std::filesystem::path p =
-      std::filesystem::temp_directory_path() / ("mpr_tools_test_" + std::to_string(getpid()) + "_" + name);
-  std::filesystem::remove_all(p);
-  std::filesystem::create_directories(p);
-  return p;
-}
+using mpr_tools_test::temp_folder;
 
 Image noise_image(int w, int h, unsigned seed) {
   std::mt19937 rng(seed);
