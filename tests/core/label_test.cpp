@@ -22,7 +22,7 @@ std::vector<std::string> picture(const mpr::Image<mpr::Rgb8>& img, mpr::Rgb8 ink
 } // namespace
 
 TEST_CASE("label_size: 6 pixels a character less the last gap, one font pixel of margin", "[core][label]") {
-  STATIC_REQUIRE(mpr::label_size("") == std::pair{2, 9});
+  STATIC_REQUIRE(mpr::label_size("") == std::pair{4, 18}); // default scale 2: the margins only
   STATIC_REQUIRE(mpr::label_size("AB", mpr::LabelStyle{1}) == std::pair{13, 9});
   STATIC_REQUIRE(mpr::label_size("G cross-slit") == std::pair{(12 * 6 - 1) * 2 + 4, 18});
   STATIC_REQUIRE(mpr::label_size("x", mpr::LabelStyle{0}) == std::pair{7, 9}); // scale clamped to 1
