@@ -118,6 +118,16 @@ TEST_CASE("light-field views: defaults per use and the warnings", "[tools][lf_vi
                                info, warnings);
     CHECK(tile_difference(sheet, 0, 6) == 0);
     CHECK(warnings.str().find("--interp synthetic averages every camera") != std::string::npos);
+    // Cameras 5 apart seen from 1000 away: 0.29 degrees, no warning about their angle.
+    CHECK(warnings.str().find("degrees apart") == std::string::npos);
+  }
+  {
+    // Seen from a focal plane 50 away the cameras are 2 atan(2.5 / 50) = 5.7 degrees apart.
+    std::ostringstream info, warnings;
+    (void)render(job_of({"--stanford", dir.string(), "--view", "G", "--focal-depth", "50", "--size", "40x30"}), info,
+                 warnings);
+    CHECK(warnings.str().find("neighbouring cameras are 5.7 degrees apart seen from the focal plane") !=
+          std::string::npos);
   }
   {
     // An explicit cross-slit far outside the 20 x 20 array: the share of rays off it.

@@ -12,7 +12,9 @@
 #include <mpr/glc.hpp>
 #include <mpr/lightfield/array_view.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <ostream>
 #include <string>
 #include <variant>
@@ -80,6 +82,21 @@ void warn_job(std::ostream& warn, const Job& job, const Loaded<T>& l) {
   if (job.interpolation == Interpolation::synthetic && detail::any_other_view(job))
     warn << "mpr-render: warning: --interp synthetic averages every camera at the focal-plane point and ignores "
             "the ray, so all views on one focal plane render alike; use --interp nearest or cylinder\n";
+  if (l.footprint && detail::any_other_view(job)) {
+    // Neighbouring cameras as seen from the focal plane: beyond a couple of degrees, whatever lies
+    // off that plane lands in different places in neighbouring cameras.
+    const double depth = frame_params(job, l.default_focal_depth, 0).focal_depth;
+    const double angle =
+        2 * std::atan(0.5 * static_cast<double>(l.footprint->spacing) / depth) * 180 / std::numbers::pi;
+    if (angle > 2) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "mpr-render: warning: neighbouring cameras are %.1f degrees apart seen from the focal plane: "
+                    "what lies off that plane is doubled (blending) or cut where the camera changes (nearest)\n",
+                    angle);
+      warn << line;
+    }
+  }
   if (l.footprint && l.footprint->one_dimensional() && detail::any_other_view(job))
     warn << "mpr-render: warning: the cameras lie on a " << (l.footprint->planar ? "line" : "ring")
          << ": every view's rays pass through it, so views differ only along it\n";
@@ -111,7 +128,11 @@ void warn_view(std::ostream& warn, const Job& job, const Loaded<T>& l, const std
                         entry.type == mpr::glc::Type::twisted_orthographic;
   const double width = static_cast<double>(detail::plane_of(camera).width_vector().norm());
   const double array_width = 2 * static_cast<double>(std::max(l.footprint->half_u, l.footprint->half_v));
-  if (parallel)
+  if (l.footprint->one_dimensional())
+    std::snprintf(line, sizeof line,
+                  "mpr-render: note: view %s (%s) is a %s on this array: every ray passes through the %s of cameras\n",
+                  spec.c_str(), std::string(entry.name).c_str(), now.c_str(), l.footprint->planar ? "line" : "ring");
+  else if (parallel && width > array_width)
     std::snprintf(line, sizeof line,
                   "mpr-render: note: view %s (%s) is a %s on this array: rays parallel across a view %.3g wide "
                   "cannot all meet an array %.3g wide\n",
