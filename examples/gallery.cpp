@@ -39,15 +39,12 @@ constexpr std::array<std::pair<char, const char*>, 9> kViews = {{{'A', "perspect
                                                                  {'H', "pencil"},
                                                                  {'I', "bilinear"}}};
 
-/// Labels each tile of a 3 x 3 sheet with its letter and GLC name ("G cross-slit"); the font
-/// scale follows the tile width so the label stays about a third of it.
-void label_tiles(mpr::Image<mpr::Rgb8>& sheet, int width, int height) {
-  const mpr::LabelStyle style{width >= 400 ? 2 : 1};
-  for (int k = 0; k < 9; ++k) {
-    const mpr::glc::GalleryEntry& e = mpr::glc::gallery[static_cast<std::size_t>(k)];
-    mpr::draw_label(sheet.view().subview((k % 3) * width, (k / 3) * height, width, height), 2, 2,
-                    std::string(1, e.id) + " " + std::string(e.name), style);
-  }
+/// "A perspective", ..., "I bilinear": the labels of the contact sheets' tiles.
+std::array<std::string, 9> tile_labels() {
+  std::array<std::string, 9> labels;
+  for (std::size_t k = 0; k < 9; ++k)
+    labels[k] = std::string(1, mpr::glc::gallery[k].id) + " " + std::string(mpr::glc::gallery[k].name);
+  return labels;
 }
 
 } // namespace
@@ -104,7 +101,7 @@ int main(int argc, char** argv) try {
   for (int y = 0; y < sheet.height(); ++y)
     for (int x = 0; x < sheet.width(); ++x)
       if (x % width == 0 || y % height == 0) sheet(x, y) = mpr::Rgb8{255, 255, 255};
-  label_tiles(sheet, width, height);
+  mpr::label_tiles(sheet.view(), width, height, tile_labels(), mpr::LabelStyle{width >= 400 ? 2 : 1});
   mpr::write_png(out / "contact_sheet.png", sheet);
   std::printf("wrote %s\n", (out / "contact_sheet.png").string().c_str());
 
@@ -127,7 +124,7 @@ int main(int argc, char** argv) try {
   for (int y = 0; y < rectified_sheet.height(); ++y)
     for (int x = 0; x < rectified_sheet.width(); ++x)
       if (x % width == 0 || y % height == 0) rectified_sheet(x, y) = mpr::Rgb8{255, 255, 255};
-  label_tiles(rectified_sheet, width, height);
+  mpr::label_tiles(rectified_sheet.view(), width, height, tile_labels(), mpr::LabelStyle{width >= 400 ? 2 : 1});
   mpr::write_png(out / "contact_sheet_rectified.png", rectified_sheet);
   std::printf("wrote %s\n", (out / "contact_sheet_rectified.png").string().c_str());
 

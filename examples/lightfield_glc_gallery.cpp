@@ -16,6 +16,7 @@
 // usage: lightfield_glc_gallery [DATA_DIR] [OUTPUT_FOLDER]
 #include "lightfield_common.hpp"
 
+#include <mpr/core/image_metrics.hpp>
 #include <mpr/core/label.hpp>
 #include <mpr/glc.hpp>
 #include <mpr/lightfield/array_view.hpp>
@@ -29,31 +30,6 @@
 #include <string>
 
 using namespace lf_example;
-
-namespace {
-
-/// Draws the 3 x 3 tile labels ("G cross-slit", or "B orthographic: now pinhole").
-void label_sheet(mpr::Image<mpr::Rgb8>& sheet, int w, int h, const std::array<std::string, 9>& labels) {
-  const mpr::LabelStyle style{w >= 400 ? 2 : 1};
-  for (int k = 0; k < 9; ++k)
-    mpr::draw_label(sheet.view().subview((k % 3) * w, (k / 3) * h, w, h), 2, 2, labels[static_cast<std::size_t>(k)],
-                    style);
-}
-
-double psnr(const mpr::Image<mpr::Rgb8>& a, const mpr::Image<mpr::Rgb8>& b, int x0, int y0, int w, int h) {
-  double se = 0;
-  for (int y = y0; y < y0 + h; ++y)
-    for (int x = x0; x < x0 + w; ++x)
-      for (const auto& [p, q] :
-           {std::pair{a(x, y).r, b(x, y).r}, std::pair{a(x, y).g, b(x, y).g}, std::pair{a(x, y).b, b(x, y).b}}) {
-        const double d = double(p) - double(q);
-        se += d * d;
-      }
-  const double mse = se / (3.0 * w * h);
-  return mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
-}
-
-} // namespace
 
 int main(int argc, char** argv) try {
   const auto [out, frames, centre] = open_chess(argc, argv);
@@ -90,6 +66,7 @@ int main(int argc, char** argv) try {
   std::printf("nine views of %dx%d rendered in %.0f ms\n", w, h, 1000 * seconds_taken);
 
   mpr::Image<mpr::Rgb8> diff(3 * w, 3 * h);
+  std::array<std::string, 9> diff_labels;
   for (int k = 0; k < 9; ++k) {
     double sum = 0;
     for (int y = 0; y < h; ++y)
@@ -106,12 +83,13 @@ int main(int argc, char** argv) try {
     const double mean = sum / (3.0 * w * h);
     char text[64];
     std::snprintf(text, sizeof text, "%c - A x8: mean %.1f", 'A' + k, mean);
-    mpr::draw_label(diff.view().subview((k % 3) * w, (k / 3) * h, w, h), 2, 2, text, mpr::LabelStyle{1});
+    diff_labels[static_cast<std::size_t>(k)] = text;
     std::printf("view %s: mean |view - A| = %.2f of 255\n", labels[k].c_str(), mean);
   }
-  label_sheet(sheet, w, h, labels);
+  mpr::label_tiles(sheet.view(), w, h, labels, mpr::LabelStyle{1});
   mpr::write_png(out / "chess_glc.png", sheet);
   report(out / "chess_glc.png");
+  mpr::label_tiles(diff.view(), w, h, diff_labels, mpr::LabelStyle{1});
   mpr::write_png(out / "chess_glc_difference.png", diff);
   report(out / "chess_glc_difference.png");
 
@@ -142,10 +120,12 @@ int main(int argc, char** argv) try {
       mpr::Renderer(room, glc, ray_cast).render(cast.view(), region);
       names[k] = std::string(1, e.id) + " " + std::string(e.name);
       std::printf("classroom view %s: array vs ray cast PSNR %.1f dB\n", names[k].c_str(),
-                  psnr(from_array, cast, region.x, region.y, cw, ch));
+                  mpr::compare_images(from_array.view().subview(region.x, region.y, cw, ch),
+                                      cast.view().subview(region.x, region.y, cw, ch))
+                      .psnr);
     }
-    label_sheet(from_array, cw, ch, names);
-    label_sheet(cast, cw, ch, names);
+    mpr::label_tiles(from_array.view(), cw, ch, names, mpr::LabelStyle{1});
+    mpr::label_tiles(cast.view(), cw, ch, names, mpr::LabelStyle{1});
   });
   std::printf("classroom: %dx%d array of %dx%d cameras, nine views each way in %.1f s\n", config.columns, config.rows,
               config.width, config.height, build);

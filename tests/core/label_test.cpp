@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -81,4 +82,30 @@ TEST_CASE("draw_label: clipped at every edge without writing outside", "[core][l
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x)
       if (x >= 3 || y >= 3) CHECK(big(x, y) == (mpr::Rgb8{7, 7, 7}));
+}
+
+TEST_CASE("label_tiles: one label per tile, row-major, each clipped to its tile", "[core][label]") {
+  const mpr::Rgb8 paper{7, 7, 7}, ink{255, 255, 255};
+  mpr::Image<mpr::Rgb8> sheet(40, 24, paper); // 2 x 2 tiles of 20 x 12
+  const std::vector<std::string> labels = {"WWWWWWWWWW", "", "I", "-", "ignored: no fifth tile"};
+  mpr::label_tiles(sheet.view(), 20, 12, labels, mpr::LabelStyle{1, ink});
+  // Tile 0's long label stops at its right edge: tile 1 (empty label) keeps its paper past the
+  // 2-pixel box of the empty label.
+  CHECK(sheet(19, 4) != paper);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 25; x < 40; ++x) CHECK(sheet(x, y) == paper);
+  // Tile 2 ('I' at tile offset (2, 2) + margin 1): its top bar at y = 12 + 3, x = 2 + 1 + 1..3.
+  CHECK(sheet(4, 15) == ink);
+  CHECK(sheet(4, 21) == ink);
+  CHECK(sheet(3, 18) != ink);
+  // Tile 3 ('-' in its middle row): x = 20 + 3 .. 20 + 7, y = 12 + 6.
+  CHECK(sheet(23, 18) == ink);
+  CHECK(sheet(27, 18) == ink);
+  CHECK(sheet(23, 17) != ink);
+  // Degenerate tiles draw nothing.
+  mpr::Image<mpr::Rgb8> blank(8, 8, paper);
+  mpr::label_tiles(blank.view(), 0, 4, labels);
+  mpr::label_tiles(blank.view(), 16, 16, labels); // no whole tile fits
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) CHECK(blank(x, y) == paper);
 }

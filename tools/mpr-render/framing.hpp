@@ -31,6 +31,20 @@ struct PlanarCamera {
 template <std::floating_point T>
 using CameraVariant = std::variant<PlanarCamera<T>, mpr::glc::Rectified<T>>;
 
+/// The (untilted frame of the) image plane a view's GLC is defined on.
+template <std::floating_point T>
+const mpr::PlanarSurface<T>& plane_of(const CameraVariant<T>& camera) {
+  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).surface
+                                                         : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
+}
+
+/// The GLC of a view (before any rectifying homography).
+template <std::floating_point T>
+const mpr::GlcSelector<T>& glc_of(const CameraVariant<T>& camera) {
+  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).selector
+                                                         : std::get<mpr::glc::Rectified<T>>(camera).selector.selector();
+}
+
 /// The output size of one view.
 template <std::floating_point T>
 std::pair<int, int> view_size(const Job& job, const Loaded<T>& l) {

@@ -32,25 +32,19 @@ inline bool any_other_view(const Job& job) {
   return job.morph_to.has_value() && !refocusing_view(*job.morph_to);
 }
 
-template <std::floating_point T>
-const mpr::PlanarSurface<T>& plane_of(const CameraVariant<T>& camera) {
-  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).surface
-                                                         : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
-}
-
-template <std::floating_point T>
-const mpr::GlcSelector<T>& glc_of(const CameraVariant<T>& camera) {
-  return std::holds_alternative<PlanarCamera<T>>(camera) ? std::get<PlanarCamera<T>>(camera).selector
-                                                         : std::get<mpr::glc::Rectified<T>>(camera).selector.selector();
-}
-
 } // namespace detail
+
+/// How the rays of a view (planar or rectified) meet the camera array.
+template <std::floating_point T>
+mpr::ArrayCoverage view_coverage(const CameraVariant<T>& camera, const mpr::ArrayFootprint<T>& array) {
+  return std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, array); }, camera);
+}
 
 /// The job with the array defaults filled in: without --interp, the reference view (refocusing)
 /// gets the synthetic aperture and any other view a cylinder aperture (the nearest camera on a
-/// ring or unstructured set); without --radius, the
-/// cylinder's radius is the camera spacing (a light field's median nearest-neighbour distance,
-/// or the --raster grid's cell width), so a ray blends the few cameras around its crossing.
+/// ring or unstructured set); without --radius, the cylinder's radius is the camera spacing (a
+/// light field's median nearest-neighbour distance, or the --raster grid's cell width), so a ray
+/// blends the few cameras around its crossing.
 template <std::floating_point T>
 Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   const bool array = l.frames != nullptr || job.raster.has_value();
@@ -108,8 +102,7 @@ template <std::floating_point T>
 void warn_view(std::ostream& warn, const Job& job, const Loaded<T>& l, const std::string& spec,
                const CameraVariant<T>& camera) {
   if (!l.footprint || job.raster) return;
-  const mpr::ArrayCoverage c =
-      std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, *l.footprint); }, camera);
+  const mpr::ArrayCoverage c = view_coverage(camera, *l.footprint);
   char line[256];
   if (c.outside > 0.01) {
     std::snprintf(line, sizeof line,
@@ -121,12 +114,12 @@ void warn_view(std::ostream& warn, const Job& job, const Loaded<T>& l, const std
   const char letter = detail::gallery_letter(spec);
   if (letter == 0) return;
   const mpr::glc::GalleryEntry& entry = mpr::glc::gallery[static_cast<std::size_t>(letter - 'A')];
-  const mpr::glc::Type type = mpr::glc::classify(detail::plane_of(camera), detail::glc_of(camera)).type;
+  const mpr::glc::Type type = mpr::glc::classify(plane_of(camera), glc_of(camera)).type;
   if (type == entry.type) return;
   const std::string now(mpr::glc::to_string(type));
   const bool parallel = entry.type == mpr::glc::Type::orthographic || entry.type == mpr::glc::Type::pushbroom ||
                         entry.type == mpr::glc::Type::twisted_orthographic;
-  const double width = static_cast<double>(detail::plane_of(camera).width_vector().norm());
+  const double width = static_cast<double>(plane_of(camera).width_vector().norm());
   const double array_width = 2 * static_cast<double>(std::max(l.footprint->half_u, l.footprint->half_v));
   if (l.footprint->one_dimensional())
     std::snprintf(line, sizeof line,

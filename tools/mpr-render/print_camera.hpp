@@ -2,6 +2,7 @@
 // mpr-render --print-camera: the GLC type, slits and centre of a view (mpr::glc::classify).
 
 #include "framing.hpp"
+#include "light_field_views.hpp"
 
 #include <mpr/glc.hpp>
 #include <mpr/lightfield/array_view.hpp>
@@ -25,12 +26,8 @@ void print_camera(std::ostream& out, const std::string& spec, const CameraVarian
                   static_cast<double>(v.z()));
     return std::string(buf);
   };
-  const mpr::PlanarSurface<T>& plane = std::holds_alternative<PlanarCamera<T>>(camera)
-                                           ? std::get<PlanarCamera<T>>(camera).surface
-                                           : std::get<mpr::glc::Rectified<T>>(camera).surface.plane();
-  const mpr::GlcSelector<T>& glc = std::holds_alternative<PlanarCamera<T>>(camera)
-                                       ? std::get<PlanarCamera<T>>(camera).selector
-                                       : std::get<mpr::glc::Rectified<T>>(camera).selector.selector();
+  const mpr::PlanarSurface<T>& plane = plane_of(camera);
+  const mpr::GlcSelector<T>& glc = glc_of(camera);
   const mpr::glc::Classification<T> c = mpr::glc::classify(plane, glc);
   out << "view " << spec << ": " << mpr::glc::to_string(c.type);
   if (std::holds_alternative<mpr::glc::Rectified<T>>(camera)) out << " (rectified)";
@@ -43,8 +40,7 @@ void print_camera(std::ostream& out, const std::string& spec, const CameraVarian
   if (c.type == mpr::glc::Type::pinhole) out << "  centre: " << v3(c.centre) << ", depth " << c.depths[0] << "\n";
   if (c.type == mpr::glc::Type::orthographic) out << "  direction: " << v3(c.direction) << "\n";
   if (array) {
-    const mpr::ArrayCoverage cov =
-        std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, *array); }, camera);
+    const mpr::ArrayCoverage cov = view_coverage(camera, *array);
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "  array coverage: %zu cameras over %.4g x %.4g, spacing %.4g; the rays cross %.0f%% x %.0f%% of "

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -109,6 +111,20 @@ inline void draw_label(ImageView<Rgb8> image, int x, int y, std::string_view tex
           for (int j = 0; j < s; ++j)
             for (int i = 0; i < s; ++i) put(cx + col * s + i, y + s + r * s + j, style.ink);
     cx += 6 * s;
+  }
+}
+
+/// Labels a contact sheet: `labels[k]` is drawn 2 pixels in from the top-left corner of tile k
+/// (row-major, tiles of `tile_width` x `tile_height` pixels from the image's top-left), each
+/// clipped to its tile. Labels beyond the image's tiles are ignored.
+inline void label_tiles(ImageView<Rgb8> image, int tile_width, int tile_height, std::span<const std::string> labels,
+                        const LabelStyle& style = {}) noexcept {
+  if (tile_width <= 0 || tile_height <= 0) return;
+  const int columns = image.width() / tile_width;
+  for (std::size_t k = 0; k < labels.size() && columns > 0; ++k) {
+    const int col = static_cast<int>(k) % columns, row = static_cast<int>(k) / columns;
+    if ((row + 1) * tile_height > image.height()) break;
+    draw_label(image.subview(col * tile_width, row * tile_height, tile_width, tile_height), 2, 2, labels[k], style);
   }
 }
 

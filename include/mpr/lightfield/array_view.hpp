@@ -80,7 +80,7 @@ struct ArrayFootprint {
 /// set) the camera plane is the plane through `reference.centre()` perpendicular to its optical
 /// axis, and the cameras are those looking within 60 degrees of the reference's direction,
 /// projected onto it. `axis_u` follows the reference image's rows. Throws `argument_error`
-/// ("frames") for an empty set.
+/// ("frames") for an empty set or when no camera looks within 60 degrees of the reference.
 template <std::floating_point T, class Px>
 [[nodiscard]] ArrayFootprint<T> array_footprint(const CameraFrameSet<T, Px>& frames,
                                                 const PinholeCamera<T>& reference) {
@@ -105,6 +105,7 @@ template <std::floating_point T, class Px>
     const Vec3<T> p = c.centre() - origin;
     st.emplace_back(p.dot(f.axis_u), p.dot(f.axis_v));
   }
+  if (st.empty()) throw argument_error("frames", "no camera looks within 60 degrees of the reference camera");
   Vec2<T> lo = st.front(), hi = st.front();
   for (const Vec2<T>& p : st) {
     lo = lo.cwiseMin(p);
