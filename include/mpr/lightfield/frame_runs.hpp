@@ -8,6 +8,7 @@
 /// these functions add them.
 
 #include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/detail/projective_row.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
@@ -120,13 +121,62 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   return true;
 }
 
+/// Camera c's contribution to a run of n evenly spaced points seen at any spacing and angle: the
+/// camera's homography of the run's line, from its end points (in double), drives the
+/// projective-row kernel, which gathers each point's bilinear pixel (`detail::projective_row`).
+/// The model is checked at the middle point against `project_any` within 1e-3 pixel, as
+/// `shift_add` checks its own. False (nothing added) when the run does not qualify.
+/// Preconditions: n >= 2, c undistorted, bilinear filtering, `evenly_spaced(points, n)`.
+template <std::floating_point T, class Px>
+bool add_projective(const FrameTable<T, Px>& /*table*/, const typename FrameTable<T, Px>::Camera& c,
+                    const Vec3<T>* points, std::size_t n, float* acc, float* weight,
+                    const float* ray_weight = nullptr) noexcept {
+  using Table = FrameTable<T, Px>;
+  using channel = typename Table::texel_type::channel_type;
+  const Vec3<double> p0 = points[0].template cast<double>();
+  const Vec3<double> step = (points[n - 1].template cast<double>() - p0) / static_cast<double>(n - 1);
+  double h0[3], hs[3];
+  for (int r = 0; r < 3; ++r) {
+    const T* P = c.P + 4 * r;
+    h0[r] = P[0] * p0.x() + P[1] * p0.y() + P[2] * p0.z() + P[3];
+    hs[r] = P[0] * step.x() + P[1] * step.y() + P[2] * step.z();
+  }
+  const std::size_t mid = n / 2;
+  const double wm = h0[2] + static_cast<double>(mid) * hs[2];
+  T xm, ym;
+  if (!(wm > 0) || !Table::project_any(c, points[mid], xm, ym)) {
+    // The middle point behind the camera: when the model agrees (w <= 0 there too), the kernel
+    // skips it like `project` would; a disagreement goes ray by ray.
+    if (wm > 0 || Table::project_any(c, points[mid], xm, ym)) return false;
+  } else {
+    constexpr double kTolerance = 1e-3;
+    const double mx = (h0[0] + static_cast<double>(mid) * hs[0]) / wm;
+    const double my = (h0[1] + static_cast<double>(mid) * hs[1]) / wm;
+    if (!(std::abs(mx - static_cast<double>(xm)) <= kTolerance && std::abs(my - static_cast<double>(ym)) <= kTolerance))
+      return false;
+  }
+  if (!detail::gather_indexable(c.width, c.height)) return false;
+  detail::ProjectiveRow<T, channel> row{{static_cast<T>(h0[0]), static_cast<T>(h0[1]), static_cast<T>(h0[2])},
+                                        {static_cast<T>(hs[0]), static_cast<T>(hs[1]), static_cast<T>(hs[2])},
+                                        c.width,
+                                        c.height,
+                                        c.texels->c,
+                                        Table::texel_type::scale};
+  detail::projective_row(row, n, ray_weight, acc, weight);
+  return true;
+}
+
 /// Camera c's (weighted) contribution to a run of n points: shift-and-add when the run
 /// qualifies (`even`: its points are evenly spaced, see `evenly_spaced`; bilinear filtering
-/// assumed by the caller), else ray by ray. `ray_weight` as in `FrameTable::add_per_ray`.
+/// assumed by the caller), else the projective row (`add_projective`), else ray by ray.
+/// `ray_weight` as in `FrameTable::add_per_ray`.
 template <std::floating_point T, class Px>
 void add_run(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
              std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr) noexcept {
-  if (even && !c.distorted && n >= 8 && shift_add(table, c, points, n, acc, weight, ray_weight)) return;
+  if (even && !c.distorted && n >= 8 &&
+      (shift_add(table, c, points, n, acc, weight, ray_weight) ||
+       add_projective(table, c, points, n, acc, weight, ray_weight)))
+    return;
   table.add_per_ray(c, points, n, acc, weight, ray_weight);
 }
 

@@ -5,6 +5,7 @@
 
 #include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/color.hpp>
+#include <mpr/core/detail/huge_page_allocator.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/geometry/plane.hpp>
@@ -64,6 +65,8 @@ public:
   using camera_type = PinholeCamera<T>;
   /// The texel type the samplers read (see `FixedTexel`, `LinearTexel`).
   using texel_type = std::conditional_t<std::is_same_v<Px, Rgb8>, FixedTexel, LinearTexel>;
+  /// One decoded image: a texel vector in huge pages where the system offers them.
+  using texel_vector = std::vector<texel_type, detail::HugePageAllocator<texel_type>>;
 
   CameraFrameSet() = default;
 
@@ -97,7 +100,7 @@ public:
   [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
   /// Image `i` decoded to linear colour, row-major, `width * height` texels.
-  [[nodiscard]] const std::vector<texel_type>& texels(std::size_t i) const noexcept { return texels_[i]; }
+  [[nodiscard]] const texel_vector& texels(std::size_t i) const noexcept { return texels_[i]; }
 
   /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
   /// and LFCA loaders build rectified planar arrays on z = 0); the samplers then use it instead
@@ -153,8 +156,8 @@ public:
   }
 
 private:
-  [[nodiscard]] static std::vector<texel_type> decode(const Image<Px>& image) {
-    std::vector<texel_type> out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
+  [[nodiscard]] static texel_vector decode(const Image<Px>& image) {
+    texel_vector out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
     const Px* p = image.data();
     if constexpr (std::is_same_v<Px, Rgb8>) {
       std::array<std::uint16_t, 256> table{};
@@ -171,7 +174,7 @@ private:
   std::vector<camera_type> cameras_;
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
-  std::vector<std::vector<texel_type>> texels_;
+  std::vector<texel_vector> texels_;
   std::optional<Plane<T>> array_plane_;
 };
 

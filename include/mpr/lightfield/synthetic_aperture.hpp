@@ -102,14 +102,9 @@ private:
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
-          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o)) continue;
-          // The whole row does not fit the affine model within tolerance: try it in chunks.
-          for (std::size_t s0 = 0; s0 < w; s0 += kBatchRays) {
-            const std::size_t m = std::min(kBatchRays, w - s0);
-            if (m >= 8 && shift_add(table, c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0)) continue;
-            table.add_per_ray(c, points + o + s0, m, acc + 3 * (o + s0), weight + o + s0);
-          }
-          continue;
+          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o) ||
+              add_projective(table, c, points + o, w, acc + 3 * o, weight + o))
+            continue;
         }
         table.add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
       }

@@ -1,0 +1,57 @@
+#pragma once
+/// \file
+/// `mpr::detail::HugePageAllocator<T>`: a standard allocator for large read-mostly buffers (the
+/// texels of light-field frames) that asks Linux for transparent huge pages. A tilted or scaled
+/// focal plane reads each camera image along slanted lines, touching a new 4 KiB page every few
+/// pixels; with 2 MiB pages the same reads fit the TLB. Buffers of at least 1 MiB are aligned and
+/// padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the system's THP setting is
+/// `madvise` or `always`); smaller buffers, other systems and a refused advice get plain memory.
+
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace mpr::detail {
+
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+  /// The huge-page size asked for, and the least buffer size that asks for it.
+  static constexpr std::size_t kHugePage = std::size_t(2) << 20;
+  static constexpr std::size_t kThreshold = std::size_t(1) << 20;
+
+  HugePageAllocator() noexcept = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+
+  [[nodiscard]] T* allocate(std::size_t n) {
+    if (n > static_cast<std::size_t>(-1) / sizeof(T) - kHugePage) throw std::bad_alloc();
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes < kThreshold) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+    const std::size_t padded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    void* p = std::aligned_alloc(kHugePage, padded);
+    if (p == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    (void)::madvise(p, padded, MADV_HUGEPAGE); // advice only: plain pages when refused
+#endif
+    return static_cast<T*>(p);
+  }
+
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (n * sizeof(T) < kThreshold)
+      ::operator delete(p, std::align_val_t(alignof(T)));
+    else
+      std::free(p);
+  }
+
+  template <class U>
+  friend bool operator==(const HugePageAllocator&, const HugePageAllocator<U>&) noexcept {
+    return true;
+  }
+};
+
+} // namespace mpr::detail

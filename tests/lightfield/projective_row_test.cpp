@@ -1,0 +1,156 @@
+// The projective-row kernel (lightfield/detail/projective_row.hpp): every SIMD level against a
+// long-double reference of the same sums, on rows that cross the image borders, pass behind the
+// camera, stand still or step several pixels at a time, with and without per-point weights, for
+// 16-bit and float channels and float and double coordinates. Nothing past a row's end is
+// written.
+#include "simd_levels.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/lightfield/detail/projective_row.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+namespace {
+
+using LD = long double;
+using mpr::detail::ProjectiveRow;
+using mpr::detail::SimdLevel;
+
+constexpr std::size_t kLengths[] = {0, 1, 5, 15, 16, 17, 31, 32, 33, 64, 100, 257};
+constexpr std::size_t kGuard = 21;
+constexpr float kSentinel = -12345.0f;
+
+// The reference of one point: whether the camera sees it, whether that decision is too close to
+// call in the kernel's precision (within `margin` pixels of an image border, or w near 0), and
+// the bilinear value per channel.
+struct Expected {
+  bool seen = false, ambiguous = false;
+  LD value[3] = {0, 0, 0}, size = 0;
+};
+
+template <class T, class C>
+Expected expected(const ProjectiveRow<T, C>& r, std::size_t i, LD weight, LD margin) {
+  Expected e;
+  const LD t = static_cast<LD>(i);
+  const LD w = LD(r.h0[2]) + t * LD(r.hs[2]);
+  const LD scale_w = std::abs(LD(r.h0[2])) + t * std::abs(LD(r.hs[2]));
+  if (std::abs(w) <= 1e-4L * scale_w) e.ambiguous = true;
+  if (!(w > 0)) return e;
+  const LD x = (LD(r.h0[0]) + t * LD(r.hs[0])) / w, y = (LD(r.h0[1]) + t * LD(r.hs[1])) / w;
+  const LD xmax = LD(r.width) - 0.5L, ymax = LD(r.height) - 0.5L;
+  for (const LD d : {x + 0.5L, xmax - x, y + 0.5L, ymax - y})
+    if (std::abs(d) <= margin) e.ambiguous = true;
+  if (!(x >= -0.5L && x < xmax && y >= -0.5L && y < ymax)) return e;
+  if (!(weight > 0)) return e;
+  e.seen = true;
+  // Near an integer coordinate the kernel may pick either cell: bilinear is continuous there.
+  const LD fx = std::floor(x), fy = std::floor(y);
+  const LD ax = x - fx, ay = y - fy;
+  const long x0 = static_cast<long>(fx), y0 = static_cast<long>(fy);
+  const long xa = std::max(x0, 0L), xb = std::min(x0 + 1, static_cast<long>(r.width) - 1);
+  const long ya = std::max(y0, 0L), yb = std::min(y0 + 1, static_cast<long>(r.height) - 1);
+  const auto at = [&](long xx, long yy, int k) { return LD(r.texels[3 * (yy * r.width + xx) + k]) * LD(r.scale); };
+  for (int k = 0; k < 3; ++k) {
+    const LD v[4] = {(1 - ax) * (1 - ay) * at(xa, ya, k), ax * (1 - ay) * at(xb, ya, k), (1 - ax) * ay * at(xa, yb, k),
+                     ax * ay * at(xb, yb, k)};
+    e.value[k] = weight * (v[0] + v[1] + v[2] + v[3]);
+    for (const LD p : {at(xa, ya, k), at(xb, ya, k), at(xa, yb, k), at(xb, yb, k)})
+      e.size = std::max(e.size, weight * std::abs(p));
+  }
+  return e;
+}
+
+template <class T, class C>
+void check_kernel() {
+  std::mt19937_64 rng(2007 + sizeof(T) * 10 + sizeof(C));
+  std::uniform_real_distribution<double> unit(0, 1);
+  const int width = 37, height = 23;
+  std::vector<C> texels(3 * width * height);
+  for (C& c : texels) {
+    if constexpr (std::is_same_v<C, float>)
+      c = static_cast<float>(4 * unit(rng) - 1);
+    else
+      c = static_cast<C>(rng() % 65536);
+  }
+  const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
+  // Coordinates far from the origin make float rounding of the projective map realistic.
+  const LD margin = std::is_same_v<T, float> ? 2e-3L : 1e-9L;
+  int failures = 0, compared = 0, seen_points = 0;
+  for (const std::size_t n : kLengths)
+    for (int trial = 0; trial < 12; ++trial) {
+      const bool weighted = trial % 2 == 1;
+      // A row across the image: pixel (x, y) = (a + i b) / (c + i d), from a start point and a
+      // step in pixels, lifted by a random positive depth and depth slope; trials 8-9 let w
+      // cross zero (the row passes behind the camera), 10-11 stand still (b = d = 0).
+      const double depth = 200 + 800 * unit(rng);
+      const double x0 = -10 + (width + 20) * unit(rng), y0 = -6 + (height + 12) * unit(rng);
+      const double sx = (trial < 4 ? 1.0 : 6.0) * (2 * unit(rng) - 1),
+                   sy = (trial < 4 ? 0.2 : 3.0) * (2 * unit(rng) - 1);
+      double dw = n > 1 ? depth * (0.5 * unit(rng) - 0.25) / static_cast<double>(n) : 0;
+      if (trial == 8 || trial == 9) dw = -2 * depth / std::max<double>(1, static_cast<double>(n));
+      ProjectiveRow<T, C> r{{static_cast<T>(x0 * depth), static_cast<T>(y0 * depth), static_cast<T>(depth)},
+                            {static_cast<T>((x0 + sx) * (depth + dw) - x0 * depth),
+                             static_cast<T>((y0 + sy) * (depth + dw) - y0 * depth), static_cast<T>(dw)},
+                            width,
+                            height,
+                            texels.data(),
+                            scale};
+      if (trial >= 10) r.hs[0] = r.hs[1] = r.hs[2] = 0;
+      std::vector<float> rw(n);
+      for (float& v : rw) v = unit(rng) < 0.25 ? (unit(rng) < 0.5 ? 0.0f : -1.0f) : static_cast<float>(unit(rng));
+      std::vector<float> acc0(3 * n + kGuard, kSentinel), seen0(n + kGuard, kSentinel);
+      for (std::size_t j = 0; j < 3 * n; ++j) acc0[j] = static_cast<float>(unit(rng));
+      for (std::size_t j = 0; j < n; ++j) seen0[j] = static_cast<float>(unit(rng));
+      mpr_test::for_each_simd_level([&](SimdLevel level) {
+        std::vector<float> acc = acc0, seen = seen0;
+        mpr::detail::projective_row(r, n, weighted ? rw.data() : nullptr, acc.data(), seen.data(), level);
+        for (std::size_t j = 3 * n; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
+        for (std::size_t j = n; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          const LD weight = weighted ? LD(rw[i]) : 1.0L;
+          const Expected e = expected(r, i, weight, margin);
+          if (e.ambiguous) continue;
+          ++compared;
+          seen_points += e.seen ? 1 : 0;
+          const LD want_seen = LD(seen0[i]) + (e.seen ? weight : 0);
+          bool good = std::abs(LD(seen[i]) - want_seen) <= 1e-6L;
+          for (int k = 0; k < 3; ++k) {
+            const LD want = LD(acc0[3 * i + k]) + e.value[k];
+            const LD tolerance = (std::is_same_v<T, float> ? 2e-3L : 1e-5L) * (e.size + 1) + 1e-6L;
+            good = good && std::abs(LD(acc[3 * i + k]) - want) <= tolerance;
+          }
+          if (!good && ++failures <= 5)
+            FAIL_CHECK(mpr::detail::simd_level_name(level)
+                       << " n=" << n << " trial=" << trial << " i=" << i << ": seen " << seen[i] << " (want "
+                       << static_cast<double>(want_seen) << "), acc " << acc[3 * i] << " (want "
+                       << static_cast<double>(LD(acc0[3 * i]) + e.value[0]) << ")");
+        }
+      });
+    }
+  CHECK(failures == 0);
+  CHECK(compared > 1000);
+  CHECK(seen_points > 300); // the rows do cross the image
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("projective_row: every level adds the bilinear pixels of the reference, nothing else",
+                   "[projective_row]", float, double) {
+  SECTION("16-bit channels") { check_kernel<TestType, std::uint16_t>(); }
+  SECTION("float channels") { check_kernel<TestType, float>(); }
+}
+
+TEST_CASE("gather_indexable: 32-bit channel offsets for the whole image", "[projective_row]") {
+  STATIC_REQUIRE(mpr::detail::gather_indexable(1400, 800));
+  STATIC_REQUIRE(mpr::detail::gather_indexable(1, 1));
+  STATIC_REQUIRE(!mpr::detail::gather_indexable(0, 10));
+  STATIC_REQUIRE(!mpr::detail::gather_indexable(40000, 20000)); // 2.4e9 channels
+  STATIC_REQUIRE(mpr::detail::gather_indexable(26000, 27000));  // 2.106e9 channels
+}
