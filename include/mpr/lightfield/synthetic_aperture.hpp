@@ -72,6 +72,7 @@ private:
     std::vector<float> acc; // 3 per ray (r g b), the layout of the texel rows
     std::vector<float> weight;
     std::vector<unsigned char> even;
+    LerpRowCache rows;
   };
 
   // Every camera once per tile; false when working memory cannot grow.
@@ -102,7 +103,7 @@ private:
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
-          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o) ||
+          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o, nullptr, &scratch.rows) ||
               add_projective(table, c, points + o, w, acc + 3 * o, weight + o))
             continue;
         }

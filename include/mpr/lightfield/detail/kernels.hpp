@@ -53,6 +53,40 @@ inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw
   run_at(level, [&]() MPR_INLINE_LAMBDA { shift_add_flat_body(a, b, w, rw, acc, m); });
 }
 
+/// h[j] = scale ((1 - ax) a[j] + ax a[j + 3]) for j in [0, m): one camera row interpolated
+/// horizontally at a fixed sub-pixel offset, over flat RGB channels (the first half of a
+/// separable bilinear shift-and-add). Reads a[0, m + 3).
+template <class C>
+MPR_ALWAYS_INLINE void lerp_row_body(const C* MPR_RESTRICT a, float ax, float scale, float* MPR_RESTRICT h,
+                                     std::size_t m) noexcept {
+  const float w0 = (1 - ax) * scale, w1 = ax * scale;
+  for (std::size_t j = 0; j < m; ++j) h[j] = w0 * static_cast<float>(a[j]) + w1 * static_cast<float>(a[j + 3]);
+}
+
+/// `lerp_row_body` compiled for `level`.
+template <class C>
+inline void lerp_row(const C* a, float ax, float scale, float* h, std::size_t m,
+                     SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_body(a, ax, scale, h, m); });
+}
+
+/// acc[j] += rw[j] (w0 h0[j] + w1 h1[j]) for j in [0, m) (rw nullptr: weight 1): the vertical
+/// half of a separable bilinear shift-and-add, on rows from `lerp_row`.
+MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float* MPR_RESTRICT h1, float w0, float w1,
+                                       const float* MPR_RESTRICT rw, float* MPR_RESTRICT acc, std::size_t m) noexcept {
+  if (rw == nullptr) {
+    for (std::size_t j = 0; j < m; ++j) acc[j] += w0 * h0[j] + w1 * h1[j];
+  } else {
+    for (std::size_t j = 0; j < m; ++j) acc[j] += rw[j] * (w0 * h0[j] + w1 * h1[j]);
+  }
+}
+
+/// `blend_rows_body` compiled for `level`.
+inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc,
+                       std::size_t m, SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, m); });
+}
+
 /// Asks the cache for the bytes of [begin, end) (GCC and Clang; nothing elsewhere).
 template <class P>
 MPR_ALWAYS_INLINE void prefetch_range(const P* begin, const P* end) noexcept {
