@@ -226,7 +226,7 @@ TEST_CASE("8-bit frames are decoded to linear colour with the exact sRGB table",
   auto frames = std::make_shared<const mpr::CameraFrameSet<float>>(cams, images);
   const mpr::CameraFrameSampler<mpr::NearestCamera> sampler(frames);
   const mpr::Color c = sampler.sample({mpr::Vec3<float>(0, 0, 3), mpr::Vec3<float>(0, 0, 1)});
-  // Stored as 16-bit linear fixed point (`FixedTexel`): within 1/131070 of the exact table.
+  // Decoded through the 16-bit linear table (`Srgb8Texel`): within 1/131070 of the exact values.
   CHECK(std::abs(c[0] - mpr::srgb8_to_linear(128)) <= 8e-6f);
   CHECK(std::abs(c[1] - mpr::srgb8_to_linear(7)) <= 8e-6f);
   CHECK(c[2] == 1.0f);

@@ -15,15 +15,23 @@ TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels togethe
   REQUIRE(frames.size() == 3);
   CHECK(frames.name(2) == "frame 2");
   CHECK(frames.texels(1).size() == 12);
-  // 8-bit frames: 16-bit linear fixed point, the exact decoded value rounded to 1/65535.
-  STATIC_REQUIRE(std::is_same_v<mpr::CameraFrameSet<double>::texel_type, mpr::FixedTexel>);
+  // 8-bit frames keep their codes (3 bytes a texel), decoded while sampling through a 16-bit
+  // linear table: the exact decoded value rounded to 1/65535.
+  STATIC_REQUIRE(std::is_same_v<mpr::CameraFrameSet<double>::texel_type, mpr::Srgb8Texel>);
   STATIC_REQUIRE(std::is_same_v<mpr::CameraFrameSet<double, mpr::Color>::texel_type, mpr::LinearTexel>);
-  STATIC_REQUIRE(sizeof(mpr::FixedTexel) == 6);
+  STATIC_REQUIRE(sizeof(mpr::Srgb8Texel) == 3);
   STATIC_REQUIRE(sizeof(mpr::LinearTexel) == 12);
-  const auto fixed = [](std::uint16_t q) { return static_cast<double>(q) / 65535.0; };
-  CHECK(std::abs(fixed(frames.texels(1)[5].c[0]) - mpr::srgb8_to_linear(10)) <= 0.5 / 65535 + 1e-9);
-  CHECK(std::abs(fixed(frames.texels(1)[5].c[1]) - mpr::srgb8_to_linear(128)) <= 0.5 / 65535 + 1e-9);
-  CHECK(frames.texels(1)[5].c[2] == 65535);
+  CHECK(frames.texels(1)[5].c[0] == 10);
+  CHECK(frames.texels(1)[5].c[1] == 128);
+  CHECK(frames.texels(1)[5].c[2] == 255);
+  const std::uint16_t* table = mpr::Srgb8Texel::linear16();
+  CHECK(mpr::texel_decode_table<mpr::Srgb8Texel>() == table);
+  CHECK(mpr::texel_decode_table<mpr::LinearTexel>() == nullptr);
+  const auto fixed = [&](std::uint8_t code) { return static_cast<double>(table[code]) / 65535.0; };
+  CHECK(std::abs(fixed(10) - mpr::srgb8_to_linear(10)) <= 0.5 / 65535 + 1e-9);
+  CHECK(std::abs(fixed(128) - mpr::srgb8_to_linear(128)) <= 0.5 / 65535 + 1e-9);
+  CHECK(table[255] == 65535);
+  CHECK(table[0] == 0);
   // Every 8-bit code survives the fixed-point step: it decodes back to the same code.
   std::vector<mpr::Image<mpr::Rgb8>> ramp{mpr::Image<mpr::Rgb8>(256, 1)};
   for (int v = 0; v < 256; ++v)
@@ -32,10 +40,10 @@ TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels togethe
                                           ramp);
   int mismatches = 0;
   for (int v = 0; v < 256; ++v) {
-    const mpr::FixedTexel& t = codes.texels(0)[static_cast<std::size_t>(v)];
-    const mpr::Color c(static_cast<float>(t.c[0]) * mpr::FixedTexel::scale,
-                       static_cast<float>(t.c[1]) * mpr::FixedTexel::scale,
-                       static_cast<float>(t.c[2]) * mpr::FixedTexel::scale);
+    const mpr::Srgb8Texel& t = codes.texels(0)[static_cast<std::size_t>(v)];
+    const mpr::Color c(static_cast<float>(table[t.c[0]]) * mpr::Srgb8Texel::scale,
+                       static_cast<float>(table[t.c[1]]) * mpr::Srgb8Texel::scale,
+                       static_cast<float>(table[t.c[2]]) * mpr::Srgb8Texel::scale);
     if (!(mpr::to_rgb8(c) == ramp[0](v, 0))) ++mismatches;
   }
   CHECK(mismatches == 0);

@@ -521,6 +521,66 @@ TEMPLATE_TEST_CASE("shift_add_flat: every variant computes the bilinear shift-an
   }
 }
 
+TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at every level, 8-bit codes decoded",
+                   "[camera_frame_kernels]", std::uint8_t, std::uint16_t, float) {
+  using C = TestType;
+  std::mt19937_64 rng(1996 + sizeof(C));
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? mpr::Srgb8Texel::linear16() : nullptr;
+  const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
+  const auto value = [&](C c) -> LD {
+    if constexpr (std::is_same_v<C, std::uint8_t>)
+      return LD(lut[c]);
+    else
+      return LD(c);
+  };
+  int failures = 0;
+  for (const std::size_t n : kLengths)
+    for (int trial = 0; trial < 3; ++trial) {
+      const std::size_t m = 3 * n; // channels of n pixels
+      std::vector<C> a(m + 3), b(m + 3);
+      for (std::size_t j = 0; j < m + 3; ++j) {
+        if constexpr (std::is_same_v<C, float>) {
+          a[j] = static_cast<float>(4 * unit(rng) - 1);
+          b[j] = static_cast<float>(4 * unit(rng) - 1);
+        } else {
+          a[j] = static_cast<C>(rng() % (std::is_same_v<C, std::uint8_t> ? 256 : 65536));
+          b[j] = static_cast<C>(rng() % (std::is_same_v<C, std::uint8_t> ? 256 : 65536));
+        }
+      }
+      const float ax = trial == 0 ? 0.0f : static_cast<float>(unit(rng));
+      const float ay = trial == 0 ? 1.0f : static_cast<float>(unit(rng));
+      std::vector<float> rw(n);
+      for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
+      std::vector<float> acc0(m + kGuard, kSentinel<float>);
+      for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
+      for (const Kernel k : kernels())
+        for (int weighted = 0; weighted < 2; ++weighted) {
+          std::vector<float> h0(m + kGuard, kSentinel<float>), h1(m + kGuard, kSentinel<float>);
+          mpr::detail::lerp_row(a.data(), lut, ax, scale, h0.data(), m, level(k));
+          mpr::detail::lerp_row(b.data(), lut, ax, scale, h1.data(), m, level(k));
+          std::vector<float> acc = acc0;
+          mpr::detail::blend_rows(h0.data(), h1.data(), 1 - ay, ay, weighted ? rw.data() : nullptr, acc.data(), n,
+                                  level(k));
+          for (std::size_t j = m; j < m + kGuard; ++j)
+            failures += h0[j] != kSentinel<float> || h1[j] != kSentinel<float> || acc[j] != kSentinel<float> ? 1 : 0;
+          for (std::size_t j = 0; j < m; ++j) {
+            const LD s = LD(scale);
+            const LD ha = s * ((1 - LD(ax)) * value(a[j]) + LD(ax) * value(a[j + 3]));
+            const LD hb = s * ((1 - LD(ax)) * value(b[j]) + LD(ax) * value(b[j + 3]));
+            const LD r = weighted ? LD(rw[j / 3]) : 1.0L;
+            const LD want = LD(acc0[j]) + r * ((1 - LD(ay)) * ha + LD(ay) * hb);
+            const LD size = std::abs(LD(acc0[j])) + s * (std::abs(value(a[j])) + std::abs(value(a[j + 3])) +
+                                                         std::abs(value(b[j])) + std::abs(value(b[j + 3])));
+            if (!(std::abs(LD(acc[j]) - want) <= 8 * eps<float>() * size) && ++failures <= 5)
+              FAIL_CHECK(kernel_name(k) << " n=" << n << " j=" << j << ": " << acc[j] << " vs "
+                                        << static_cast<double>(want));
+          }
+        }
+    }
+  CHECK(failures == 0);
+}
+
 TEMPLATE_TEST_CASE("plane_rays: every variant finds the plane crossing of the portable kernel and rejects bad rays",
                    "[camera_frame_kernels]", float, double) {
   using T = TestType;

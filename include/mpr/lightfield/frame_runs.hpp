@@ -14,7 +14,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace mpr {
@@ -74,10 +76,11 @@ void add_texel_rows(const Texel* a, const Texel* b, RowWeights w, const float* r
 /// horizontal offset (within 1e-4 pixel, below 0.03 of an 8-bit level).
 class LerpRowCache {
 public:
-  /// The row of `m` channels from `texels` (flat, m + 3 read) at offset `ax`, computed or kept;
-  /// nullptr when memory runs out.
+  /// The row of `m` channels from `texels` (flat, m + 3 read; 8-bit codes decoded by `lut`) at
+  /// offset `ax`, computed or kept; nullptr when memory runs out.
   template <class C>
-  [[nodiscard]] const float* row(const C* texels, std::size_t m, float ax, float scale) noexcept {
+  [[nodiscard]] const float* row(const C* texels, const std::uint16_t* lut, std::size_t m, float ax,
+                                 float scale) noexcept {
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
       if (e.texels == static_cast<const void*>(texels) && e.m == m && std::abs(e.ax - ax) <= 1e-4f) {
@@ -93,11 +96,16 @@ public:
       e.texels = nullptr;
       return nullptr;
     }
-    detail::lerp_row(texels, ax, scale, e.h.data(), m);
+    detail::lerp_row(texels, lut, ax, scale, e.h.data(), m);
     e.texels = texels;
     e.m = m;
     e.ax = ax;
     return e.h.data();
+  }
+
+  /// Forgets every row (call before rows of other frames, or texels that may have changed).
+  void clear() noexcept {
+    for (Entry& e : entries_) e.texels = nullptr;
   }
 
 private:
@@ -150,7 +158,6 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
                     ray_weight != nullptr ? ray_weight + i_end : nullptr);
   const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
   const float sc = texel_type::scale;
-  const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
   const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
   const texel_type* b = a + c.width;
   // The next output row reads row iy + 2 over about the same columns: ask for it now. Short runs
@@ -158,18 +165,29 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   // long ones (whole-row refocusing) it does, and extra prefetches cost time.
   if (iy + 2 < c.height && i_end - i_begin < 1024)
     detail::prefetch_range(b + c.width + i_begin, b + c.width + i_end + 1);
-  const float* h0 = nullptr;
-  const float* h1 = nullptr;
   const std::size_t m = i_end - i_begin;
-  if (cache != nullptr && ray_weight == nullptr) {
-    h0 = cache->row(a[i_begin].c, 3 * m, ax, sc);
-    if (h0 != nullptr) h1 = cache->row(b[i_begin].c, 3 * m, ax, sc);
+  const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
+  constexpr bool codes = std::is_same_v<typename texel_type::channel_type, std::uint8_t>;
+  if (codes || cache != nullptr) {
+    // The separable form: always for 8-bit codes, whose decode is then done once per texel.
+    thread_local LerpRowCache own;
+    LerpRowCache& rows = cache != nullptr ? *cache : own;
+    if (cache == nullptr) own.clear();
+    const std::uint16_t* lut = texel_decode_table<texel_type>();
+    const float* h0 = rows.row(a[i_begin].c, lut, 3 * m, ax, sc);
+    const float* h1 = h0 != nullptr ? rows.row(b[i_begin].c, lut, 3 * m, ax, sc) : nullptr;
+    if (h1 != nullptr) {
+      detail::blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * i_begin, m);
+    } else {
+      table.add_per_ray(c, points + i_begin, m, acc + 3 * i_begin, weight + i_begin, rw); // out of memory
+      return true;
+    }
+  } else {
+    if constexpr (!codes) {
+      const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
+      detail::add_texel_rows(a + i_begin, b + i_begin, w, rw, acc + 3 * i_begin, m);
+    }
   }
-  if (h1 != nullptr)
-    detail::blend_rows(h0, h1, 1 - ay, ay, nullptr, acc + 3 * i_begin, 3 * m);
-  else
-    detail::add_texel_rows(a + i_begin, b + i_begin, w, ray_weight != nullptr ? ray_weight + i_begin : nullptr,
-                           acc + 3 * i_begin, m);
   if (ray_weight != nullptr) {
     for (std::size_t i = i_begin; i < i_end; ++i)
       if (ray_weight[i] > 0) weight[i] += ray_weight[i];
@@ -219,7 +237,8 @@ bool add_projective(const FrameTable<T, Px>& /*table*/, const typename FrameTabl
                                         c.width,
                                         c.height,
                                         c.texels->c,
-                                        Table::texel_type::scale};
+                                        Table::texel_type::scale,
+                                        texel_decode_table<typename Table::texel_type>()};
   detail::projective_row(row, n, ray_weight, acc, weight);
   return true;
 }

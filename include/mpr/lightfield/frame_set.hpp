@@ -34,26 +34,51 @@ struct LinearTexel {
   float c[3];
 };
 
-/// A linear RGB colour in 16-bit unsigned fixed point, colour = `c[k] * scale` = c[k] / 65535,
-/// 6 bytes, packed like `LinearTexel`: the sampling-time form of 8-bit sRGB frames. Each 8-bit
-/// code is decoded with the exact table of core/color.hpp and rounded to the nearest 1/65535,
-/// an error below 7.7e-6 (1/500 of the smallest step between sRGB codes in linear), so colours
-/// still round-trip through `to_rgb8` exactly; half the memory traffic of `LinearTexel`, which
-/// matters because a full synthetic aperture reads every texel of every frame.
-struct FixedTexel {
-  using channel_type = std::uint16_t;
+/// An 8-bit sRGB texel as the frame holds it (3 bytes), packed like `LinearTexel`: the
+/// sampling-time form of 8-bit frames. Samplers decode each code exactly while reading, through
+/// `linear16()`: the code's linear value (the exact table of core/color.hpp) in 16-bit fixed
+/// point, colour = `linear16()[c[k]] * scale`, an error below 7.7e-6 (1/500 of the smallest step
+/// between sRGB codes in linear), so colours still round-trip through `to_rgb8` exactly. Half the
+/// bytes of the 16-bit linear texels it replaced, which matters because a full synthetic
+/// aperture reads every texel of every frame and is bound by memory bandwidth; the decode costs
+/// a table lookup (vector permutes on AVX-512, see lightfield/detail/kernels.hpp).
+struct Srgb8Texel {
+  using channel_type = std::uint8_t;
+  /// Decoded value times `scale` is the linear colour.
   static constexpr float scale = 1.0f / 65535.0f;
-  std::uint16_t c[3];
+  std::uint8_t c[3];
+
+  /// The decode table: `linear16()[code]` = round(65535 x linear value of `code`), 256 entries.
+  [[nodiscard]] static const std::uint16_t* linear16() noexcept {
+    static const std::array<std::uint16_t, 256> table = [] {
+      std::array<std::uint16_t, 256> t{};
+      for (int v = 0; v < 256; ++v)
+        t[static_cast<std::size_t>(v)] = static_cast<std::uint16_t>(
+            std::lround(static_cast<double>(srgb8_to_linear(static_cast<std::uint8_t>(v))) * 65535.0));
+      return t;
+    }();
+    return table.data();
+  }
 };
 
-static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(FixedTexel) == 3 * sizeof(std::uint16_t),
+/// The decode table of a texel type's channels: `Srgb8Texel::linear16()`, or nullptr when the
+/// stored channel is the value (`LinearTexel`).
+template <class Texel>
+[[nodiscard]] const std::uint16_t* texel_decode_table() noexcept {
+  if constexpr (std::is_same_v<typename Texel::channel_type, std::uint8_t>)
+    return Texel::linear16();
+  else
+    return nullptr;
+}
+
+static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(Srgb8Texel) == 3,
               "texels are packed: a texel row is a flat channel array");
 
 /// Camera `i` took image `i`. Images are 8-bit sRGB (`Rgb8`, the default: 3 bytes per pixel,
 /// decoded to linear with the exact table of core/color.hpp while sampling) or linear `Color`.
 /// Every image has exactly its camera's width and height; different cameras may differ in size.
 /// At construction every image is also decoded once into linear texels, which the samplers read:
-/// `FixedTexel` (6 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
+/// `Srgb8Texel` (3 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
 /// this is the bulk of the memory a frame set takes.
 template <std::floating_point T, class Px = Rgb8>
 class CameraFrameSet {
@@ -63,8 +88,8 @@ public:
   using scalar_type = T;
   using pixel_type = Px;
   using camera_type = PinholeCamera<T>;
-  /// The texel type the samplers read (see `FixedTexel`, `LinearTexel`).
-  using texel_type = std::conditional_t<std::is_same_v<Px, Rgb8>, FixedTexel, LinearTexel>;
+  /// The texel type the samplers read (see `Srgb8Texel`, `LinearTexel`).
+  using texel_type = std::conditional_t<std::is_same_v<Px, Rgb8>, Srgb8Texel, LinearTexel>;
   /// One decoded image: a texel vector in huge pages where the system offers them.
   using texel_vector = std::vector<texel_type, detail::HugePageAllocator<texel_type>>;
 
@@ -99,7 +124,8 @@ public:
   [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
   [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
-  /// Image `i` decoded to linear colour, row-major, `width * height` texels.
+  /// Image `i` as the samplers read it, row-major, `width * height` texels (readable padding
+  /// after the last, see `detail::HugePageAllocator`).
   [[nodiscard]] const texel_vector& texels(std::size_t i) const noexcept { return texels_[i]; }
 
   /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
@@ -160,11 +186,7 @@ private:
     texel_vector out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
     const Px* p = image.data();
     if constexpr (std::is_same_v<Px, Rgb8>) {
-      std::array<std::uint16_t, 256> table{};
-      for (int v = 0; v < 256; ++v)
-        table[static_cast<std::size_t>(v)] = static_cast<std::uint16_t>(
-            std::lround(static_cast<double>(srgb8_to_linear(static_cast<std::uint8_t>(v))) * 65535.0));
-      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{table[p[k].r], table[p[k].g], table[p[k].b]}};
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k].r, p[k].g, p[k].b}};
     } else {
       for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k][0], p[k][1], p[k][2]}};
     }

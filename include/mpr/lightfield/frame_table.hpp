@@ -13,6 +13,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/array_plane.hpp>
 #include <mpr/lightfield/camera_index.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
@@ -145,11 +146,13 @@ public:
   /// `config().filter`); precondition: (x, y) lies inside the image (as `project` ensures).
   void fetch_add(const Camera& c, T x, T y, float weight, float* acc) const noexcept {
     const float scaled = weight * texel_type::scale;
+    const std::uint16_t* lut = texel_decode_table<texel_type>();
+    const auto value = [lut](auto channel) { return detail::channel_value(channel, lut); };
     if (config_.filter == PixelFilter::nearest) {
       const int ix = std::min(static_cast<int>(std::floor(x + T(0.5))), c.width - 1);
       const int iy = std::min(static_cast<int>(std::floor(y + T(0.5))), c.height - 1);
       const texel_type& v = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width + ix];
-      for (int k = 0; k < 3; ++k) acc[k] += scaled * static_cast<float>(v.c[k]);
+      for (int k = 0; k < 3; ++k) acc[k] += scaled * value(v.c[k]);
       return;
     }
     const T fx0 = std::floor(x), fy0 = std::floor(y);
@@ -162,8 +165,8 @@ public:
     const float w00 = (1 - ax) * (1 - ay) * scaled, w10 = ax * (1 - ay) * scaled;
     const float w01 = (1 - ax) * ay * scaled, w11 = ax * ay * scaled;
     for (int k = 0; k < 3; ++k)
-      acc[k] += w00 * static_cast<float>(ra[xa].c[k]) + w10 * static_cast<float>(ra[xb].c[k]) +
-                w01 * static_cast<float>(rb[xa].c[k]) + w11 * static_cast<float>(rb[xb].c[k]);
+      acc[k] +=
+          w00 * value(ra[xa].c[k]) + w10 * value(ra[xb].c[k]) + w01 * value(rb[xa].c[k]) + w11 * value(rb[xb].c[k]);
   }
 
   /// Adds camera c's pixel at X to (acc, weight) with weight `w`, if c sees X; returns whether it did.

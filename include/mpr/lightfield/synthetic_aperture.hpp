@@ -89,6 +89,7 @@ private:
     } catch (...) {
       return false;
     }
+    scratch.rows.clear(); // rows kept from another tile may belong to frames since freed
     Vec3<T>* points = scratch.points.data();
     float* acc = scratch.acc.data();
     float* weight = scratch.weight.data();

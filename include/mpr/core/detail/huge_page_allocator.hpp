@@ -6,6 +6,8 @@
 /// pixels; with 2 MiB pages the same reads fit the TLB. Buffers of at least 1 MiB are aligned and
 /// padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the system's THP setting is
 /// `madvise` or `always`); smaller buffers, other systems and a refused advice get plain memory.
+/// Every buffer has `kPadding` readable bytes after its end, so that vector kernels may load a
+/// whole word that starts at the last element (e.g. a 32-bit gather of a 3-byte texel).
 
 #include <cstddef>
 #include <cstdlib>
@@ -23,14 +25,16 @@ struct HugePageAllocator {
   /// The huge-page size asked for, and the least buffer size that asks for it.
   static constexpr std::size_t kHugePage = std::size_t(2) << 20;
   static constexpr std::size_t kThreshold = std::size_t(1) << 20;
+  /// Readable bytes after the last element.
+  static constexpr std::size_t kPadding = 64;
 
   HugePageAllocator() noexcept = default;
   template <class U>
   HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
 
   [[nodiscard]] T* allocate(std::size_t n) {
-    if (n > static_cast<std::size_t>(-1) / sizeof(T) - kHugePage) throw std::bad_alloc();
-    const std::size_t bytes = n * sizeof(T);
+    if (n > (static_cast<std::size_t>(-1) - 2 * kHugePage) / sizeof(T)) throw std::bad_alloc();
+    const std::size_t bytes = n * sizeof(T) + kPadding;
     if (bytes < kThreshold) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
     const std::size_t padded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, padded);
@@ -42,7 +46,7 @@ struct HugePageAllocator {
   }
 
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < kThreshold)
+    if (n * sizeof(T) + kPadding < kThreshold)
       ::operator delete(p, std::align_val_t(alignof(T)));
     else
       std::free(p);

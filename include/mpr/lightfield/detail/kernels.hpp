@@ -3,7 +3,7 @@
 /// The inner loops of `CameraFrameSampler`'s row paths, with the instruction set chosen at run
 /// time: shift-and-add of two camera rows with fixed bilinear weights (refocusing as in
 /// Isaksen et al. 2000; the "shift-and-add" of synthetic-aperture photography, Vaish et al.
-/// 2004), on rows stored as flat channel arrays (r g b r g b ..., see `FixedTexel`), and the
+/// 2004), on rows stored as flat channel arrays (r g b r g b ..., see `Srgb8Texel`), and the
 /// test that proves one camera nearest to each ray of a run (planar arrays).
 ///
 /// Each kernel is written once as plain C++ and compiled up to three times (core/simd.hpp): for
@@ -53,38 +53,145 @@ inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw
   run_at(level, [&]() MPR_INLINE_LAMBDA { shift_add_flat_body(a, b, w, rw, acc, m); });
 }
 
-/// h[j] = scale ((1 - ax) a[j] + ax a[j + 3]) for j in [0, m): one camera row interpolated
-/// horizontally at a fixed sub-pixel offset, over flat RGB channels (the first half of a
-/// separable bilinear shift-and-add). Reads a[0, m + 3).
+/// The value of a stored channel: the channel itself, or for 8-bit codes its entry of the 16-bit
+/// linear decode table `lut` (`Srgb8Texel::linear16()`).
 template <class C>
-MPR_ALWAYS_INLINE void lerp_row_body(const C* MPR_RESTRICT a, float ax, float scale, float* MPR_RESTRICT h,
-                                     std::size_t m) noexcept {
+MPR_ALWAYS_INLINE float channel_value(C c, const std::uint16_t* lut) noexcept {
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    return static_cast<float>(lut[c]);
+  else
+    return static_cast<float>(c);
+}
+
+/// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v = `channel_value`: one
+/// camera row interpolated horizontally at a fixed sub-pixel offset, over flat RGB channels
+/// (the first half of a separable bilinear shift-and-add). Reads a[0, m + 3).
+template <class C>
+MPR_ALWAYS_INLINE void lerp_row_portable(const C* MPR_RESTRICT a, const std::uint16_t* MPR_RESTRICT lut, float ax,
+                                         float scale, float* MPR_RESTRICT h, std::size_t m) noexcept {
   const float w0 = (1 - ax) * scale, w1 = ax * scale;
-  for (std::size_t j = 0; j < m; ++j) h[j] = w0 * static_cast<float>(a[j]) + w1 * static_cast<float>(a[j + 3]);
+  for (std::size_t j = 0; j < m; ++j) h[j] = w0 * channel_value(a[j], lut) + w1 * channel_value(a[j + 3], lut);
 }
 
-/// `lerp_row_body` compiled for `level`.
+#if defined(MPR_SIMD_X86)
+// The low half of a 512-bit vector, and a 256-bit vector widened with zeros: GCC 12's own casts
+// pass an undefined vector that -Wmaybe-uninitialized reports (GCC bug 105593).
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m256i low256(__m512i v) noexcept {
+  return _mm512_maskz_extracti64x4_epi64(0xF, v, 0);
+}
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512i zext256(__m256i v) noexcept {
+  return _mm512_maskz_inserti64x4(0xFF, _mm512_setzero_si512(), v, 0);
+}
+
+// The 16-bit decode table in eight AVX-512 registers, 32 entries each.
+struct Decode16x512 {
+  __m512i t[8];
+};
+
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE Decode16x512 load_decode16(const std::uint16_t* lut) noexcept {
+  Decode16x512 d;
+  for (int k = 0; k < 8; ++k) d.t[k] = _mm512_loadu_si512(lut + 32 * k);
+  return d;
+}
+
+// The table entries of 32 codes held as 16-bit lanes (0..255): a two-register permute per 64
+// entries (index bits 0-5), then bits 6 and 7 choose among the four.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512i decode16x32(const Decode16x512& d, __m512i codes) noexcept {
+  const __m512i r0 = _mm512_permutex2var_epi16(d.t[0], codes, d.t[1]);
+  const __m512i r1 = _mm512_permutex2var_epi16(d.t[2], codes, d.t[3]);
+  const __m512i r2 = _mm512_permutex2var_epi16(d.t[4], codes, d.t[5]);
+  const __m512i r3 = _mm512_permutex2var_epi16(d.t[6], codes, d.t[7]);
+  const __mmask32 b6 = _mm512_test_epi16_mask(codes, _mm512_set1_epi16(64));
+  const __mmask32 b7 = _mm512_test_epi16_mask(codes, _mm512_set1_epi16(128));
+  const __m512i low = _mm512_mask_mov_epi16(r0, b6, r1), high = _mm512_mask_mov_epi16(r2, b6, r3);
+  return _mm512_mask_mov_epi16(low, b7, high);
+}
+
+// The decoded values of the `count` (<= 32) codes at p as floats, lanes 0-15 and 16-31; lanes at
+// or past `count` are not read and hold the value of code 0.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void decode_codes32(const Decode16x512& d, const std::uint8_t* p, std::size_t count,
+                                                        __m512& first, __m512& second) noexcept {
+  const __m256i bytes = count >= 32 ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p))
+                                    : _mm256_maskz_loadu_epi8(static_cast<__mmask32>((1ull << count) - 1), p);
+  const __m512i codes = _mm512_maskz_cvtepu8_epi16(0xFFFFFFFFu, bytes);
+  const __m512i v = decode16x32(d, codes);
+  first = _mm512_maskz_cvtepi32_ps(0xFFFF, _mm512_maskz_cvtepu16_epi32(0xFFFF, low256(v)));
+  second =
+      _mm512_maskz_cvtepi32_ps(0xFFFF, _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 1)));
+}
+
+// `lerp_row_portable` for 8-bit codes, 32 channels a step. Each code is decoded once: the
+// values three channels on (one pixel to the right) come from the decoded block and the next by
+// a lane shift.
+MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const std::uint16_t* lut, float ax,
+                                                    float scale, float* h, std::size_t m) noexcept {
+  const Decode16x512 d = load_decode16(lut);
+  const __m512 w0 = _mm512_set1_ps((1 - ax) * scale), w1 = _mm512_set1_ps(ax * scale);
+  const std::size_t codes = m + 3; // readable codes
+  __m512 lo, hi;
+  decode_codes32(d, a, std::min<std::size_t>(32, codes), lo, hi);
+  for (std::size_t j = 0; j < m; j += 32) {
+    __m512 next_lo = lo, next_hi = hi;
+    if (j + 32 < codes) decode_codes32(d, a + j + 32, std::min<std::size_t>(32, codes - j - 32), next_lo, next_hi);
+    const __m512 right_lo =
+        _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(0xFFFF, _mm512_castps_si512(hi), _mm512_castps_si512(lo), 3));
+    const __m512 right_hi = _mm512_castsi512_ps(
+        _mm512_maskz_alignr_epi32(0xFFFF, _mm512_castps_si512(next_lo), _mm512_castps_si512(hi), 3));
+    const __m512 h0 = _mm512_fmadd_ps(w1, right_lo, _mm512_mul_ps(w0, lo));
+    const __m512 h1 = _mm512_fmadd_ps(w1, right_hi, _mm512_mul_ps(w0, hi));
+    const std::size_t count = std::min<std::size_t>(32, m - j);
+    if (count == 32) {
+      _mm512_storeu_ps(h + j, h0);
+      _mm512_storeu_ps(h + j + 16, h1);
+    } else {
+      const __mmask16 k0 = count >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << count) - 1);
+      const __mmask16 k1 = count > 16 ? static_cast<__mmask16>((1u << (count - 16)) - 1) : __mmask16(0);
+      _mm512_mask_storeu_ps(h + j, k0, h0);
+      _mm512_mask_storeu_ps(h + j + 16, k1, h1);
+    }
+    lo = next_lo;
+    hi = next_hi;
+  }
+}
+#endif
+
+/// `lerp_row_portable` at `level`, with the hand-written AVX-512 step for 8-bit codes.
 template <class C>
-inline void lerp_row(const C* a, float ax, float scale, float* h, std::size_t m,
+inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale, float* h, std::size_t m,
                      SimdLevel level = simd_level()) noexcept {
-  run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_body(a, ax, scale, h, m); });
+#if defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m);
+#endif
+  run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m); });
 }
 
-/// acc[j] += rw[j] (w0 h0[j] + w1 h1[j]) for j in [0, m) (rw nullptr: weight 1): the vertical
-/// half of a separable bilinear shift-and-add, on rows from `lerp_row`.
+/// acc[3 i + k] += rw[i] (w0 h0[3 i + k] + w1 h1[3 i + k]) for pixels i in [0, n) (rw nullptr:
+/// weight 1): the vertical half of a separable bilinear shift-and-add, on rows from `lerp_row`.
 MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float* MPR_RESTRICT h1, float w0, float w1,
-                                       const float* MPR_RESTRICT rw, float* MPR_RESTRICT acc, std::size_t m) noexcept {
+                                       const float* MPR_RESTRICT rw, float* MPR_RESTRICT acc, std::size_t n) noexcept {
   if (rw == nullptr) {
-    for (std::size_t j = 0; j < m; ++j) acc[j] += w0 * h0[j] + w1 * h1[j];
+    for (std::size_t j = 0; j < 3 * n; ++j) acc[j] += w0 * h0[j] + w1 * h1[j];
   } else {
-    for (std::size_t j = 0; j < m; ++j) acc[j] += rw[j] * (w0 * h0[j] + w1 * h1[j]);
+    // The per-pixel weights spread over the three channel slots, a stack buffer at a time, so
+    // that the blend stays one flat loop.
+    constexpr std::size_t kStep = 256;
+    float spread[3 * kStep];
+    for (std::size_t s0 = 0; s0 < n; s0 += kStep) {
+      const std::size_t m = std::min(kStep, n - s0);
+      for (std::size_t i = 0; i < m; ++i) spread[3 * i] = spread[3 * i + 1] = spread[3 * i + 2] = rw[s0 + i];
+      const float* a = h0 + 3 * s0;
+      const float* b = h1 + 3 * s0;
+      float* out = acc + 3 * s0;
+      for (std::size_t j = 0; j < 3 * m; ++j) out[j] += spread[j] * (w0 * a[j] + w1 * b[j]);
+    }
   }
 }
 
 /// `blend_rows_body` compiled for `level`.
-inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc,
-                       std::size_t m, SimdLevel level = simd_level()) noexcept {
-  run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, m); });
+inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc, std::size_t n,
+                       SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, n); });
 }
 
 /// Asks the cache for the bytes of [begin, end) (GCC and Clang; nothing elsewhere).

@@ -8,6 +8,7 @@
 /// coordinates, where the four bilinear taps are gathered (core/simd.hpp dispatches).
 
 #include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -20,13 +21,16 @@ namespace mpr::detail {
 /// One camera seen along a row: the homogeneous pixel of point i is (h0 + i hs) (x, y, w; the
 /// camera's 3x4 projection applied to p_0 and to the step between points), and the image it
 /// reads: `width` x `height` texels of three channels each, row-major and packed (`texels[3 t +
-/// k]` is channel k of texel t), colour = channel x `scale`.
+/// k]` is channel k of texel t), colour = `channel_value(channel, lut)` x `scale` (`lut`: the
+/// decode table of 8-bit codes, else unused). 8-bit texels need readable bytes after the last
+/// (`HugePageAllocator`'s padding): the AVX-512 step loads each texel as a 32-bit word.
 template <class T, class C>
 struct ProjectiveRow {
   T h0[3], hs[3];
   int width, height;
   const C* texels;
   float scale;
+  const std::uint16_t* lut = nullptr;
 };
 
 /// Whether the kernels can index every channel of a `width` x `height` image with 32-bit
@@ -62,8 +66,8 @@ MPR_ALWAYS_INLINE void projective_row_portable(const ProjectiveRow<T, C>& r, std
     const float s = wt * r.scale;
     const float w00 = (1 - ax) * (1 - ay) * s, w10 = ax * (1 - ay) * s, w01 = (1 - ax) * ay * s, w11 = ax * ay * s;
     for (int k = 0; k < 3; ++k)
-      acc[3 * i + k] += w00 * static_cast<float>(ra[3 * xa + k]) + w10 * static_cast<float>(ra[3 * xb + k]) +
-                        w01 * static_cast<float>(rb[3 * xa + k]) + w11 * static_cast<float>(rb[3 * xb + k]);
+      acc[3 * i + k] += w00 * channel_value(ra[3 * xa + k], r.lut) + w10 * channel_value(ra[3 * xb + k], r.lut) +
+                        w01 * channel_value(rb[3 * xa + k], r.lut) + w11 * channel_value(rb[3 * xb + k], r.lut);
     seen[i] += wt;
   }
 }
@@ -89,11 +93,29 @@ struct InterleaveRgb16 {
 // pass an undefined vector that -Wmaybe-uninitialized reports (GCC bug 105593).
 inline constexpr __mmask16 kAll = 0xFFFF;
 
+// 16 unsigned 16-bit lanes as floats.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 words_to_floats(__m256i words) noexcept {
+  return _mm512_maskz_cvtepi32_ps(kAll, _mm512_maskz_cvtepu16_epi32(kAll, words));
+}
+
 // sum[k] += weight x channel k of the texels at channel offsets `offset` (16 lanes).
 template <class C>
-MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void gather_tap_avx512(const C* texels, __m512i offset, __m512 weight,
-                                                           __m512 (&sum)[3]) noexcept {
-  if constexpr (std::is_same_v<C, float>) {
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void gather_tap_avx512(const C* texels, const Decode16x512* decode, __m512i offset,
+                                                           __m512 weight, __m512 (&sum)[3]) noexcept {
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
+    // One 32-bit gather per texel (r g b and a byte past it), the three codes decoded together
+    // by table permutes: r and g in one 32-lane lookup, b in another.
+    const __m512i g = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), kAll, offset, texels, 1);
+    const __m512i byte = _mm512_set1_epi32(0xFF);
+    const __m256i r8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(g, byte));
+    const __m256i g8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 8), byte));
+    const __m256i b8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 16), byte));
+    const __m512i rg = decode16x32(*decode, _mm512_maskz_inserti64x4(0xFF, zext256(r8), g8, 1));
+    const __m512i bb = decode16x32(*decode, zext256(b8));
+    sum[0] = _mm512_fmadd_ps(weight, words_to_floats(low256(rg)), sum[0]);
+    sum[1] = _mm512_fmadd_ps(weight, words_to_floats(_mm512_maskz_extracti64x4_epi64(0xF, rg, 1)), sum[1]);
+    sum[2] = _mm512_fmadd_ps(weight, words_to_floats(low256(bb)), sum[2]);
+  } else if constexpr (std::is_same_v<C, float>) {
     for (int k = 0; k < 3; ++k) {
       const __m512 v = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAll,
                                                 _mm512_add_epi32(offset, _mm512_set1_epi32(k)), texels, 4);
@@ -132,6 +154,8 @@ MPR_TARGET_AVX512 inline std::size_t projective_row_avx512(const ProjectiveRow<f
   const __m512 scale = _mm512_set1_ps(r.scale);
   const __m512 iota = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   static constexpr InterleaveRgb16 order{};
+  Decode16x512 decode{};
+  if constexpr (std::is_same_v<C, std::uint8_t>) decode = load_decode16(r.lut);
   const __m512 ahead = _mm512_set1_ps(static_cast<float>(kAhead));
   std::size_t i = 0;
   for (; i < n; i += 16) {
@@ -185,10 +209,10 @@ MPR_TARGET_AVX512 inline std::size_t projective_row_avx512(const ProjectiveRow<f
     const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), s), w10 = _mm512_mul_ps(_mm512_mul_ps(ax, by), s);
     const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ay), s), w11 = _mm512_mul_ps(_mm512_mul_ps(ax, ay), s);
     __m512 sum[3] = {zero, zero, zero};
-    gather_tap_avx512(r.texels, _mm512_add_epi32(ya, xa), w00, sum);
-    gather_tap_avx512(r.texels, _mm512_add_epi32(ya, xb), w10, sum);
-    gather_tap_avx512(r.texels, _mm512_add_epi32(yb, xa), w01, sum);
-    gather_tap_avx512(r.texels, _mm512_add_epi32(yb, xb), w11, sum);
+    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(ya, xa), w00, sum);
+    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(ya, xb), w10, sum);
+    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(yb, xa), w01, sum);
+    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(yb, xb), w11, sum);
     // acc[3 i ...] += the 48 interleaved channel sums; slots of dead points add zero.
     const std::size_t slots = 3 * std::min<std::size_t>(16, n - i);
     for (int q = 0; q < 3; ++q) {
@@ -208,12 +232,13 @@ MPR_TARGET_AVX512 inline std::size_t projective_row_avx512(const ProjectiveRow<f
 #endif
 
 /// `projective_row_portable` over [0, n), with the hand-written step of `level` where there is
-/// one (float coordinates; 16-bit or float channels; images `gather_indexable`).
+/// one (float coordinates; 8-bit, 16-bit or float channels; images `gather_indexable`).
 template <class T, class C>
 inline void projective_row(const ProjectiveRow<T, C>& r, std::size_t n, const float* rw, float* acc, float* seen,
                            SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
-  if constexpr (std::is_same_v<T, float> && (std::is_same_v<C, float> || std::is_same_v<C, std::uint16_t>)) {
+  if constexpr (std::is_same_v<T, float> &&
+                (std::is_same_v<C, float> || std::is_same_v<C, std::uint16_t> || std::is_same_v<C, std::uint8_t>)) {
     if (level == SimdLevel::avx512 && gather_indexable(r.width, r.height)) {
       projective_row_avx512(r, n, rw, acc, seen);
       return;
