@@ -84,8 +84,11 @@ template <std::floating_point T>
 }
 
 /// Woop, Benthin & Wald 2013, fig. 2 and 3, from the edge functions on: the higher-precision
-/// fallback for edge hits, the sign test, and the hit distance compared with `hit.t` without a
-/// division. Updates `hit` when triangle `triangle` is hit in (0, hit.t).
+/// fallback for edge hits, the sign test, and the hit distance. Updates `hit` when triangle
+/// `triangle` is hit at a t > 0 that is closer than `hit`: t < hit.t, or t == hit.t with a lower
+/// triangle index than a valid `hit` (so that ties, e.g. a ray through an edge shared by two
+/// triangles of different leaves, go to the same triangle whatever order the leaves are tested
+/// in: the closest hit is the least (t, index) pair, which single rays and packets agree on).
 template <std::floating_point T>
 inline void watertight_finish(const Edges<T>& e, T sz, std::uint32_t triangle, Hit<T>& hit) noexcept {
   T U = e.U, V = e.V, W = e.W;
@@ -99,11 +102,12 @@ inline void watertight_finish(const Edges<T>& e, T sz, std::uint32_t triangle, H
   const T det = U + V + W;
   if (det == 0) return;
   const T t_scaled = U * (sz * e.az) + V * (sz * e.bz) + W * (sz * e.cz);
-  // t = t_scaled / det must lie in (0, hit.t); compare without dividing.
-  if (det > 0 ? (t_scaled <= 0 || t_scaled >= hit.t * det) : (t_scaled >= 0 || t_scaled <= hit.t * det)) return;
+  // t = t_scaled / det must be positive. (No early test against hit.t: one without dividing
+  // would round differently from t itself and make the result depend on the test order.)
+  if (det > 0 ? t_scaled <= 0 : t_scaled >= 0) return;
   const T rcp = T(1) / det;
   const T t = t_scaled * rcp;
-  if (!(t < hit.t)) return;
+  if (!(t < hit.t || (t == hit.t && hit.valid() && triangle < hit.triangle))) return;
   hit.t = t;
   hit.b1 = V * rcp;
   hit.b2 = W * rcp;
