@@ -56,8 +56,11 @@ std::vector<mpr::scene::Hit<T>> packet_hits(const mpr::scene::Bvh<T>& bvh, const
 #if MPR_BVH_PACKET_AVX2
       if constexpr (std::is_same_v<T, float>) {
         for (auto& x : h) x = mpr::scene::Hit<T>{t_max};
+        // Both set-ups: the portable one (any axes) and the AVX2 one (falls back more often).
         sd::RayPacket<T> p;
-        if (sd::RayPacket<T>::make(r, h.data(), p))
+        const bool formed = (i / sd::kPacketRays) % 2 == 0 ? sd::RayPacket<T>::make(r, h.data(), p)
+                                                           : sd::Avx2PacketKernels::make(r, t_max, p);
+        if (formed)
           sd::packet_walk_avx2(bvh.tree(), p, h.data());
         else
           for (std::size_t k = 0; k < n; ++k) h[k] = bvh.closest_hit(r[k], t_max);
@@ -243,3 +246,69 @@ TEMPLATE_TEST_CASE("packet beam: conservative for every ray, and the AVX2 kernel
   CHECK(entered > 1000);
   CHECK(culled > 1000);
 }
+
+#if MPR_BVH_PACKET_AVX2
+TEST_CASE("packet set-up: the AVX2 one computes the portable values", "[scene][bvh][packet][simd]") {
+  using T = float;
+  using V = mpr::Vec3<T>;
+  if (mpr::detail::cpu_simd_level() < mpr::detail::SimdLevel::avx2) return;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<T> uni(-1, 1);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  int formed = 0, refused = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const V d0 = random_direction<T>(rng);
+    const T spread = k % 4 == 0 ? T(1) : T(0.01);
+    const std::size_t n = 1 + static_cast<std::size_t>(k % sd::kPacketRays);
+    std::vector<mpr::Ray<T>> rays;
+    for (std::size_t r = 0; r < n; ++r) {
+      V d = d0 + spread * V(uni(rng), uni(rng), uni(rng));
+      if (k % 7 == 0 && r == 2) d = V(0, 0, 0);
+      if (k % 11 == 0 && r == 1) d = V(nan, 0, 1);
+      if (k % 13 == 0 && r == 0) d = V(1, nan, 0);
+      rays.push_back({V(uni(rng), uni(rng), uni(rng)) * T(5), d});
+    }
+    const T t_max = k % 2 == 0 ? std::numeric_limits<T>::infinity() : T(3);
+    std::vector<mpr::scene::Hit<T>> hits(n, mpr::scene::Hit<T>{t_max});
+    sd::RayPacket<T> a, b;
+    const bool ok_avx = sd::Avx2PacketKernels::make(rays, t_max, b);
+    const bool ok_portable = sd::RayPacket<T>::make(rays, hits.data(), a);
+    if (!ok_avx) {
+      ++refused;
+      continue;
+    }
+    REQUIRE(ok_portable);
+    ++formed;
+    REQUIRE(a.active == b.active);
+    if (a.active == 0) continue;
+    CHECK(a.same_axes);
+    CHECK(a.kx == b.kx);
+    CHECK(a.ky == b.ky);
+    CHECK(a.kz == b.kz);
+    CHECK(a.near == b.near);
+    CHECK(a.far == b.far);
+    for (int ax = 0; ax < 3; ++ax) {
+      CHECK(a.inv_lo[ax] == b.inv_lo[ax]);
+      CHECK(a.inv_hi[ax] == b.inv_hi[ax]);
+      CHECK(a.off_lo[ax] == b.off_lo[ax]);
+      CHECK(a.off_hi[ax] == b.off_hi[ax]);
+    }
+    for (int r = 0; r < sd::kPacketRays; ++r) {
+      CHECK(same_bits(a.cull[r], b.cull[r]));
+      if (!(a.active >> r & 1U)) continue;
+      for (int ax = 0; ax < 3; ++ax) {
+        CHECK(same_bits(a.inv[ax][r], b.inv[ax][r]));
+        CHECK(same_bits(a.offset[ax][r], b.offset[ax][r]));
+      }
+      CHECK(same_bits(a.sx[r], b.sx[r]));
+      CHECK(same_bits(a.sy[r], b.sy[r]));
+      CHECK(same_bits(a.sz[r], b.sz[r]));
+      CHECK(same_bits(a.ox[r], b.ox[r]));
+      CHECK(same_bits(a.oy[r], b.oy[r]));
+      CHECK(same_bits(a.oz[r], b.oz[r]));
+    }
+  }
+  CHECK(formed > 1000);
+  CHECK(refused > 100);
+}
+#endif

@@ -50,6 +50,13 @@ struct RayPacket {
   alignas(64) T cull[kPacketRays];
   /// Each ray's watertight set-up.
   Shear<T> shear[kPacketRays];
+  /// The same, structure-of-arrays (shear and permuted origin per ray), for leaf kernels that
+  /// test several rays at once; valid when `same_axes`.
+  alignas(64) T sx[kPacketRays], sy[kPacketRays], sz[kPacketRays];
+  alignas(64) T ox[kPacketRays], oy[kPacketRays], oz[kPacketRays];
+  /// True when every active ray has the same axis permutation, (kx, ky, kz).
+  bool same_axes = true;
+  int kx = 0, ky = 1, kz = 2;
   /// The beam: least and greatest `inv` and `offset` over the active rays, per axis.
   std::array<T, 3> inv_lo, inv_hi, off_lo, off_hi;
   /// Rows of `WideNode::bounds` with each axis' near and far plane, common to all rays.
@@ -63,7 +70,9 @@ struct RayPacket {
   /// nothing and are left out of `active`.
   [[nodiscard]] static bool make(std::span<const Ray<T>> rays, const Hit<T>* hits, RayPacket& p) noexcept {
     p.active = 0;
+    p.same_axes = true;
     for (int r = 0; r < kPacketRays; ++r) {
+      p.sx[r] = p.sy[r] = p.sz[r] = p.ox[r] = p.oy[r] = p.oz[r] = 0;
       for (int a = 0; a < 3; ++a) {
         p.inv[a][r] = 1;
         p.offset[a][r] = 0;
@@ -94,6 +103,20 @@ struct RayPacket {
         p.off_hi[a] = std::max(p.off_hi[a], b.offset[a]);
       }
       p.cull[r] = cull_bound(hits[r].t);
+      const Shear<T>& sh = p.shear[r];
+      if (p.active == 0) {
+        p.kx = sh.kx;
+        p.ky = sh.ky;
+        p.kz = sh.kz;
+      } else {
+        p.same_axes = p.same_axes && sh.kx == p.kx && sh.ky == p.ky && sh.kz == p.kz;
+      }
+      p.sx[r] = sh.sx;
+      p.sy[r] = sh.sy;
+      p.sz[r] = sh.sz;
+      p.ox[r] = sh.ox;
+      p.oy[r] = sh.oy;
+      p.oz[r] = sh.oz;
       p.active |= 1U << r;
     }
     return true;
@@ -157,19 +180,31 @@ struct PortablePacketKernels {
   }
 };
 
+/// Leaf `first` (bvh/traverse.hpp's `intersect_leaf`) for each ray of `rays` with `LeafKernels`,
+/// one ray after another; updates `hits` and `p.cull`.
+template <class LeafKernels, std::floating_point T>
+void packet_leaf_per_ray(const BvhTree<T>& tree, std::uint32_t first, RayPacket<T>& p, std::uint32_t rays,
+                         Hit<T>* hits) noexcept {
+  for (; rays != 0; rays &= rays - 1) {
+    const int r = std::countr_zero(rays);
+    intersect_leaf<LeafKernels>(tree, first, p.shear[r], hits[r]);
+    p.cull[r] = cull_bound(hits[r].t);
+  }
+}
+
 /// The packet walk: depth first through the 4-wide tree with the rays of `p.active`, children
 /// in order of their least entry parameter, each child with the rays that enter it; leaves with
-/// `intersect_leaf` per ray (`LeafKernels`, bvh/detail/kernels.hpp). `hits[r]` holds ray r's
+/// `PacketKernels::leaf` when it has one, else `intersect_leaf` per ray (`LeafKernels`,
+/// bvh/detail/kernels.hpp). `hits[r]` holds ray r's
 /// closest hit so far (in: t_max and no triangle) and gets its closest hit.
 template <class PacketKernels, class LeafKernels, std::floating_point T>
 MPR_ALWAYS_INLINE void packet_walk(const BvhTree<T>& tree, RayPacket<T>& p, Hit<T>* hits) noexcept {
   if (p.active == 0 || (tree.wide.empty() && tree.blocks.empty())) return;
   const auto leaf = [&](std::uint32_t first, std::uint32_t rays) noexcept {
-    for (; rays != 0; rays &= rays - 1) {
-      const int r = std::countr_zero(rays);
-      intersect_leaf<LeafKernels>(tree, first, p.shear[r], hits[r]);
-      p.cull[r] = cull_bound(hits[r].t);
-    }
+    if constexpr (requires { PacketKernels::leaf(tree, first, p, rays, hits); })
+      PacketKernels::leaf(tree, first, p, rays, hits);
+    else
+      packet_leaf_per_ray<LeafKernels>(tree, first, p, rays, hits);
   };
   if (tree.root & kLeafRef) {
     leaf(tree.root & ~kLeafRef, p.active);

@@ -16,11 +16,15 @@
 #include <mpr/scene/bvh/packet.hpp>
 #include <mpr/scene/bvh/slab.hpp>
 
+#include <algorithm>
+#include <bit>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <type_traits>
+#include <utility>
 
 #if MPR_BVH_PACKET_AVX2
 #include <immintrin.h>
@@ -35,6 +39,127 @@ namespace mpr::scene::detail {
 /// `std::max(a, b)` exactly, hence the swapped operands (no NaN arises here anyway: the packet's
 /// constants are finite).
 struct Avx2PacketKernels {
+  /// `RayPacket<float>::make` for `rays` (at most `kPacketRays`) with no hit yet (t_max), eight
+  /// rays per instruction: the same values in every field the AVX2 walk reads, bit for bit,
+  /// but false also when the rays' axis permutations differ (the result is `same_axes`; the
+  /// per-ray `shear` records are not filled).
+  MPR_TARGET_AVX2_NOFMA [[nodiscard]] static bool make(std::span<const Ray<float>> rays, float t_max,
+                                                       RayPacket<float>& p) noexcept {
+    const int n = static_cast<int>(rays.size());
+    p.active = 0;
+    p.same_axes = true;
+    for (int r = 0; r < kPacketRays; ++r) p.cull[r] = -std::numeric_limits<float>::infinity();
+    if (n == 0) return true;
+    alignas(32) float d[3][kPacketRays], o[3][kPacketRays];
+    for (int r = 0; r < kPacketRays; ++r) {
+      const Ray<float>& ray = rays[static_cast<std::size_t>(r < n ? r : n - 1)];
+      for (int a = 0; a < 3; ++a) {
+        d[a][r] = ray.direction[a];
+        o[a][r] = ray.origin[a];
+      }
+    }
+    const __m256 sign = _mm256_set1_ps(-0.0f), zero = _mm256_setzero_ps();
+    const __m256 tiny = _mm256_set1_ps(1e-30f), inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    __m256 ok[2];
+    std::uint32_t valid = 0, axis0 = 0, axis1 = 0, bad = 0, negative[3] = {0, 0, 0};
+    for (int g = 0; g < kPacketRays / 8; ++g) {
+      const int in_group = n - 8 * g;
+      const std::uint32_t lanes = in_group >= 8 ? 0xFFU : in_group > 0 ? (1U << in_group) - 1U : 0U;
+      __m256 dv[3], ad[3];
+      for (int a = 0; a < 3; ++a) {
+        dv[a] = _mm256_load_ps(d[a] + 8 * g);
+        ad[a] = _mm256_andnot_ps(sign, dv[a]);
+      }
+      // Shear::make's largest axis: x if |x| > |y| and |x| > |z|, y if not and |y| > |z|, else z.
+      const __m256 xy = _mm256_cmp_ps(ad[0], ad[1], _CMP_GT_OQ), xz = _mm256_cmp_ps(ad[0], ad[2], _CMP_GT_OQ);
+      const __m256 yz = _mm256_cmp_ps(ad[1], ad[2], _CMP_GT_OQ);
+      const __m256 is0 = _mm256_and_ps(xy, xz), is1 = _mm256_andnot_ps(xy, yz);
+      const __m256 largest = _mm256_blendv_ps(_mm256_blendv_ps(ad[2], ad[1], is1), ad[0], is0);
+      ok[g] = _mm256_cmp_ps(largest, zero, _CMP_GT_OQ);
+      const std::uint32_t vm = static_cast<std::uint32_t>(_mm256_movemask_ps(ok[g])) & lanes;
+      ok[g] = _mm256_and_ps(ok[g], _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                                       _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(lanes)),
+                                                        _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                                       _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128))));
+      valid |= vm << (8 * g);
+      axis0 |= (static_cast<std::uint32_t>(_mm256_movemask_ps(is0)) & vm) << (8 * g);
+      axis1 |= (static_cast<std::uint32_t>(_mm256_movemask_ps(is1)) & vm) << (8 * g);
+      // BoxRay::make: components below 1e-30 in magnitude become +-1e-30; t = p * inv + offset.
+      for (int a = 0; a < 3; ++a) {
+        const __m256 da = _mm256_blendv_ps(dv[a], _mm256_or_ps(_mm256_and_ps(dv[a], sign), tiny),
+                                           _mm256_cmp_ps(ad[a], tiny, _CMP_LT_OQ));
+        const __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), da);
+        const __m256 off = _mm256_mul_ps(_mm256_xor_ps(_mm256_load_ps(o[a] + 8 * g), sign), inv);
+        _mm256_store_ps(p.inv[a] + 8 * g, inv);
+        _mm256_store_ps(p.offset[a] + 8 * g, off);
+        negative[a] |= (static_cast<std::uint32_t>(_mm256_movemask_ps(inv)) & vm) << (8 * g);
+        const __m256 finite = _mm256_and_ps(_mm256_cmp_ps(_mm256_andnot_ps(sign, inv), inf, _CMP_LT_OQ),
+                                            _mm256_cmp_ps(_mm256_andnot_ps(sign, off), inf, _CMP_LT_OQ));
+        bad |= (~static_cast<std::uint32_t>(_mm256_movemask_ps(finite)) & vm) << (8 * g);
+      }
+    }
+    if (valid == 0) return true;
+    if (bad != 0) return false;
+    for (int a = 0; a < 3; ++a)
+      if (negative[a] != 0 && negative[a] != valid) return false;
+    if (axis0 == valid)
+      p.kz = 0;
+    else if (axis1 == valid)
+      p.kz = 1;
+    else if ((axis0 | axis1) == 0)
+      p.kz = 2;
+    else
+      return false;
+    for (int a = 0; a < 3; ++a) {
+      p.near[a] = negative[a] != 0 ? a + 3 : a;
+      p.far[a] = negative[a] != 0 ? a : a + 3;
+    }
+    p.kx = p.kz + 1 == 3 ? 0 : p.kz + 1;
+    p.ky = p.kx + 1 == 3 ? 0 : p.kx + 1;
+    if (negative[p.kz] != 0) std::swap(p.kx, p.ky);
+    const __m256 lo_fill = inf, hi_fill = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+    __m256 ilo[3], ihi[3], olo[3], ohi[3];
+    for (int g = 0; g < kPacketRays / 8; ++g) {
+      const __m256 dz = _mm256_load_ps(d[p.kz] + 8 * g);
+      _mm256_store_ps(p.sx + 8 * g, _mm256_div_ps(_mm256_load_ps(d[p.kx] + 8 * g), dz));
+      _mm256_store_ps(p.sy + 8 * g, _mm256_div_ps(_mm256_load_ps(d[p.ky] + 8 * g), dz));
+      _mm256_store_ps(p.sz + 8 * g, _mm256_div_ps(_mm256_set1_ps(1.0f), dz));
+      _mm256_store_ps(p.ox + 8 * g, _mm256_load_ps(o[p.kx] + 8 * g));
+      _mm256_store_ps(p.oy + 8 * g, _mm256_load_ps(o[p.ky] + 8 * g));
+      _mm256_store_ps(p.oz + 8 * g, _mm256_load_ps(o[p.kz] + 8 * g));
+      for (int a = 0; a < 3; ++a) {
+        const __m256 inv = _mm256_load_ps(p.inv[a] + 8 * g), off = _mm256_load_ps(p.offset[a] + 8 * g);
+        const __m256 il = _mm256_blendv_ps(lo_fill, inv, ok[g]), ih = _mm256_blendv_ps(hi_fill, inv, ok[g]);
+        const __m256 ol = _mm256_blendv_ps(lo_fill, off, ok[g]), oh = _mm256_blendv_ps(hi_fill, off, ok[g]);
+        ilo[a] = g == 0 ? il : _mm256_min_ps(ilo[a], il);
+        ihi[a] = g == 0 ? ih : _mm256_max_ps(ihi[a], ih);
+        olo[a] = g == 0 ? ol : _mm256_min_ps(olo[a], ol);
+        ohi[a] = g == 0 ? oh : _mm256_max_ps(ohi[a], oh);
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      alignas(32) float x[4][8];
+      _mm256_store_ps(x[0], ilo[a]);
+      _mm256_store_ps(x[1], ihi[a]);
+      _mm256_store_ps(x[2], olo[a]);
+      _mm256_store_ps(x[3], ohi[a]);
+      p.inv_lo[a] = x[0][0];
+      p.inv_hi[a] = x[1][0];
+      p.off_lo[a] = x[2][0];
+      p.off_hi[a] = x[3][0];
+      for (int k = 1; k < 8; ++k) {
+        p.inv_lo[a] = std::min(p.inv_lo[a], x[0][k]);
+        p.inv_hi[a] = std::max(p.inv_hi[a], x[1][k]);
+        p.off_lo[a] = std::min(p.off_lo[a], x[2][k]);
+        p.off_hi[a] = std::max(p.off_hi[a], x[3][k]);
+      }
+    }
+    const float cull = cull_bound(t_max);
+    for (std::uint32_t m = valid; m != 0; m &= m - 1) p.cull[std::countr_zero(m)] = cull;
+    p.active = valid;
+    return true;
+  }
+
   MPR_TARGET_AVX2_NOFMA [[nodiscard]] static unsigned beam4(const WideNode<float>& node, const RayPacket<float>& p,
                                                             float cull_max) noexcept {
     const float* b = &node.bounds[0][0];
@@ -92,6 +217,84 @@ struct Avx2PacketKernels {
     t_min = _mm_cvtss_f32(h);
     return mask;
   }
+
+  /// Leaf `first` for the rays of `rays`: each triangle's edge functions for eight rays per
+  /// instruction, with the operations of `edges4_sse` in the same order (so the same values),
+  /// then `watertight_finish` for each ray the edge values cannot reject. Rays with different
+  /// axis permutations (`!p.same_axes`) go one by one.
+  MPR_TARGET_AVX2_NOFMA static void leaf(const BvhTree<float>& tree, std::uint32_t first, RayPacket<float>& p,
+                                         std::uint32_t rays, Hit<float>* hits) noexcept {
+    if (!p.same_axes) {
+      packet_leaf_per_ray<SseKernels>(tree, first, p, rays, hits);
+      return;
+    }
+    const int kx = p.kx, ky = p.ky, kz = p.kz;
+    const __m256 zero = _mm256_setzero_ps();
+    for (std::uint32_t b = first;; ++b) {
+      const TriBlock<float>& block = tree.blocks[b];
+      for (std::uint32_t t = 0; t < block.count; ++t) {
+        __m256 v[3][3];
+        for (int k = 0; k < 3; ++k) {
+          v[k][0] = _mm256_set1_ps(block.p[k][kx][t]);
+          v[k][1] = _mm256_set1_ps(block.p[k][ky][t]);
+          v[k][2] = _mm256_set1_ps(block.p[k][kz][t]);
+        }
+        for (int g = 0; g < kPacketRays / 8; ++g) {
+          const std::uint32_t in = (rays >> (8 * g)) & 0xFFU;
+          if (in == 0) continue;
+          const __m256 vox = _mm256_load_ps(p.ox + 8 * g), voy = _mm256_load_ps(p.oy + 8 * g);
+          const __m256 voz = _mm256_load_ps(p.oz + 8 * g);
+          const __m256 vsx = _mm256_load_ps(p.sx + 8 * g), vsy = _mm256_load_ps(p.sy + 8 * g);
+          const __m256 az = _mm256_sub_ps(v[0][2], voz);
+          const __m256 bz = _mm256_sub_ps(v[1][2], voz);
+          const __m256 cz = _mm256_sub_ps(v[2][2], voz);
+          const __m256 Ax = _mm256_sub_ps(_mm256_sub_ps(v[0][0], vox), _mm256_mul_ps(vsx, az));
+          const __m256 Ay = _mm256_sub_ps(_mm256_sub_ps(v[0][1], voy), _mm256_mul_ps(vsy, az));
+          const __m256 Bx = _mm256_sub_ps(_mm256_sub_ps(v[1][0], vox), _mm256_mul_ps(vsx, bz));
+          const __m256 By = _mm256_sub_ps(_mm256_sub_ps(v[1][1], voy), _mm256_mul_ps(vsy, bz));
+          const __m256 Cx = _mm256_sub_ps(_mm256_sub_ps(v[2][0], vox), _mm256_mul_ps(vsx, cz));
+          const __m256 Cy = _mm256_sub_ps(_mm256_sub_ps(v[2][1], voy), _mm256_mul_ps(vsy, cz));
+          const __m256 U = _mm256_sub_ps(_mm256_mul_ps(Cx, By), _mm256_mul_ps(Cy, Bx));
+          const __m256 V = _mm256_sub_ps(_mm256_mul_ps(Ax, Cy), _mm256_mul_ps(Ay, Cx));
+          const __m256 W = _mm256_sub_ps(_mm256_mul_ps(Bx, Ay), _mm256_mul_ps(By, Ax));
+          const __m256 neg =
+              _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, zero, _CMP_LT_OQ), _mm256_cmp_ps(V, zero, _CMP_LT_OQ)),
+                           _mm256_cmp_ps(W, zero, _CMP_LT_OQ));
+          const __m256 pos =
+              _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, zero, _CMP_GT_OQ), _mm256_cmp_ps(V, zero, _CMP_GT_OQ)),
+                           _mm256_cmp_ps(W, zero, _CMP_GT_OQ));
+          const __m256 any_zero =
+              _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, zero, _CMP_EQ_OQ), _mm256_cmp_ps(V, zero, _CMP_EQ_OQ)),
+                           _mm256_cmp_ps(W, zero, _CMP_EQ_OQ));
+          const std::uint32_t rejected =
+              static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_andnot_ps(any_zero, _mm256_and_ps(neg, pos))));
+          std::uint32_t candidates = in & ~rejected;
+          if (candidates == 0) continue;
+          alignas(32) float e[12][8];
+          _mm256_store_ps(e[0], Ax);
+          _mm256_store_ps(e[1], Ay);
+          _mm256_store_ps(e[2], Bx);
+          _mm256_store_ps(e[3], By);
+          _mm256_store_ps(e[4], Cx);
+          _mm256_store_ps(e[5], Cy);
+          _mm256_store_ps(e[6], az);
+          _mm256_store_ps(e[7], bz);
+          _mm256_store_ps(e[8], cz);
+          _mm256_store_ps(e[9], U);
+          _mm256_store_ps(e[10], V);
+          _mm256_store_ps(e[11], W);
+          for (; candidates != 0; candidates &= candidates - 1) {
+            const int k = std::countr_zero(candidates), r = 8 * g + k;
+            const Edges<float> edges{e[0][k], e[1][k], e[2][k], e[3][k], e[4][k],  e[5][k],
+                                     e[6][k], e[7][k], e[8][k], e[9][k], e[10][k], e[11][k]};
+            watertight_finish(edges, p.sz[r], block.index[t], hits[r]);
+            p.cull[r] = cull_bound(hits[r].t);
+          }
+        }
+      }
+      if (block.last) return;
+    }
+  }
 };
 
 /// The packet walk with the AVX2 kernels (and the SSE leaf kernels), compiled for AVX2 without
@@ -114,7 +317,7 @@ void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, s
     if (mpr::detail::simd_level() >= mpr::detail::SimdLevel::avx2) {
       for (Hit<T>& h : hits) h = Hit<T>{t_max};
       RayPacket<T> p;
-      if (RayPacket<T>::make(rays, hits.data(), p)) {
+      if (Avx2PacketKernels::make(rays, t_max, p)) {
         packet_walk_avx2(tree, p, hits.data());
       } else {
         for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = closest_hit_walk<SseKernels>(tree, rays[r], t_max);
