@@ -48,6 +48,8 @@ struct RayPacket {
   alignas(64) T offset[3][kPacketRays];
   /// `cull_bound` of each ray's closest hit so far; -inf in lanes without a ray (never enter).
   alignas(64) T cull[kPacketRays];
+  /// Each ray's closest hit parameter so far (`Hit::t`, kept beside `cull` for SIMD leaves).
+  alignas(64) T best[kPacketRays];
   /// Each ray's watertight set-up.
   Shear<T> shear[kPacketRays];
   /// The same, structure-of-arrays (shear and permuted origin per ray), for leaf kernels that
@@ -78,6 +80,7 @@ struct RayPacket {
         p.offset[a][r] = 0;
       }
       p.cull[r] = -std::numeric_limits<T>::infinity();
+      p.best[r] = 0;
     }
     for (std::size_t r = 0; r < rays.size(); ++r) {
       if (!Shear<T>::make(rays[r], p.shear[r])) continue;
@@ -103,6 +106,7 @@ struct RayPacket {
         p.off_hi[a] = std::max(p.off_hi[a], b.offset[a]);
       }
       p.cull[r] = cull_bound(hits[r].t);
+      p.best[r] = hits[r].t;
       const Shear<T>& sh = p.shear[r];
       if (p.active == 0) {
         p.kx = sh.kx;
@@ -151,6 +155,14 @@ struct PortablePacketKernels {
     return mask;
   }
 
+  /// The rays whose `cull` exceeds `t` (bit r for ray r).
+  [[nodiscard]] static std::uint32_t beyond(const RayPacket<T>& p, T t) noexcept {
+    std::uint32_t mask = 0;
+    for (int r = 0; r < kPacketRays; ++r)
+      if (t < p.cull[r]) mask |= 1U << r;
+    return mask;
+  }
+
   /// The rays of `active` whose slab test enters child `lane` of `node` (at a parameter below
   /// their `cull`), as a bit mask; `t_min` gets the least entry parameter among them.
   [[nodiscard]] static std::uint32_t rays(const WideNode<T>& node, int lane, const RayPacket<T>& p,
@@ -188,6 +200,7 @@ void packet_leaf_per_ray(const BvhTree<T>& tree, std::uint32_t first, RayPacket<
   for (; rays != 0; rays &= rays - 1) {
     const int r = std::countr_zero(rays);
     intersect_leaf<LeafKernels>(tree, first, p.shear[r], hits[r]);
+    p.best[r] = hits[r].t;
     p.cull[r] = cull_bound(hits[r].t);
   }
 }
@@ -250,13 +263,17 @@ MPR_ALWAYS_INLINE void packet_walk(const BvhTree<T>& tree, RayPacket<T>& p, Hit<
         continue;
       }
     }
-    // Pop the next subtree that some ray may still find a closer hit in.
+    // Pop the next subtree that some ray may still find a closer hit in, with those rays only:
+    // a ray whose cull bound is not beyond the subtree's least entry parameter (hence its own)
+    // skips it, as the single-ray walk would.
     bool found = false;
     while (top > 0) {
       const Entry e = stack[--top];
-      if (e.t < cull_max) {
+      if (!(e.t < cull_max)) continue;
+      const std::uint32_t alive = e.rays & PacketKernels::beyond(p, e.t);
+      if (alive != 0) {
         current = e.ref;
-        rays = e.rays;
+        rays = alive;
         found = true;
         break;
       }

@@ -43,19 +43,24 @@ struct Avx2PacketKernels {
   /// rays per instruction: the same values in every field the AVX2 walk reads, bit for bit,
   /// but false also when the rays' axis permutations differ (the result is `same_axes`; the
   /// per-ray `shear` records are not filled).
-  MPR_TARGET_AVX2_NOFMA [[nodiscard]] static bool make(std::span<const Ray<float>> rays, float t_max,
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static bool make(std::span<const Ray<float>> rays, float t_max,
                                                        RayPacket<float>& p) noexcept {
     const int n = static_cast<int>(rays.size());
     p.active = 0;
     p.same_axes = true;
     for (int r = 0; r < kPacketRays; ++r) p.cull[r] = -std::numeric_limits<float>::infinity();
     if (n == 0) return true;
-    alignas(32) float d[3][kPacketRays], o[3][kPacketRays];
-    for (int r = 0; r < kPacketRays; ++r) {
-      const Ray<float>& ray = rays[static_cast<std::size_t>(r < n ? r : n - 1)];
+    // The rays' components, eight rays per vector (lanes past the last ray repeat it), built in
+    // registers: storing scalars and loading them as a vector would stall on store forwarding.
+    __m256 dg[2][3], og[2][3];
+    for (int g = 0; g < kPacketRays / 8; ++g) {
+      const Ray<float>* q[8];
+      for (int k = 0; k < 8; ++k) q[k] = &rays[static_cast<std::size_t>(std::min(8 * g + k, n - 1))];
       for (int a = 0; a < 3; ++a) {
-        d[a][r] = ray.direction[a];
-        o[a][r] = ray.origin[a];
+        dg[g][a] = _mm256_setr_ps(q[0]->direction[a], q[1]->direction[a], q[2]->direction[a], q[3]->direction[a],
+                                  q[4]->direction[a], q[5]->direction[a], q[6]->direction[a], q[7]->direction[a]);
+        og[g][a] = _mm256_setr_ps(q[0]->origin[a], q[1]->origin[a], q[2]->origin[a], q[3]->origin[a], q[4]->origin[a],
+                                  q[5]->origin[a], q[6]->origin[a], q[7]->origin[a]);
       }
     }
     const __m256 sign = _mm256_set1_ps(-0.0f), zero = _mm256_setzero_ps();
@@ -67,7 +72,7 @@ struct Avx2PacketKernels {
       const std::uint32_t lanes = in_group >= 8 ? 0xFFU : in_group > 0 ? (1U << in_group) - 1U : 0U;
       __m256 dv[3], ad[3];
       for (int a = 0; a < 3; ++a) {
-        dv[a] = _mm256_load_ps(d[a] + 8 * g);
+        dv[a] = dg[g][a];
         ad[a] = _mm256_andnot_ps(sign, dv[a]);
       }
       // Shear::make's largest axis: x if |x| > |y| and |x| > |z|, y if not and |y| > |z|, else z.
@@ -89,7 +94,7 @@ struct Avx2PacketKernels {
         const __m256 da = _mm256_blendv_ps(dv[a], _mm256_or_ps(_mm256_and_ps(dv[a], sign), tiny),
                                            _mm256_cmp_ps(ad[a], tiny, _CMP_LT_OQ));
         const __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), da);
-        const __m256 off = _mm256_mul_ps(_mm256_xor_ps(_mm256_load_ps(o[a] + 8 * g), sign), inv);
+        const __m256 off = _mm256_mul_ps(_mm256_xor_ps(og[g][a], sign), inv);
         _mm256_store_ps(p.inv[a] + 8 * g, inv);
         _mm256_store_ps(p.offset[a] + 8 * g, off);
         negative[a] |= (static_cast<std::uint32_t>(_mm256_movemask_ps(inv)) & vm) << (8 * g);
@@ -120,13 +125,13 @@ struct Avx2PacketKernels {
     const __m256 lo_fill = inf, hi_fill = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     __m256 ilo[3], ihi[3], olo[3], ohi[3];
     for (int g = 0; g < kPacketRays / 8; ++g) {
-      const __m256 dz = _mm256_load_ps(d[p.kz] + 8 * g);
-      _mm256_store_ps(p.sx + 8 * g, _mm256_div_ps(_mm256_load_ps(d[p.kx] + 8 * g), dz));
-      _mm256_store_ps(p.sy + 8 * g, _mm256_div_ps(_mm256_load_ps(d[p.ky] + 8 * g), dz));
+      const __m256 dz = dg[g][p.kz];
+      _mm256_store_ps(p.sx + 8 * g, _mm256_div_ps(dg[g][p.kx], dz));
+      _mm256_store_ps(p.sy + 8 * g, _mm256_div_ps(dg[g][p.ky], dz));
       _mm256_store_ps(p.sz + 8 * g, _mm256_div_ps(_mm256_set1_ps(1.0f), dz));
-      _mm256_store_ps(p.ox + 8 * g, _mm256_load_ps(o[p.kx] + 8 * g));
-      _mm256_store_ps(p.oy + 8 * g, _mm256_load_ps(o[p.ky] + 8 * g));
-      _mm256_store_ps(p.oz + 8 * g, _mm256_load_ps(o[p.kz] + 8 * g));
+      _mm256_store_ps(p.ox + 8 * g, og[g][p.kx]);
+      _mm256_store_ps(p.oy + 8 * g, og[g][p.ky]);
+      _mm256_store_ps(p.oz + 8 * g, og[g][p.kz]);
       for (int a = 0; a < 3; ++a) {
         const __m256 inv = _mm256_load_ps(p.inv[a] + 8 * g), off = _mm256_load_ps(p.offset[a] + 8 * g);
         const __m256 il = _mm256_blendv_ps(lo_fill, inv, ok[g]), ih = _mm256_blendv_ps(hi_fill, inv, ok[g]);
@@ -138,29 +143,43 @@ struct Avx2PacketKernels {
       }
     }
     for (int a = 0; a < 3; ++a) {
-      alignas(32) float x[4][8];
-      _mm256_store_ps(x[0], ilo[a]);
-      _mm256_store_ps(x[1], ihi[a]);
-      _mm256_store_ps(x[2], olo[a]);
-      _mm256_store_ps(x[3], ohi[a]);
-      p.inv_lo[a] = x[0][0];
-      p.inv_hi[a] = x[1][0];
-      p.off_lo[a] = x[2][0];
-      p.off_hi[a] = x[3][0];
-      for (int k = 1; k < 8; ++k) {
-        p.inv_lo[a] = std::min(p.inv_lo[a], x[0][k]);
-        p.inv_hi[a] = std::max(p.inv_hi[a], x[1][k]);
-        p.off_lo[a] = std::min(p.off_lo[a], x[2][k]);
-        p.off_hi[a] = std::max(p.off_hi[a], x[3][k]);
-      }
+      p.inv_lo[a] = least(ilo[a]);
+      p.inv_hi[a] = greatest(ihi[a]);
+      p.off_lo[a] = least(olo[a]);
+      p.off_hi[a] = greatest(ohi[a]);
     }
     const float cull = cull_bound(t_max);
-    for (std::uint32_t m = valid; m != 0; m &= m - 1) p.cull[std::countr_zero(m)] = cull;
+    for (std::uint32_t m = valid; m != 0; m &= m - 1) {
+      p.cull[std::countr_zero(m)] = cull;
+      p.best[std::countr_zero(m)] = t_max;
+    }
     p.active = valid;
     return true;
   }
 
-  MPR_TARGET_AVX2_NOFMA [[nodiscard]] static unsigned beam4(const WideNode<float>& node, const RayPacket<float>& p,
+  /// The least and the greatest of the eight lanes.
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static float least(__m256 v) noexcept {
+    __m128 h = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    h = _mm_min_ps(h, _mm_movehl_ps(h, h));
+    return _mm_cvtss_f32(_mm_min_ss(h, _mm_shuffle_ps(h, h, 1)));
+  }
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static float greatest(__m256 v) noexcept {
+    __m128 h = _mm_max_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    h = _mm_max_ps(h, _mm_movehl_ps(h, h));
+    return _mm_cvtss_f32(_mm_max_ss(h, _mm_shuffle_ps(h, h, 1)));
+  }
+
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static std::uint32_t beyond(const RayPacket<float>& p, float t) noexcept {
+    const __m256 tv = _mm256_set1_ps(t);
+    std::uint32_t mask = 0;
+    for (int g = 0; g < kPacketRays / 8; ++g)
+      mask |=
+          static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(tv, _mm256_load_ps(p.cull + 8 * g), _CMP_LT_OQ)))
+          << (8 * g);
+    return mask;
+  }
+
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static unsigned beam4(const WideNode<float>& node, const RayPacket<float>& p,
                                                             float cull_max) noexcept {
     const float* b = &node.bounds[0][0];
     const __m128 widen = _mm_set1_ps(kBoxWiden<float>);
@@ -178,7 +197,7 @@ struct Avx2PacketKernels {
     return static_cast<unsigned>(_mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(tn, tf), _mm_cmplt_ps(tn, cmax))));
   }
 
-  MPR_TARGET_AVX2_NOFMA [[nodiscard]] static std::uint32_t
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static std::uint32_t
   rays(const WideNode<float>& node, int lane, const RayPacket<float>& p, std::uint32_t active, float& t_min) noexcept {
     __m256 bn[3], bf[3];
     for (int a = 0; a < 3; ++a) {
@@ -220,8 +239,10 @@ struct Avx2PacketKernels {
 
   /// Leaf `first` for the rays of `rays`: each triangle's edge functions for eight rays per
   /// instruction, with the operations of `edges4_sse` in the same order (so the same values),
-  /// then `watertight_finish` for each ray the edge values cannot reject. Rays with different
-  /// axis permutations (`!p.same_axes`) go one by one.
+  /// then the rest of `watertight_finish` eight rays at once with its operations (scalar, per
+  /// ray, where an edge function is zero and needs the exact recomputation). The hit test is
+  /// `watertight_finish`'s: t > 0 and (t < best, or t == best and a lower triangle index). Rays
+  /// with different axis permutations (`!p.same_axes`) go one by one.
   MPR_TARGET_AVX2_NOFMA static void leaf(const BvhTree<float>& tree, std::uint32_t first, RayPacket<float>& p,
                                          std::uint32_t rays, Hit<float>* hits) noexcept {
     if (!p.same_axes) {
@@ -268,27 +289,69 @@ struct Avx2PacketKernels {
                            _mm256_cmp_ps(W, zero, _CMP_EQ_OQ));
           const std::uint32_t rejected =
               static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_andnot_ps(any_zero, _mm256_and_ps(neg, pos))));
-          std::uint32_t candidates = in & ~rejected;
+          const std::uint32_t candidates = in & ~rejected;
           if (candidates == 0) continue;
-          alignas(32) float e[12][8];
-          _mm256_store_ps(e[0], Ax);
-          _mm256_store_ps(e[1], Ay);
-          _mm256_store_ps(e[2], Bx);
-          _mm256_store_ps(e[3], By);
-          _mm256_store_ps(e[4], Cx);
-          _mm256_store_ps(e[5], Cy);
-          _mm256_store_ps(e[6], az);
-          _mm256_store_ps(e[7], bz);
-          _mm256_store_ps(e[8], cz);
-          _mm256_store_ps(e[9], U);
-          _mm256_store_ps(e[10], V);
-          _mm256_store_ps(e[11], W);
-          for (; candidates != 0; candidates &= candidates - 1) {
-            const int k = std::countr_zero(candidates), r = 8 * g + k;
-            const Edges<float> edges{e[0][k], e[1][k], e[2][k], e[3][k], e[4][k],  e[5][k],
-                                     e[6][k], e[7][k], e[8][k], e[9][k], e[10][k], e[11][k]};
-            watertight_finish(edges, p.sz[r], block.index[t], hits[r]);
-            p.cull[r] = cull_bound(hits[r].t);
+          // Lanes with a zero edge function need the exact recomputation: scalar, as single rays.
+          std::uint32_t exact = candidates & static_cast<std::uint32_t>(_mm256_movemask_ps(any_zero));
+          if (exact != 0) {
+            alignas(32) float e[12][8];
+            _mm256_store_ps(e[0], Ax);
+            _mm256_store_ps(e[1], Ay);
+            _mm256_store_ps(e[2], Bx);
+            _mm256_store_ps(e[3], By);
+            _mm256_store_ps(e[4], Cx);
+            _mm256_store_ps(e[5], Cy);
+            _mm256_store_ps(e[6], az);
+            _mm256_store_ps(e[7], bz);
+            _mm256_store_ps(e[8], cz);
+            _mm256_store_ps(e[9], U);
+            _mm256_store_ps(e[10], V);
+            _mm256_store_ps(e[11], W);
+            for (; exact != 0; exact &= exact - 1) {
+              const int k = std::countr_zero(exact), r = 8 * g + k;
+              const Edges<float> edges{e[0][k], e[1][k], e[2][k], e[3][k], e[4][k],  e[5][k],
+                                       e[6][k], e[7][k], e[8][k], e[9][k], e[10][k], e[11][k]};
+              watertight_finish(edges, p.sz[r], block.index[t], hits[r]);
+              p.best[r] = hits[r].t;
+              p.cull[r] = cull_bound(hits[r].t);
+            }
+          }
+          const std::uint32_t plain = candidates & ~static_cast<std::uint32_t>(_mm256_movemask_ps(any_zero));
+          if (plain == 0) continue;
+          // The rest of watertight_finish for the others (no zero edge function, so not of mixed
+          // sign either), eight at once: the same operations in the same order.
+          const __m256 szv = _mm256_load_ps(p.sz + 8 * g);
+          const __m256 det = _mm256_add_ps(_mm256_add_ps(U, V), W);
+          const __m256 ts = _mm256_add_ps(
+              _mm256_add_ps(_mm256_mul_ps(U, _mm256_mul_ps(szv, az)), _mm256_mul_ps(V, _mm256_mul_ps(szv, bz))),
+              _mm256_mul_ps(W, _mm256_mul_ps(szv, cz)));
+          const __m256 ahead =
+              _mm256_or_ps(_mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_GT_OQ), _mm256_cmp_ps(ts, zero, _CMP_GT_OQ)),
+                           _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_LT_OQ), _mm256_cmp_ps(ts, zero, _CMP_LT_OQ)));
+          const __m256 rcp = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+          const __m256 tv = _mm256_mul_ps(ts, rcp);
+          const __m256 best = _mm256_load_ps(p.best + 8 * g);
+          const std::uint32_t closer =
+              plain &
+              static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_and_ps(ahead, _mm256_cmp_ps(tv, best, _CMP_LT_OQ))));
+          const std::uint32_t tie =
+              plain &
+              static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_and_ps(ahead, _mm256_cmp_ps(tv, best, _CMP_EQ_OQ))));
+          if ((closer | tie) == 0) continue;
+          alignas(32) float tt[8], b1[8], b2[8];
+          _mm256_store_ps(tt, tv);
+          _mm256_store_ps(b1, _mm256_mul_ps(V, rcp));
+          _mm256_store_ps(b2, _mm256_mul_ps(W, rcp));
+          for (std::uint32_t m = closer | tie; m != 0; m &= m - 1) {
+            const int k = std::countr_zero(m), r = 8 * g + k;
+            Hit<float>& h = hits[r];
+            if ((tie >> k & 1U) && !(h.valid() && block.index[t] < h.triangle)) continue;
+            h.t = tt[k];
+            h.b1 = b1[k];
+            h.b2 = b2[k];
+            h.triangle = block.index[t];
+            p.best[r] = h.t;
+            p.cull[r] = cull_bound(h.t);
           }
         }
       }
