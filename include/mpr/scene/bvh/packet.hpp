@@ -137,6 +137,11 @@ struct RayPacket {
 /// The portable packet kernels (any scalar type): the reference for the x86 ones.
 template <std::floating_point T>
 struct PortablePacketKernels {
+  /// What `rays` gives for the least entry parameter, and its value (`least_value`): the x86
+  /// kernels keep a vector and reduce it only when the walk needs the number.
+  using Least = T;
+  [[nodiscard]] static T least_value(T t) noexcept { return t; }
+
   /// Bit `lane` set when the beam of `p` may enter child `lane` of `node` before `cull_max`
   /// (the greatest `p.cull`): clear only if every ray's slab test (`rays`) misses it.
   [[nodiscard]] static unsigned beam4(const WideNode<T>& node, const RayPacket<T>& p, T cull_max) noexcept {
@@ -239,24 +244,37 @@ MPR_ALWAYS_INLINE void packet_walk(const BvhTree<T>& tree, RayPacket<T>& p, Hit<
     } else {
       const WideNode<T>& node = tree.wide[current];
       std::uint32_t ref[4], sub[4];
-      T t[4];
+      typename PacketKernels::Least least[4];
       int n = 0;
       for (unsigned beam = PacketKernels::beam4(node, p, cull_max); beam != 0; beam &= beam - 1) {
         const int lane = std::countr_zero(beam);
-        T t_min;
-        const std::uint32_t m = PacketKernels::rays(node, lane, p, rays, t_min);
+        const std::uint32_t m = PacketKernels::rays(node, lane, p, rays, least[n]);
         if (m == 0) continue;
-        int k = n++;
-        for (; k > 0 && t[k - 1] > t_min; --k) {
-          t[k] = t[k - 1];
-          ref[k] = ref[k - 1];
-          sub[k] = sub[k - 1];
-        }
-        t[k] = t_min;
-        ref[k] = node.child[lane];
-        sub[k] = m;
+        ref[n] = node.child[lane];
+        sub[n++] = m;
       }
-      if (n != 0) {
+      if (n == 1) {
+        current = ref[0];
+        rays = sub[0];
+        continue;
+      }
+      if (n > 1) {
+        // Nearest first (ties: lower lane first); only now are the entry parameters needed.
+        T t[4];
+        for (int k = 0; k < n; ++k) t[k] = PacketKernels::least_value(least[k]);
+        for (int i = 1; i < n; ++i) {
+          const T ti = t[i];
+          const std::uint32_t ri = ref[i], si = sub[i];
+          int k = i;
+          for (; k > 0 && t[k - 1] > ti; --k) {
+            t[k] = t[k - 1];
+            ref[k] = ref[k - 1];
+            sub[k] = sub[k - 1];
+          }
+          t[k] = ti;
+          ref[k] = ri;
+          sub[k] = si;
+        }
         for (int k = n - 1; k > 0; --k) stack[top++] = {ref[k], sub[k], t[k]};
         current = ref[0];
         rays = sub[0];

@@ -157,6 +157,11 @@ struct Avx2PacketKernels {
     return true;
   }
 
+  /// `rays` gives the entry parameters of the rays that enter (+inf in the other lanes); the
+  /// walk reduces them with `least_value` only when it orders several children.
+  using Least = __m256;
+  [[nodiscard]] MPR_TARGET_AVX2_NOFMA static float least_value(const __m256& v) noexcept { return least(v); }
+
   /// The least and the greatest of the eight lanes.
   [[nodiscard]] MPR_TARGET_AVX2_NOFMA static float least(__m256 v) noexcept {
     __m128 h = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
@@ -198,7 +203,7 @@ struct Avx2PacketKernels {
   }
 
   [[nodiscard]] MPR_TARGET_AVX2_NOFMA static std::uint32_t
-  rays(const WideNode<float>& node, int lane, const RayPacket<float>& p, std::uint32_t active, float& t_min) noexcept {
+  rays(const WideNode<float>& node, int lane, const RayPacket<float>& p, std::uint32_t active, __m256& entry) noexcept {
     __m256 bn[3], bf[3];
     for (int a = 0; a < 3; ++a) {
       bn[a] = _mm256_set1_ps(node.bounds[p.near[a]][lane]);
@@ -207,7 +212,7 @@ struct Avx2PacketKernels {
     const __m256 widen = _mm256_set1_ps(kBoxWiden<float>);
     const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    __m256 least = inf;
+    entry = inf;
     std::uint32_t mask = 0;
     for (int g = 0; g < kPacketRays / 8; ++g) {
       const std::uint32_t in = (active >> (8 * g)) & 0xFFU;
@@ -228,12 +233,8 @@ struct Avx2PacketKernels {
       const std::uint32_t m = static_cast<std::uint32_t>(_mm256_movemask_ps(enter));
       if (m == 0) continue;
       mask |= m << (8 * g);
-      least = _mm256_min_ps(least, _mm256_blendv_ps(inf, tn, enter));
+      entry = _mm256_min_ps(entry, _mm256_blendv_ps(inf, tn, enter));
     }
-    __m128 h = _mm_min_ps(_mm256_castps256_ps128(least), _mm256_extractf128_ps(least, 1));
-    h = _mm_min_ps(h, _mm_movehl_ps(h, h));
-    h = _mm_min_ss(h, _mm_shuffle_ps(h, h, 1));
-    t_min = _mm_cvtss_f32(h);
     return mask;
   }
 
