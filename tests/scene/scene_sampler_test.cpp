@@ -211,3 +211,38 @@ TEMPLATE_TEST_CASE("the batch ray cast (sample_rays, closest_hits) equals the pe
     CHECK(differ == 0);
   }
 }
+
+TEMPLATE_TEST_CASE("the tile ray cast (sample_tile, 4 x 4 packets) equals the per-ray one bit for bit",
+                   "[scene][batch][packet]", float, double) {
+  using T = TestType;
+  using Color = mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast>;
+  using Depth = mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>;
+  STATIC_REQUIRE(mpr::TileRaySampler<Color>);
+  STATIC_REQUIRE(mpr::TileRaySampler<Depth>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<mpr::RayCast>); // the policy tag is no sampler
+  const auto scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
+  const Color color(scene);
+  const Depth depth(scene);
+  const auto camera = classroom_camera<T>(97, 61);
+  // Widths and row counts that are and are not multiples of the 4 x 4 packets.
+  for (const int width : {1, 3, 4, 37, 97})
+    for (const int rows : {1, 4, 6, 8}) {
+      std::vector<mpr::Ray<T>> rays;
+      for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < width; ++x)
+          rays.push_back(camera.ray_through(mpr::Vec2<T>(T(x) + T(0.5), T(y * 7) + T(0.5))));
+      std::vector<mpr::Color> c(rays.size());
+      std::vector<float> d(rays.size());
+      color.sample_tile(rays, width, std::span<mpr::Color>(c));
+      depth.sample_tile(rays, width, std::span<float>(d));
+      int differ = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        const mpr::Color ci = color.sample(rays[i]);
+        const float di = depth.sample(rays[i]);
+        differ += std::memcmp(ci.data(), c[i].data(), sizeof(float) * 3) != 0;
+        differ += std::memcmp(&di, &d[i], sizeof(float)) != 0;
+      }
+      INFO(width << " x " << rows << " rays");
+      CHECK(differ == 0);
+    }
+}

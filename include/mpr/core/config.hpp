@@ -24,6 +24,10 @@
 /// | `MPR_TARGET_AVX2`     | `target("avx2,fma")` attribute (only with `MPR_SIMD_X86`)       |
 /// | `MPR_TARGET_AVX512`   | `target("avx512f,avx512bw,avx512vl,avx512dq,fma")` attribute,   |
 /// |                       | on GCC also preferring 512-bit vectors (only with MPR_SIMD_X86) |
+/// | `MPR_TARGET_AVX2_NOFMA` | `target("avx2")` attribute, no FMA: the compiler cannot fuse a  |
+/// |                       | multiply-add, so results equal the SSE2 ones (BVH packet walk)  |
+/// | `MPR_BVH_PACKET_AVX2` | 1 with `MPR_SIMD_X86` and `MPR_BVH_SSE`: the BVH's packet walk  |
+/// |                       | has AVX2 kernels, chosen at run time; else 0                    |
 /// | `MPR_ALWAYS_INLINE`   | `inline` that always inlines (GCC/Clang), for kernel bodies     |
 /// | `MPR_INLINE_LAMBDA`   | always-inline attribute for the lambdas handed to `run_at`      |
 /// | `MPR_RESTRICT`        | `__restrict__` (GCC/Clang), else nothing                        |
@@ -68,6 +72,9 @@
 
 #if defined(MPR_SIMD_X86)
 #define MPR_TARGET_AVX2 __attribute__((target("avx2,fma")))
+// AVX2 without FMA: no contraction of a * b + c is possible, so the BVH's exact tests compute
+// the same values as their SSE2 twins.
+#define MPR_TARGET_AVX2_NOFMA __attribute__((target("avx2")))
 #if defined(__clang__)
 #define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
 #else
@@ -84,4 +91,12 @@
 #else
 #define MPR_BVH_SSE 0
 #endif
+#endif
+
+// The BVH packet walk's AVX2 kernels (bvh/detail/packet_kernels.hpp) need the x86 target
+// attributes and the SSE leaf kernels.
+#if defined(MPR_SIMD_X86) && MPR_BVH_SSE
+#define MPR_BVH_PACKET_AVX2 1
+#else
+#define MPR_BVH_PACKET_AVX2 0
 #endif

@@ -65,16 +65,41 @@ public:
   }
 
   /// `out[i] = sample(rays[i])` for every i (`mpr::BatchRaySampler`): the same values, from
-  /// `Bvh::closest_hits` (one walk after another) and then shading, 64 rays at a time.
-  /// Precondition: equal lengths.
+  /// `Bvh::closest_hits_coherent` on runs of 16 neighbouring rays and then shading, 64 rays at a
+  /// time. Precondition: equal lengths.
   void sample_rays(std::span<const Ray<T>> rays, std::span<color_type> out) const noexcept {
     constexpr std::size_t kChunk = 64;
     scene::Hit<T> hits[kChunk];
     for (std::size_t i0 = 0; i0 < rays.size(); i0 += kChunk) {
       const std::size_t n = std::min(kChunk, rays.size() - i0);
-      state_->bvh.closest_hits(rays.subspan(i0, n), std::span<scene::Hit<T>>(hits, n));
+      state_->bvh.closest_hits_coherent(rays.subspan(i0, n), std::span<scene::Hit<T>>(hits, n));
       for (std::size_t i = 0; i < n; ++i) out[i0 + i] = answer(rays[i0 + i], hits[i]);
     }
+  }
+
+  /// `out[i] = sample(rays[i])` for every i (`mpr::TileRaySampler`: `rays` holds image rows of
+  /// `width` rays): the same values, from packets of 4 x 4 neighbouring pixels
+  /// (`Bvh::closest_hits_coherent`, whose beams are tight for a GLC's affine rays), so the
+  /// renderer traces coherent packets without being asked. Preconditions: `width > 0`, sizes a
+  /// multiple of it and equal.
+  void sample_tile(std::span<const Ray<T>> rays, int width, std::span<color_type> out) const noexcept {
+    const std::size_t w = static_cast<std::size_t>(width), rows = rays.size() / w;
+    constexpr std::size_t kSide = 4;
+    static_assert(kSide * kSide == scene::detail::kPacketRays);
+    Ray<T> block[kSide * kSide];
+    std::size_t index[kSide * kSide];
+    scene::Hit<T> hits[kSide * kSide];
+    for (std::size_t y0 = 0; y0 < rows; y0 += kSide)
+      for (std::size_t x0 = 0; x0 < w; x0 += kSide) {
+        std::size_t n = 0;
+        for (std::size_t y = y0; y < std::min(y0 + kSide, rows); ++y)
+          for (std::size_t x = x0; x < std::min(x0 + kSide, w); ++x) {
+            index[n] = y * w + x;
+            block[n++] = rays[y * w + x];
+          }
+        state_->bvh.closest_hits_coherent(std::span<const Ray<T>>(block, n), std::span<scene::Hit<T>>(hits, n));
+        for (std::size_t i = 0; i < n; ++i) out[index[i]] = answer(block[i], hits[i]);
+      }
   }
 
 private:

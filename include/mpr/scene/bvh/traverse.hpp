@@ -65,7 +65,7 @@ template <class Kernels, std::floating_point T>
     } else {
       const WideNode<T>& node = tree.wide[current];
       alignas(16) T t_near[4];
-      const unsigned mask = Kernels::box4(node, r, hit.t, t_near);
+      const unsigned mask = Kernels::box4(node, r, cull_bound(hit.t), t_near);
       if (mask != 0) {
         // Visit the nearest child next; push the others farthest first, so that they pop
         // nearest first (ties: lower lane first, for a result independent of the kernel).
@@ -91,7 +91,7 @@ template <class Kernels, std::floating_point T>
     bool found = false;
     while (top > 0) {
       const Entry e = stack[--top];
-      if (e.t < hit.t) {
+      if (e.t < cull_bound(hit.t)) {
         current = e.ref;
         found = true;
         break;

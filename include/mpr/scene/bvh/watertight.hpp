@@ -14,6 +14,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -83,9 +84,17 @@ template <std::floating_point T>
   return e;
 }
 
+/// 1 + 2^-12 (float), 1 + 2^-26 (double): the margin of `watertight_finish`'s early rejection.
+template <std::floating_point T>
+inline constexpr T kRejectMargin = T(1) +
+                                   T(1) / static_cast<T>(std::uint64_t(1) << (std::numeric_limits<T>::digits / 2));
+
 /// Woop, Benthin & Wald 2013, fig. 2 and 3, from the edge functions on: the higher-precision
-/// fallback for edge hits, the sign test, and the hit distance compared with `hit.t` without a
-/// division. Updates `hit` when triangle `triangle` is hit in (0, hit.t).
+/// fallback for edge hits, the sign test, and the hit distance. Updates `hit` when triangle
+/// `triangle` is hit at a t > 0 that is closer than `hit`: t < hit.t, or t == hit.t with a lower
+/// triangle index than a valid `hit` (so that ties, e.g. a ray through an edge shared by two
+/// triangles of different leaves, go to the same triangle whatever order the leaves are tested
+/// in: the closest hit is the least (t, index) pair, which single rays and packets agree on).
 template <std::floating_point T>
 inline void watertight_finish(const Edges<T>& e, T sz, std::uint32_t triangle, Hit<T>& hit) noexcept {
   T U = e.U, V = e.V, W = e.W;
@@ -99,11 +108,16 @@ inline void watertight_finish(const Edges<T>& e, T sz, std::uint32_t triangle, H
   const T det = U + V + W;
   if (det == 0) return;
   const T t_scaled = U * (sz * e.az) + V * (sz * e.bz) + W * (sz * e.cz);
-  // t = t_scaled / det must lie in (0, hit.t); compare without dividing.
-  if (det > 0 ? (t_scaled <= 0 || t_scaled >= hit.t * det) : (t_scaled >= 0 || t_scaled <= hit.t * det)) return;
+  // t = t_scaled / det must be positive, and not beyond hit.t: rejected here without dividing
+  // only when t_scaled / det exceeds hit.t by a margin (2^-12 for float, 2^-26 for double) far
+  // above the rounding of the division, so the rejected t would have failed the exact test
+  // below too and the result does not depend on the order triangles are tested in.
+  if (det > 0 ? t_scaled <= 0 : t_scaled >= 0) return;
+  const T bound = hit.t * det * kRejectMargin<T>;
+  if (det > 0 ? t_scaled > bound : t_scaled < bound) return;
   const T rcp = T(1) / det;
   const T t = t_scaled * rcp;
-  if (!(t < hit.t)) return;
+  if (!(t < hit.t || (t == hit.t && hit.valid() && triangle < hit.triangle))) return;
   hit.t = t;
   hit.b1 = V * rcp;
   hit.b2 = W * rcp;
