@@ -510,3 +510,52 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
 }
+
+TEMPLATE_TEST_CASE("output at a whole fraction of the cameras' scale gives the per-pixel image",
+                   "[camera_frame_sampler]", float, double) {
+  using T = TestType;
+  // Rows that step 2 or 3 camera pixels per output pixel (the strided shift-and-add), and 1.5
+  // (the projective rows), on a plane parallel to the array; 8-bit frames with fine detail.
+  auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 40, 320.0);
+  const auto linear = mpr_test::plane_images(cams, 12.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(11);
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        px(x, y) = mpr::to_rgb8(img(x, y));
+        px(x, y).b = static_cast<std::uint8_t>(px(x, y).b ^ (rng() & 63));
+      }
+    images.push_back(std::move(px));
+  }
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
+  for (const T step : {T(2), T(3), T(1.5)}) {
+    INFO("camera pixels per output pixel: " << step);
+    mpr::Mat3<T> K = cams[0].K();
+    K(0, 0) /= step;
+    K(1, 1) /= step;
+    const int w = static_cast<int>(300 / step), h = static_cast<int>(36 / step);
+    K(0, 2) = T(0.5) * static_cast<T>(w - 1);
+    K(1, 2) = T(0.5) * static_cast<T>(h - 1);
+    const mpr::PinholeCamera<T> view(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), w, h);
+    const mpr::PlanarSurface<T> plane = view.image_plane(T(12));
+    const mpr::Region region(0, 0, w, h);
+    const auto compare = [&](const auto& sampler) {
+      const mpr::Renderer renderer(plane, mpr::pinhole_glc(view, plane), sampler);
+      mpr::Image<mpr::Rgb8> batch(w, h);
+      renderer.render(batch.view(), region, mpr::RenderOptions{2});
+      int worst = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const mpr::Rgb8 p = mpr::to_rgb8(renderer.shade({x, y}, region));
+          const mpr::Rgb8 b = batch(x, y);
+          worst = std::max({worst, std::abs(p.r - b.r), std::abs(p.g - b.g), std::abs(p.b - b.b)});
+        }
+      CHECK(worst <= 1);
+    };
+    compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+    compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+    compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
+  }
+}

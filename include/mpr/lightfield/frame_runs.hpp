@@ -78,27 +78,35 @@ class LerpRowCache {
 public:
   /// The row of `m` channels from `texels` (flat, m + 3 read; 8-bit codes decoded by `lut`) at
   /// offset `ax`, computed or kept; nullptr when memory runs out.
+  /// With `stride` k > 1 (an output pixel every k camera pixels), the row holds the `m / 3`
+  /// pixels 0, k, 2k, ... of the interpolated row (which reads k (m / 3 - 1) + 2 texels).
   template <class C>
-  [[nodiscard]] const float* row(const C* texels, const std::uint16_t* lut, std::size_t m, float ax,
-                                 float scale) noexcept {
+  [[nodiscard]] const float* row(const C* texels, const std::uint16_t* lut, std::size_t m, float ax, float scale,
+                                 std::size_t stride = 1) noexcept {
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
-      if (e.texels == static_cast<const void*>(texels) && e.m == m && std::abs(e.ax - ax) <= 1e-4f) {
+      if (e.texels == static_cast<const void*>(texels) && e.m == m && e.stride == stride &&
+          std::abs(e.ax - ax) <= 1e-4f) {
         last_ = k;
         return e.h.data();
       }
     }
     last_ ^= 1; // replaces the row not returned last: the blend of a run asks for two
     Entry& e = entries_[last_];
+    const std::size_t pixels = m / 3, wide = 3 * (stride * (pixels - 1) + 1);
     try {
-      if (e.h.size() < m) e.h.resize(m);
+      if (e.h.size() < wide) e.h.resize(wide);
     } catch (...) {
       e.texels = nullptr;
       return nullptr;
     }
-    detail::lerp_row(texels, lut, ax, scale, e.h.data(), m);
+    detail::lerp_row(texels, lut, ax, scale, e.h.data(), wide);
+    if (stride > 1) // keep every stride-th pixel, in place (each moves left or stays)
+      for (std::size_t i = 1; i < pixels; ++i)
+        for (std::size_t k = 0; k < 3; ++k) e.h[3 * i + k] = e.h[3 * stride * i + k];
     e.texels = texels;
     e.m = m;
+    e.stride = stride;
     e.ax = ax;
     return e.h.data();
   }
@@ -111,7 +119,7 @@ public:
 private:
   struct Entry {
     const void* texels = nullptr;
-    std::size_t m = 0;
+    std::size_t m = 0, stride = 1;
     float ax = 0;
     std::vector<float> h;
   };
@@ -139,18 +147,27 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     return false;
   const T span = static_cast<T>(n - 1);
   constexpr T kTolerance = T(1e-3);
-  if (!(std::abs(x1 - x0 - span) <= kTolerance && std::abs(y1 - y0) <= kTolerance)) return false;
-  if (!(std::abs(xm - x0 - static_cast<T>(n / 2)) <= kTolerance && std::abs(ym - y0) <= kTolerance)) return false;
+  // The step along the camera row: one pixel, or (8-bit codes, separable form) a whole number
+  // of pixels, e.g. 2 for output at half the cameras' scale.
+  constexpr bool codes = std::is_same_v<typename texel_type::channel_type, std::uint8_t>;
+  const T steps = std::round((x1 - x0) / span);
+  if (!(steps >= 1 && steps <= (codes || cache != nullptr ? T(8) : T(1)))) return false;
+  const std::size_t stride = static_cast<std::size_t>(steps);
+  if (!(std::abs(x1 - x0 - steps * span) <= kTolerance && std::abs(y1 - y0) <= kTolerance)) return false;
+  if (!(std::abs(xm - x0 - steps * static_cast<T>(n / 2)) <= kTolerance && std::abs(ym - y0) <= kTolerance))
+    return false;
   // Rows wholly above or below the image: nothing to add (every per-ray y is outside too).
   if (y0 < T(-0.5) - kTolerance || y0 >= static_cast<T>(c.height) - T(0.5) + kTolerance) return true;
   const T fx = std::floor(x0), fy = std::floor(y0);
   if (!(std::abs(fx) < T(1e8))) return false; // keeps the integer conversion in range
   const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
   if (iy < 0 || iy + 1 > c.height - 1) return false; // the clamped border rows: per ray
-  // Pixels i whose two texels ix + i, ix + i + 1 lie inside the row are shifted and added; the
-  // others (near or past the left and right edges) go ray by ray.
-  const long first = std::max(0L, -static_cast<long>(ix));
-  const long last = std::min(static_cast<long>(n), static_cast<long>(c.width) - 1 - ix);
+  // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
+  // and added; the others (near or past the left and right edges) go ray by ray.
+  const long k = static_cast<long>(stride);
+  const long first = std::max(0L, (-static_cast<long>(ix) + k - 1) / k);
+  const long room = static_cast<long>(c.width) - 2 - ix; // the last texel pair starts at ix + room
+  const long last = room < 0 ? 0L : std::min(static_cast<long>(n), room / k + 1);
   if (first >= last) return false;
   const std::size_t i_begin = static_cast<std::size_t>(first), i_end = static_cast<std::size_t>(last);
   table.add_per_ray(c, points, i_begin, acc, weight, ray_weight);
@@ -163,19 +180,19 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   // The next output row reads row iy + 2 over about the same columns: ask for it now. Short runs
   // (nearest camera, cylinder aperture) are too short for the hardware prefetcher to pick up; on
   // long ones (whole-row refocusing) it does, and extra prefetches cost time.
-  if (iy + 2 < c.height && i_end - i_begin < 1024)
+  if (iy + 2 < c.height && i_end - i_begin < 1024 && stride == 1)
     detail::prefetch_range(b + c.width + i_begin, b + c.width + i_end + 1);
   const std::size_t m = i_end - i_begin;
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
-  constexpr bool codes = std::is_same_v<typename texel_type::channel_type, std::uint8_t>;
   if (codes || cache != nullptr) {
     // The separable form: always for 8-bit codes, whose decode is then done once per texel.
     thread_local LerpRowCache own;
     LerpRowCache& rows = cache != nullptr ? *cache : own;
     if (cache == nullptr) own.clear();
     const std::uint16_t* lut = texel_decode_table<texel_type>();
-    const float* h0 = rows.row(a[i_begin].c, lut, 3 * m, ax, sc);
-    const float* h1 = h0 != nullptr ? rows.row(b[i_begin].c, lut, 3 * m, ax, sc) : nullptr;
+    const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
+    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride);
+    const float* h1 = h0 != nullptr ? rows.row(b[start].c, lut, 3 * m, ax, sc, stride) : nullptr;
     if (h1 != nullptr) {
       detail::blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * i_begin, m);
     } else {
