@@ -25,7 +25,20 @@
 
 namespace mpr_cli {
 
-/// Renders one view: the only run-time dispatch of a render (one std::visit).
+/// Renders one view with the pixel sampling of --spp / --filter: the only run-time dispatch of a
+/// render (one std::visit).
+template <std::floating_point T>
+void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
+                 mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options) {
+  std::visit(
+      [&](const auto& cam, const auto& smp, const auto& pixels) {
+        const mpr::Renderer renderer(cam.surface, cam.selector, smp, pixels);
+        renderer.render(out, region, options);
+      },
+      camera, sampler, sampling);
+}
+
+/// Renders one view through pixel centres (one ray per pixel; mpr-view, benchmarks).
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, mpr::ImageView<mpr::Rgb8> out,
                  const mpr::Region& region, const mpr::RenderOptions& options) {
@@ -49,6 +62,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
   const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
   const mpr::RenderOptions options{job.threads};
+  const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
   for (int f = 0; f < count; ++f) {
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
     const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
@@ -58,7 +72,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
       if (info != nullptr && job.print_camera && f == 0) print_camera(*info, job.views[k], camera, l.footprint);
       if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
       const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
-      render_view(camera, sampler, image.view(), mpr::Region(col * w, row * h, w, h), options);
+      render_view(camera, sampler, sampling, image.view(), mpr::Region(col * w, row * h, w, h), options);
     }
     sink(f, count, image);
   }
