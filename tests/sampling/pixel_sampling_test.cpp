@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace {
 
@@ -95,4 +96,22 @@ TEST_CASE("pixel seeds differ between neighbouring pixels and seeds, and are rep
   CHECK(mpr::detail::unit_from_bits(0) == 0);
   CHECK(mpr::detail::unit_from_bits(0xffffffffU) < 1);
   CHECK(mpr::detail::unit_from_bits(0x80000000U) == 0.5);
+}
+
+TEST_CASE("shuffle_index is a permutation of [0, count) for every count, different per seed", "[sampling]") {
+  for (const std::uint32_t count : {1U, 2U, 3U, 7U, 16U, 100U, 256U, 1000U}) {
+    for (const std::uint32_t seed : {0U, 1U, 0xdeadbeefU}) {
+      std::vector<int> seen(count, 0);
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const std::uint32_t j = mpr::detail::shuffle_index(i, count, seed);
+        REQUIRE(j < count);
+        ++seen[j];
+      }
+      for (const int s : seen) REQUIRE(s == 1);
+    }
+  }
+  int moved = 0;
+  for (std::uint32_t i = 0; i < 64; ++i)
+    moved += mpr::detail::shuffle_index(i, 64, 5) != mpr::detail::shuffle_index(i, 64, 6) ? 1 : 0;
+  CHECK(moved > 16);
 }

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <vector>
 
 TEST_CASE("Sobol building blocks: bit reversal and the first points of dimensions 0 and 1", "[sampling]") {
@@ -73,4 +74,32 @@ TEST_CASE("OwenSobol: counts outside [1, 65536] throw naming the parameter", "[s
   } catch (const mpr::argument_error& e) {
     CHECK(e.parameter() == "samples per pixel");
   }
+}
+
+TEST_CASE("OwenSobol lens points: a net of their own, not tied to the image points", "[sampling]") {
+  STATIC_REQUIRE(mpr::LensSamplePattern<mpr::OwenSobol>);
+  for (const int m : {4, 6}) {
+    const int count = 1 << m;
+    const mpr::OwenSobol pattern(count);
+    std::vector<int> cells(static_cast<std::size_t>(count), 0);
+    int same = 0;
+    for (int i = 0; i < count; ++i) {
+      const mpr::SamplePoint p = pattern.lens_point({7, 7}, i);
+      ++cells[static_cast<std::size_t>(static_cast<int>(p.y * 4) * (count / 4) + static_cast<int>(p.x * (count / 4)))];
+      same += p == pattern.point({7, 7}, i) ? 1 : 0;
+    }
+    for (const int c : cells) CHECK(c == 1); // (0, m, 2)-net: the 4 x count/4 boxes
+    CHECK(same == 0);
+  }
+  // Neighbouring image points (consecutive indices) get lens points from anywhere: the image
+  // and lens coordinates are nearly uncorrelated over a pixel.
+  const mpr::OwenSobol pattern(256);
+  double sx = 0, sl = 0, sxx = 0, sll = 0, sxl = 0;
+  for (int i = 0; i < 256; ++i) {
+    const double x = pattern.point({1, 2}, i).x, l = pattern.lens_point({1, 2}, i).x;
+    sx += x, sl += l, sxx += x * x, sll += l * l, sxl += x * l;
+  }
+  const double n = 256, cov = sxl / n - sx * sl / n / n;
+  const double corr = cov / std::sqrt((sxx / n - sx * sx / n / n) * (sll / n - sl * sl / n / n));
+  CHECK(std::fabs(corr) < 0.2);
 }

@@ -42,3 +42,19 @@ TEST_CASE("stratified: n outside [1, 64] throws naming the parameter", "[samplin
     CHECK(e.parameter() == "stratified n");
   }
 }
+
+TEST_CASE("stratified lens points use every stratum once, in a shuffled order", "[sampling]") {
+  STATIC_REQUIRE(mpr::LensSamplePattern<mpr::Stratified>);
+  const mpr::Stratified pattern(5);
+  std::set<std::pair<int, int>> strata;
+  int aligned = 0;
+  for (int i = 0; i < 25; ++i) {
+    const mpr::SamplePoint p = pattern.lens_point({3, 1}, i);
+    REQUIRE(p.x >= 0);
+    REQUIRE(p.x < 1);
+    strata.insert({static_cast<int>(p.x * 5), static_cast<int>(p.y * 5)});
+    aligned += static_cast<int>(p.x * 5) == i % 5 && static_cast<int>(p.y * 5) == i / 5 ? 1 : 0;
+  }
+  CHECK(strata.size() == 25);
+  CHECK(aligned < 25);
+}

@@ -16,6 +16,8 @@
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/pixel.hpp>
+#include <mpr/core/ray.hpp>
+#include <mpr/core/vec.hpp>
 
 #include <concepts>
 #include <cstdint>
@@ -42,6 +44,24 @@ template <class P>
 concept PixelSamplePattern = std::copy_constructible<P> && requires(const P& p, Pixel px, int i) {
   { p.count() } noexcept -> std::same_as<int>;
   { p.point(px, i) } noexcept -> std::same_as<SamplePoint>;
+};
+
+/// A pattern that also gives each sample a second 2-D point, `lens_point(pixel, i)` in [0, 1)^2,
+/// for selectors that integrate over an aperture (`LensRaySelector`). The lens points of a pixel
+/// are spread as well as its image points and decorrelated from them.
+template <class P>
+concept LensSamplePattern = PixelSamplePattern<P> && requires(const P& p, Pixel px, int i) {
+  { p.lens_point(px, i) } noexcept -> std::same_as<SamplePoint>;
+};
+
+/// A ray selector with a finite aperture: `ray_at(pixel, uv, point, lens)` is the ray of the
+/// aperture sample `lens` (in [0, 1)^2) and `ray_at(pixel, uv, point)` its central (pinhole) ray,
+/// used under `PixelCentre`. Under a `Supersample` policy the renderer passes each sample's
+/// `lens_point`.
+template <class S>
+concept LensRaySelector = requires(const S& s, Pixel px, const Vec2<typename S::scalar_type>& uv,
+                                   const Vec3<typename S::scalar_type>& point, SamplePoint lens) {
+  { s.ray_at(px, uv, point, lens) } noexcept -> std::same_as<Ray<typename S::scalar_type>>;
 };
 
 /// A reconstruction filter: `radius()` (pixels, > 0) is the half-width of its square support and
@@ -121,6 +141,34 @@ namespace detail {
 /// The seed of pixel `px` (region coordinates) for a pattern seeded with `seed`.
 [[nodiscard]] constexpr std::uint32_t pixel_seed(Pixel px, std::uint32_t seed) noexcept {
   return mix32(static_cast<std::uint32_t>(px.x) * 0x9e3779b1U ^ mix32(static_cast<std::uint32_t>(px.y) + seed));
+}
+
+/// The low `bits` bits of `v` in reverse order (bit 0 becomes bit `bits - 1`).
+[[nodiscard]] constexpr std::uint32_t reverse_low_bits(std::uint32_t v, int bits) noexcept {
+  std::uint32_t r = 0;
+  for (int b = 0; b < bits; ++b) r |= ((v >> b) & 1U) << (bits - 1 - b);
+  return r;
+}
+
+/// A permutation of [0, count) chosen by `seed` (1 <= count <= 2^30, i < count): within the next
+/// power of two 2^m, the index's m bits reversed, hashed so that each bit depends only on the
+/// bits below it (addition and multiplication by even constants: a bijection on the low m bits,
+/// nested like Owen scrambling), reversed back; then cycle-walked into [0, count) (repeating a
+/// bijection from a point inside the range returns inside it, so the result is a bijection).
+[[nodiscard]] constexpr std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t count, std::uint32_t seed) noexcept {
+  int bits = 0;
+  while ((std::uint32_t{1} << bits) < count) ++bits;
+  if (bits == 0) return 0;
+  const std::uint32_t mask = (std::uint32_t{1} << bits) - 1;
+  do {
+    std::uint32_t r = reverse_low_bits(i, bits) + seed;
+    r ^= r * 0x6c50b47cU;
+    r ^= r * 0xb82f1e52U;
+    r ^= r * 0xc7afe638U;
+    r ^= r * 0x8d22f6e6U;
+    i = reverse_low_bits(r & mask, bits);
+  } while (i >= count);
+  return i;
 }
 
 /// `bits` / 2^32: a double in [0, 1), exact.

@@ -72,6 +72,19 @@ public:
     return {detail::unit_from_bits(x), detail::unit_from_bits(y)};
   }
 
+  /// The lens point of sample `i` (`LensSamplePattern`): the same scrambled Sobol points with
+  /// seeds of their own, taken in an order shuffled per pixel (detail::shuffle_index), so the
+  /// pixel's lens points are again a (0, m, 2)-net for count = 2^m, decorrelated from its image
+  /// points.
+  [[nodiscard]] SamplePoint lens_point(Pixel px, int i) const noexcept {
+    const std::uint32_t s = detail::pixel_seed(px, seed_ ^ 0x9e3779b9U);
+    const std::uint32_t index =
+        detail::shuffle_index(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(count_), detail::mix32(s));
+    const std::uint32_t x = detail::owen_scramble(detail::sobol_dim0(index), detail::mix32(s ^ 0x68bc21ebU));
+    const std::uint32_t y = detail::owen_scramble(detail::sobol_dim1(index), detail::mix32(s ^ 0x02e5be93U));
+    return {detail::unit_from_bits(x), detail::unit_from_bits(y)};
+  }
+
 private:
   int count_;
   std::uint32_t seed_;

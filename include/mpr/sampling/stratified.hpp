@@ -35,6 +35,21 @@ public:
     return {(static_cast<double>(i % n_) + jx) * inv, (static_cast<double>(i / n_) + jy) * inv};
   }
 
+  /// The lens point of sample `i` (`LensSamplePattern`): stratum `shuffle(i)` of the n x n
+  /// strata, with a permutation and jitter of its own per pixel, so every lens stratum is used
+  /// once and lens strata are not tied to image strata.
+  [[nodiscard]] SamplePoint lens_point(Pixel px, int i) const noexcept {
+    const std::uint32_t seed = detail::pixel_seed(px, seed_ ^ 0x3c6ef372U);
+    const auto count = static_cast<std::uint32_t>(n_ * n_);
+    const int k = static_cast<int>(detail::shuffle_index(static_cast<std::uint32_t>(i), count, seed));
+    const std::uint32_t h = detail::mix32(seed ^ static_cast<std::uint32_t>(i) * 0xc2b2ae35U);
+    const std::uint32_t h2 = detail::mix32(h ^ 0x27d4eb2fU);
+    const double jx = static_cast<double>(h >> 8) * (1.0 / 16777216.0);
+    const double jy = static_cast<double>(h2 >> 8) * (1.0 / 16777216.0);
+    const double inv = 1.0 / n_;
+    return {(static_cast<double>(k % n_) + jx) * inv, (static_cast<double>(k / n_) + jy) * inv};
+  }
+
 private:
   int n_;
   std::uint32_t seed_;

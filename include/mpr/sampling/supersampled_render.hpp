@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace mpr::detail {
@@ -86,6 +87,21 @@ template <class T>
   return {Vec2<T>(static_cast<T>(x / region.width), static_cast<T>(y / region.height)), x - cx, y - cy};
 }
 
+/// The ray of sample `i` of pixel `px` (region pixel `local`) at `uv`: a `LensRaySelector` also
+/// gets the sample's lens point (the pattern must then be a `LensSamplePattern`).
+template <class R, class T>
+[[nodiscard]] MPR_ALWAYS_INLINE Ray<T> sample_ray(const R& r, Pixel px, Pixel local, int i,
+                                                  const Vec2<T>& uv) noexcept {
+  using Selector = typename R::selector_type;
+  if constexpr (LensRaySelector<Selector>) {
+    using Pattern = std::remove_cvref_t<decltype(r.pixel_sampling().pattern())>;
+    static_assert(LensSamplePattern<Pattern>, "a finite-aperture selector needs a pattern with lens points");
+    return r.selector().ray_at(px, uv, r.surface().point_at(uv), r.pixel_sampling().pattern().lens_point(local, i));
+  } else {
+    return r.selector().ray_at(px, uv, r.surface().point_at(uv));
+  }
+}
+
 /// row[i] = colors[i] stored as Px, for i in [0, n).
 template <class Px, class C>
 MPR_FLATTEN void store_colors(Px* row, const C* colors, int n) noexcept {
@@ -109,8 +125,7 @@ template <class R>
   with_filter(r.pixel_sampling().filter(), [&](const auto& f) noexcept {
     for (int i = 0; i < n; ++i) {
       const Placement<T> s = place_sample<T>(region, radius, local, pattern.point(local, i));
-      const Vec3<T> point = r.surface().point_at(s.uv);
-      sums.add(r.sampler().sample(r.selector().ray_at(px, s.uv, point)), static_cast<float>(f.evaluate(s.dx, s.dy)));
+      sums.add(r.sampler().sample(sample_ray(r, px, local, i, s.uv)), static_cast<float>(f.evaluate(s.dx, s.dy)));
     }
   });
   return sums.resolve(n);
@@ -161,7 +176,7 @@ bool render_supersampled(const R& r, ImageView<Px> out, const Region& region, in
       for (int x = x_begin; x < x_end; ++x, ++k) {
         const Pixel local{x - region.x, y - region.y};
         const Placement<T> s = place_sample<T>(region, radius, local, pattern.point(local, i));
-        buf.rays[k] = r.selector().ray_at(Pixel{x, y}, s.uv, r.surface().point_at(s.uv));
+        buf.rays[k] = sample_ray(r, Pixel{x, y}, local, i, s.uv);
         buf.dx[k] = s.dx;
         buf.dy[k] = s.dy;
       }
