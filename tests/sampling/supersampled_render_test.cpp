@@ -222,3 +222,20 @@ TEST_CASE("supersampling removes staircase error on a checkerboard", "[sampling]
   CHECK(sobol16 < centre / 8);
   CHECK(strata16 < centre / 8);
 }
+
+TEST_CASE("filters without negative lobes say so; the unsigned sums average the same", "[sampling]") {
+  STATIC_REQUIRE(mpr::detail::nonnegative_filter<mpr::BoxFilter>);
+  STATIC_REQUIRE(mpr::detail::nonnegative_filter<mpr::TentFilter>);
+  STATIC_REQUIRE(mpr::detail::nonnegative_filter<mpr::GaussianFilter>);
+  STATIC_REQUIRE_FALSE(mpr::detail::nonnegative_filter<mpr::MitchellFilter>);
+  STATIC_REQUIRE_FALSE(mpr::detail::nonnegative_filter<mpr::LanczosFilter>);
+  STATIC_REQUIRE_FALSE(mpr::detail::nonnegative_filter<mpr::AnyFilter>);
+  mpr::detail::FilterSums<float, false> u;
+  u.add(2, 1);
+  u.add(4, 3);
+  CHECK(u.resolve(2) == Approx(3.5));
+  mpr::detail::FilterSums<float, false> z;
+  z.add(2, 0);
+  z.add(6, 0);
+  CHECK(z.resolve(2) == Approx(4));
+}

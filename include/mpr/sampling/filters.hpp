@@ -25,6 +25,7 @@ inline void check_filter_parameter(double value, const char* name) {
 /// radius 1 gives bilinear reconstruction, whose shifted copies sum to 1.
 class TentFilter {
 public:
+  static constexpr bool nonnegative = true;
   explicit TentFilter(double radius = 2) : radius_(radius) { detail::check_filter_parameter(radius, "filter radius"); }
   [[nodiscard]] double radius() const noexcept { return radius_; }
   [[nodiscard]] double evaluate(double dx, double dy) const noexcept { return profile(dx) * profile(dy); }
@@ -39,6 +40,7 @@ private:
 /// Defaults radius 1.5, sigma 0.5 (pbrt-v4).
 class GaussianFilter {
 public:
+  static constexpr bool nonnegative = true;
   explicit GaussianFilter(double radius = 1.5, double sigma = 0.5) : radius_(radius), sigma_(sigma) {
     detail::check_filter_parameter(radius, "filter radius");
     detail::check_filter_parameter(sigma, "gaussian sigma");

@@ -94,6 +94,7 @@ concept PixelSampling = std::same_as<S, PixelCentre> || SupersamplingPolicy<S>;
 /// (The other filters and their pbrt-v4 defaults are in filters.hpp.)
 class BoxFilter {
 public:
+  static constexpr bool nonnegative = true;
   /// Throws `argument_error` naming "filter radius" unless `radius` is finite and > 0.
   explicit BoxFilter(double radius = 0.5) : radius_(radius) {
     if (!(radius > 0) || !(radius < 1e6)) throw argument_error("filter radius", "must be finite and > 0");

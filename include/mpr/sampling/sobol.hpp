@@ -32,18 +32,27 @@ namespace detail {
   return result;
 }
 
-/// Nested uniform scrambling of the 32 fraction bits `x`: each bit is flipped by a hash of
-/// `seed` and the bits above it (Laine and Karras' hash on the bit-reversed value: addition and
-/// multiplication by even constants only carry towards higher bits of the reversed value, i.e.
-/// lower digits of the fraction), so the digits of a (0, m, 2)-net stay a (0, m, 2)-net.
-[[nodiscard]] constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) noexcept {
-  x = reverse_bits(x);
+/// The Laine-Karras hash: each output bit depends only on the input bits at and below it.
+[[nodiscard]] constexpr std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) noexcept {
   x += seed;
   x ^= x * 0x6c50b47cU;
   x ^= x * 0xb82f1e52U;
   x ^= x * 0xc7afe638U;
   x ^= x * 0x8d22f6e6U;
-  return reverse_bits(x);
+  return x;
+}
+
+/// Nested uniform scrambling of the 32 fraction bits `x`: each bit is flipped by a hash of
+/// `seed` and the bits above it (Laine and Karras' hash on the bit-reversed value: addition and
+/// multiplication by even constants only carry towards higher bits of the reversed value, i.e.
+/// lower digits of the fraction), so the digits of a (0, m, 2)-net stay a (0, m, 2)-net.
+[[nodiscard]] constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) noexcept {
+  return reverse_bits(laine_karras(reverse_bits(x), seed));
+}
+
+/// owen_scramble(sobol_dim0(i), seed) with the two bit reversals that cancel left out.
+[[nodiscard]] constexpr std::uint32_t owen_sobol_dim0(std::uint32_t i, std::uint32_t seed) noexcept {
+  return reverse_bits(laine_karras(i, seed));
 }
 
 } // namespace detail
@@ -67,7 +76,7 @@ public:
   [[nodiscard]] SamplePoint point(Pixel px, int i) const noexcept {
     const std::uint32_t s = detail::pixel_seed(px, seed_);
     const auto index = static_cast<std::uint32_t>(i);
-    const std::uint32_t x = detail::owen_scramble(detail::sobol_dim0(index), detail::mix32(s ^ 0x68bc21ebU));
+    const std::uint32_t x = detail::owen_sobol_dim0(index, detail::mix32(s ^ 0x68bc21ebU));
     const std::uint32_t y = detail::owen_scramble(detail::sobol_dim1(index), detail::mix32(s ^ 0x02e5be93U));
     return {detail::unit_from_bits(x), detail::unit_from_bits(y)};
   }
@@ -80,7 +89,7 @@ public:
     const std::uint32_t s = detail::pixel_seed(px, seed_ ^ 0x9e3779b9U);
     const std::uint32_t index =
         detail::shuffle_index(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(count_), detail::mix32(s));
-    const std::uint32_t x = detail::owen_scramble(detail::sobol_dim0(index), detail::mix32(s ^ 0x68bc21ebU));
+    const std::uint32_t x = detail::owen_sobol_dim0(index, detail::mix32(s ^ 0x68bc21ebU));
     const std::uint32_t y = detail::owen_scramble(detail::sobol_dim1(index), detail::mix32(s ^ 0x02e5be93U));
     return {detail::unit_from_bits(x), detail::unit_from_bits(y)};
   }

@@ -44,8 +44,15 @@ template <class C>
 /// (negative lobes nearly cancelling): the pixel then takes the |w|-weighted average instead.
 inline constexpr float kMinWeightShare = 0.25f;
 
-/// The running sums of one pixel: sum w f, sum |w| f and sum f, with sum w and sum |w|.
-template <class C>
+/// True when filter `F` declares `static constexpr bool nonnegative = true` (no negative lobes).
+template <class F>
+inline constexpr bool nonnegative_filter = requires {
+  requires F::nonnegative;
+};
+
+/// The running sums of one pixel: sum w f, sum |w| f (only when weights may be negative,
+/// `Signed`) and sum f, with sum w and sum |w|.
+template <class C, bool Signed = true>
 struct FilterSums {
   C weighted = zero_color<C>();
   C absolute = zero_color<C>();
@@ -55,16 +62,22 @@ struct FilterSums {
 
   MPR_ALWAYS_INLINE void add(const C& c, float weight) noexcept {
     weighted += c * weight;
-    absolute += c * std::fabs(weight);
+    if constexpr (Signed) {
+      absolute += c * std::fabs(weight);
+      w_abs += std::fabs(weight);
+    }
     plain += c;
     w += weight;
-    w_abs += std::fabs(weight);
   }
   /// sum(w f) / sum(w) when sum(w) > kMinWeightShare sum(|w|); else sum(|w| f) / sum(|w|); when
   /// every weight is 0, the plain mean of the `count` samples. Never divides by 0.
   [[nodiscard]] MPR_ALWAYS_INLINE C resolve(int count) const noexcept {
-    if (w > kMinWeightShare * w_abs) return C(weighted / w);
-    if (w_abs > 0) return C(absolute / w_abs);
+    if constexpr (Signed) {
+      if (w > kMinWeightShare * w_abs) return C(weighted / w);
+      if (w_abs > 0) return C(absolute / w_abs);
+    } else {
+      if (w > 0) return C(weighted / w);
+    }
     return C(plain / static_cast<float>(count));
   }
 };
@@ -84,7 +97,9 @@ template <class T>
   const double x0 = std::max(cx - radius, 0.0), x1 = std::min(cx + radius, static_cast<double>(region.width));
   const double y0 = std::max(cy - radius, 0.0), y1 = std::min(cy + radius, static_cast<double>(region.height));
   const double x = x0 + p.x * (x1 - x0), y = y0 + p.y * (y1 - y0);
-  return {Vec2<T>(static_cast<T>(x / region.width), static_cast<T>(y / region.height)), x - cx, y - cy};
+  // Reciprocals (the same expression on every path, so paths still agree bit for bit).
+  const double inv_w = 1.0 / region.width, inv_h = 1.0 / region.height;
+  return {Vec2<T>(static_cast<T>(x * inv_w), static_cast<T>(y * inv_h)), x - cx, y - cy};
 }
 
 /// The ray of sample `i` of pixel `px` (region pixel `local`) at `uv`: a `LensRaySelector` also
@@ -121,7 +136,8 @@ template <class R>
   const double radius = r.pixel_sampling().filter().radius();
   const Pixel local{px.x - region.x, px.y - region.y};
   const int n = pattern.count();
-  FilterSums<C> sums;
+  using Filter = std::remove_cvref_t<decltype(r.pixel_sampling().filter())>;
+  FilterSums<C, !nonnegative_filter<Filter>> sums;
   with_filter(r.pixel_sampling().filter(), [&](const auto& f) noexcept {
     for (int i = 0; i < n; ++i) {
       const Placement<T> s = place_sample<T>(region, radius, local, pattern.point(local, i));
@@ -132,12 +148,12 @@ template <class R>
 }
 
 /// Buffers of one span or tile of `n` pixels.
-template <class T, class C>
+template <class T, class C, bool Signed>
 struct SupersampleBuffers {
   std::vector<Ray<T>> rays;
   std::vector<C> colors;
   std::vector<double> dx, dy;
-  std::vector<FilterSums<C>> sums;
+  std::vector<FilterSums<C, Signed>> sums;
   /// Grows every buffer to `n`; false if memory runs out.
   bool reserve(std::size_t n) noexcept {
     try {
@@ -164,12 +180,14 @@ bool render_supersampled(const R& r, ImageView<Px> out, const Region& region, in
   const int width = x_end - x_begin, rows = y_end - y_begin;
   if (width <= 0 || rows <= 0) return true;
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
-  thread_local SupersampleBuffers<T, C> buf;
+  using Filter = std::remove_cvref_t<decltype(r.pixel_sampling().filter())>;
+  constexpr bool kSigned = !nonnegative_filter<Filter>;
+  thread_local SupersampleBuffers<T, C, kSigned> buf;
   if (!buf.reserve(n)) return false;
   const auto& pattern = r.pixel_sampling().pattern();
   const double radius = r.pixel_sampling().filter().radius();
   const int count = pattern.count();
-  std::fill(buf.sums.begin(), buf.sums.begin() + static_cast<std::ptrdiff_t>(n), FilterSums<C>{});
+  std::fill(buf.sums.begin(), buf.sums.begin() + static_cast<std::ptrdiff_t>(n), FilterSums<C, kSigned>{});
   for (int i = 0; i < count; ++i) {
     std::size_t k = 0;
     for (int y = y_begin; y < y_end; ++y)
