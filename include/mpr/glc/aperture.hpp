@@ -12,6 +12,8 @@
 #include <cmath>
 #include <concepts>
 #include <numbers>
+#include <utility>
+#include <variant>
 
 namespace mpr::glc {
 
@@ -75,6 +77,23 @@ struct GaussianAperture {
     const double phi = 2 * std::numbers::pi * p.y;
     return {r * std::cos(phi), r * std::sin(phi)};
   }
+};
+
+/// One of the shipped aperture shapes chosen at run time (e.g. from a command line): one
+/// `std::visit` per lens sample.
+class AnyAperture {
+public:
+  using variant_type = std::variant<DiscAperture, SquareAperture, PolygonAperture, GaussianAperture>;
+  AnyAperture() = default;
+  template <class A>
+  requires std::constructible_from<variant_type, A> AnyAperture(A shape) : shape_(std::move(shape)) {}
+  [[nodiscard]] Vec2<double> at(SamplePoint p) const noexcept {
+    return std::visit([&](const auto& a) noexcept { return a.at(p); }, shape_);
+  }
+  [[nodiscard]] const variant_type& variant() const noexcept { return shape_; }
+
+private:
+  variant_type shape_{DiscAperture{}};
 };
 
 } // namespace mpr::glc
