@@ -1,6 +1,9 @@
 // The renderer loop with a trivial sampler: mpr's static policies against the same loop written
 // with one virtual call per role per pixel (region, surface, selector, sampler), the design of
 // the original 2004 system (pure virtual base classes). 500 x 500 rays, float and double.
+// Then the cost of the pixel-sampling policy (include/mpr/sampling/): the default PixelCentre
+// against Supersample<Stratified(1)> and Supersample<OwenSobol(1)> at one sample per pixel, and
+// OwenSobol at 16 (Mrays/s counts every sample's ray).
 //
 // usage: renderer_loop [--quick]
 #include "bench_common.hpp"
@@ -58,6 +61,30 @@ void run(const char* scalar, int size, int repeats) {
   }
 }
 
+/// Mrays/s of the same loop under each pixel-sampling policy, float, `threads` threads.
+void sampling_cost(int size, int repeats, int threads) {
+  using T = float;
+  const mpr::PlanarSurface<T> plane({-1, -1, 1}, {2, 0, 0}, {0, 2, 0});
+  const mpr::Vec3<T> eye(0, 0, 0);
+  const mpr::GlcSelector<T> glc(plane, plane.point_at({0, 0}) - eye, plane.point_at({1, 0}) - eye,
+                                plane.point_at({0, 1}) - eye);
+  const mpr::Region region(0, 0, size, size);
+  mpr::Image<mpr::Color> image(size, size);
+  const auto row = [&](const char* name, int spp, const auto& sampling) {
+    const mpr::Renderer renderer(plane, glc, DirectionColor<T>{}, sampling);
+    const mpr_bench::Timing t =
+        mpr_bench::time_repeated(repeats, [&] { renderer.render(image.view(), region, mpr::RenderOptions{threads}); });
+    const double rays = double(size) * size * spp;
+    std::printf("| %-36s | %d | %3d | %8.1f (%.1f-%.1f) |\n", name, threads, spp, rays / t.median * 1e-6,
+                rays / t.max * 1e-6, rays / t.min * 1e-6);
+  };
+  row("PixelCentre (default)", 1, mpr::PixelCentre{});
+  row("Supersample<Stratified(1)>, box", 1, mpr::Supersample(mpr::Stratified(1)));
+  row("Supersample<OwenSobol(1)>, box", 1, mpr::Supersample(mpr::OwenSobol(1)));
+  row("Supersample<OwenSobol(16)>, box", 16, mpr::Supersample(mpr::OwenSobol(16)));
+  row("Supersample<OwenSobol(16)>, Mitchell", 16, mpr::Supersample(mpr::OwenSobol(16), mpr::MitchellFilter()));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -71,5 +98,8 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|\n");
   run<float>("float", size, repeats);
   run<double>("double", size, repeats);
+  std::printf("\npixel sampling policy, float, %dx%d pixels, Mrays/s (every sample is a ray)\n\n", size, size);
+  std::printf("| policy | threads | spp | Mrays/s |\n|---|---|---|---|\n");
+  for (int threads : {1, 2}) sampling_cost(size, repeats, threads);
   return 0;
 }

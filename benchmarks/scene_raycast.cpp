@@ -15,9 +15,13 @@
 // also gives Mrays per CPU-second of the tracing thread, steadier than the wall clock when other
 // processes share the machine.
 //
+// Part 3, anti-aliasing (issue 15): gallery view G (cross-slit) at 640 x 480 with 1 (pixel
+// centres), 4 and 16 scrambled Sobol samples per pixel, box filter, ms per view.
+//
 // usage: scene_raycast [--quick]
 #include "bench_common.hpp"
 
+#include <mpr/glc.hpp>
 #include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
 
@@ -314,6 +318,29 @@ void same_rays(const char* scene_name, const mpr::scene::Scene<T>& scene, const 
   for (const std::string& line : ratios) std::printf("%s\n", line.c_str());
 }
 
+/// Gallery view G at `w` x `h`, shaded colour, `spp` samples per pixel (1: pixel centres).
+void antialiased(const std::shared_ptr<const mpr::scene::Scene<T>>& scene, int w, int h, int repeats) {
+  const Setup setup;
+  const mpr::PlanarSurface<T> plane = setup.plane();
+  const mpr::GlcSelector<T> g = mpr::glc::gallery_view('G', plane, V(0, 1.6f, -8), T(14));
+  const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
+  mpr::Image<mpr::Rgb8> image(w, h);
+  const auto row = [&](int spp, const auto& sampling) {
+    const mpr::Renderer renderer(plane, g, sampler, sampling);
+    for (int threads : {1, 2}) {
+      const mpr_bench::Timing t = mpr_bench::time_repeated(
+          repeats, [&] { renderer.render(image.view(), mpr::Region(0, 0, w, h), mpr::RenderOptions{threads}); });
+      const double rays = double(w) * h * spp;
+      std::printf("| G cross-slit %dx%d | %3d | %d | %6.2f (%.2f-%.2f) | %7.1f (%.1f-%.1f) |\n", w, h, spp, threads,
+                  rays / t.median * 1e-6, rays / t.max * 1e-6, rays / t.min * 1e-6, t.median * 1e3, t.min * 1e3,
+                  t.max * 1e3);
+    }
+  };
+  row(1, mpr::PixelCentre{});
+  row(4, mpr::Supersample(mpr::OwenSobol(4)));
+  row(16, mpr::Supersample(mpr::OwenSobol(16)));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -346,5 +373,8 @@ int main(int argc, char** argv) {
 
   same_rays("classroom", *scene, setup, size, quick ? 1 : 5);
   same_rays("terrain", terrain(quick ? 64 : 512), terrain_setup(), size, quick ? 1 : 5);
+  std::printf("\nanti-aliased view, shaded colour, box filter, median of %d runs (min-max in brackets)\n\n", repeats);
+  std::printf("| view | spp | threads | Mrays/s | ms/view |\n|---|---|---|---|---|\n");
+  antialiased(scene, quick ? 64 : 640, quick ? 48 : 480, repeats);
   return 0;
 }

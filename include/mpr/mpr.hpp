@@ -1,8 +1,8 @@
 #pragma once
 /// \file
-/// Umbrella header: the core, the GLC module, the scene module and the light-field module --
-/// everything in mpr that needs no optional dependency (the OBJ loader, which needs
-/// tinyobjloader, is included separately: <mpr/scene/obj_loader.hpp>).
+/// Umbrella header: the core, the GLC module, the scene module, the light-field module and the
+/// sampling module -- everything in mpr that needs no optional dependency (the OBJ loader, which
+/// needs tinyobjloader, is included separately: <mpr/scene/obj_loader.hpp>).
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/concepts.hpp>
@@ -17,7 +17,8 @@
 #include <mpr/glc.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/lightfield.hpp>
-#include <mpr/scene/checkerboard_plane.hpp>
+#include <mpr/sampling.hpp>
 #include <mpr/scene.hpp>
+#include <mpr/scene/checkerboard_plane.hpp>
 #include <mpr/selector/glc_selector.hpp>
 #include <mpr/surface/planar_surface.hpp>

@@ -4,9 +4,11 @@
 // framing.hpp, samplers.hpp and render_job.hpp.
 
 #include "animation.hpp"
+#include "aperture.hpp"
 #include "cli_args.hpp"
 #include "options.hpp"
 #include "output.hpp"
+#include "pixel_sampling.hpp"
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
@@ -40,6 +42,10 @@ struct Job {
   bool video = true; ///< also write an MP4 of an animation when ffmpeg is on PATH
   int frames = 0;    ///< 0: a single image; N >= 1: an animation of N frames
   double fps = 12;   ///< frame rate of the MP4 of an animation
+  // Pixel sampling (pixel_sampling.hpp).
+  int spp = 1;                          ///< samples per pixel (1: the pixel centre, as before)
+  mpr::AnyFilter filter;                ///< reconstruction filter of spp > 1 (default: the box of radius 0.5)
+  std::optional<ApertureSpec> aperture; ///< finite aperture (aperture.hpp); needs spp > 1
   // Sampler.
   SamplerKind sampler = SamplerKind::scene;
   std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
@@ -141,6 +147,19 @@ inline Job make_job(const ParsedArgs& args) {
   job.print_camera = args.has("print-camera");
   job.video = !args.has("no-video");
   if (const auto v = args.get("frames")) job.frames = parse_int(*v, "--frames", 1, 100000);
+  if (const auto v = args.get("spp")) job.spp = parse_spp(*v);
+  if (const auto v = args.get("filter")) {
+    job.filter = parse_filter(*v);
+    if (job.spp == 1) throw mpr::argument_error("--filter", "needs --spp N with N > 1 (one sample is not filtered)");
+  }
+  if (const auto v = args.get("aperture")) {
+    job.aperture = parse_aperture(*v);
+    if (job.spp == 1) throw mpr::argument_error("--aperture", "needs --spp N with N > 1 (samples over the aperture)");
+  }
+  if (const auto v = args.get("focus")) {
+    if (!job.aperture) throw mpr::argument_error("--focus", "needs --aperture SHAPE:SIZE");
+    job.aperture->focus = parse_focus(*v);
+  }
   if (const auto v = args.get("fps")) {
     if (job.frames == 0) throw mpr::argument_error("--fps", "applies to animations (--frames N)");
     job.fps = parse_number(*v, "--fps");

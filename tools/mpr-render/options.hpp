@@ -30,6 +30,23 @@ inline const std::vector<OptionSpec>& options() {
        "--layout 3x1 --views 'A,G,pinhole:0;1.6;10'"},
       {"threads", "N", "Worker threads, 0 = all (default 0). Images are identical for any N.", "--threads 2"},
       {"double", "", "Render in double precision (default float).", "--double"},
+      {"spp", "N",
+       "Samples per pixel, 1 to 4096 (default 1: one ray through each pixel centre). N > 1 anti-aliases: N "
+       "scrambled Sobol points per pixel (mpr::OwenSobol), combined by --filter.",
+       "--layout 3x1 --views A,D,G --size 320x240 --spp 16"},
+      {"filter", "NAME[:RADIUS]",
+       "Reconstruction filter of --spp N > 1: box, tent, gaussian, mitchell or lanczos, radius in pixels "
+       "(defaults as in pbrt-v4: box 0.5, tent 2, gaussian 1.5, mitchell 2, lanczos 4).",
+       "--size 320x240 --spp 16 --filter mitchell:2"},
+      {"aperture", "SHAPE:SIZE[:DISTANCE]",
+       "Finite aperture (Adams & Levoy 2007): disc, square, gaussian or polygonN (N blades), SIZE its radius "
+       "(half side, sigma) in world units, on a lens plane DISTANCE behind the image plane (default: the plane's "
+       "width). Needs --spp N > 1; focused on the image plane unless --focus.",
+       "--view A --spp 32 --aperture disc:0.3 --focus 9"},
+      {"focus", "D|DU,DV",
+       "With --aperture: focus at distance D in front of the image plane (a refocused thin lens), or two focal lines "
+       "(astigmatic: the horizontal direction sharp at DU, the vertical at DV); --print-camera names the focus.",
+       "--view G --spp 32 --aperture polygon6:0.4 --focus 4,12 --print-camera"},
       {"print-camera", "", "Print each view's GLC type, slits and centre (mpr::glc::classify) to stdout.",
        "--view G --print-camera"},
       {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",

@@ -25,7 +25,29 @@
 
 namespace mpr_cli {
 
-/// Renders one view: the only run-time dispatch of a render (one std::visit).
+/// Renders one view with the pixel sampling of --spp / --filter: the only run-time dispatch of a
+/// render (one std::visit). With `aperture` (and a supersampling policy: make_job requires
+/// --spp N > 1), the view's selector integrates over that finite aperture (aperture.hpp).
+template <std::floating_point T>
+void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
+                 mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options,
+                 const ApertureSpec* aperture = nullptr) {
+  std::visit(
+      [&](const auto& cam, const auto& smp, const auto& pixels) {
+        if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(pixels)>, mpr::PixelCentre>) {
+          if (aperture != nullptr) {
+            const auto lens = with_aperture(*aperture, plane_of(camera), cam.selector);
+            mpr::Renderer(cam.surface, lens, smp, pixels).render(out, region, options);
+            return;
+          }
+        }
+        const mpr::Renderer renderer(cam.surface, cam.selector, smp, pixels);
+        renderer.render(out, region, options);
+      },
+      camera, sampler, sampling);
+}
+
+/// Renders one view through pixel centres (one ray per pixel; mpr-view, benchmarks).
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, mpr::ImageView<mpr::Rgb8> out,
                  const mpr::Region& region, const mpr::RenderOptions& options) {
@@ -49,16 +71,21 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
   const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
   const mpr::RenderOptions options{job.threads};
+  const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
   for (int f = 0; f < count; ++f) {
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
     const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
     mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
     for (std::size_t k = 0; k < job.views.size(); ++k) {
       const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
-      if (info != nullptr && job.print_camera && f == 0) print_camera(*info, job.views[k], camera, l.footprint);
+      if (info != nullptr && job.print_camera && f == 0) {
+        print_camera(*info, job.views[k], camera, l.footprint);
+        if (job.aperture) print_focus(*info, *job.aperture, plane_of(camera));
+      }
       if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
       const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
-      render_view(camera, sampler, image.view(), mpr::Region(col * w, row * h, w, h), options);
+      render_view(camera, sampler, sampling, image.view(), mpr::Region(col * w, row * h, w, h), options,
+                  job.aperture ? &*job.aperture : nullptr);
     }
     sink(f, count, image);
   }

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// `mpr::Renderer<Surface, Selector, Sampler>`: the composition of the four roles, and
-/// `mpr::render`, which fills several views of one output image in a single call.
+/// `mpr::Renderer<Surface, Selector, Sampler, Sampling>`: the composition of the four roles and
+/// the pixel sampling, and `mpr::render`, which fills several views of one output image in a
+/// single call.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/concepts.hpp>
@@ -9,6 +10,8 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/region.hpp>
+#include <mpr/sampling/pixel_sampling.hpp>
+#include <mpr/sampling/supersampled_render.hpp>
 
 #include <algorithm>
 #include <span>
@@ -29,11 +32,14 @@ struct View;
 template <class Px, class... R>
 void render(ImageView<Px> out, const RenderOptions& options, const View<R>&... views) noexcept;
 
-/// The renderer of one view: surface, selector and sampler, held by value. Empty (stateless)
-/// policies take no storage. The inner loop is exactly: uv from pixel, point from surface, ray
-/// from selector, colour from sampler; every call is resolved at compile time.
-template <class Surface, class Selector, class Sampler>
-requires ComposablePolicies<Surface, Selector, Sampler>
+/// The renderer of one view: surface, selector and sampler, held by value, and the pixel
+/// sampling (sampling/pixel_sampling.hpp; default `PixelCentre`, one ray through each pixel
+/// centre). Empty (stateless) policies take no storage. The inner loop is exactly: uv from pixel
+/// (or sample), point from surface, ray from selector, colour from sampler; every call is
+/// resolved at compile time. Under a `SupersamplingPolicy` each pixel is the filter-weighted
+/// average of its samples (sampling/supersampled_render.hpp).
+template <class Surface, class Selector, class Sampler, class Sampling = PixelCentre>
+requires ComposablePolicies<Surface, Selector, Sampler> && PixelSampling<Sampling>
 class Renderer {
 public:
   using scalar_type = typename Surface::scalar_type;
@@ -41,24 +47,30 @@ public:
   using surface_type = Surface;
   using selector_type = Selector;
   using sampler_type = Sampler;
+  using sampling_type = Sampling;
 
   Renderer() = default;
   Renderer(Surface surface, Selector selector, Sampler sampler)
       : surface_(std::move(surface)), selector_(std::move(selector)), sampler_(std::move(sampler)) {}
+  Renderer(Surface surface, Selector selector, Sampler sampler, Sampling sampling)
+      : surface_(std::move(surface)), selector_(std::move(selector)), sampler_(std::move(sampler)),
+        sampling_(std::move(sampling)) {}
 
   [[nodiscard]] const Surface& surface() const noexcept { return surface_; }
   [[nodiscard]] const Selector& selector() const noexcept { return selector_; }
   [[nodiscard]] const Sampler& sampler() const noexcept { return sampler_; }
+  [[nodiscard]] const Sampling& pixel_sampling() const noexcept { return sampling_; }
 
   /// The colour of one pixel of the view that fills `region`.
   [[nodiscard]] color_type shade(Pixel px, const Region& region) const noexcept {
+    if constexpr (SupersamplingPolicy<Sampling>) return detail::shade_supersampled(*this, px, region);
     const Vec2<scalar_type> uv = region.pixel_to_uv<scalar_type>(px);
     const Vec3<scalar_type> point = surface_.point_at(uv);
     const Ray<scalar_type> ray = selector_.ray_at(px, uv, point);
     return sampler_.sample(ray);
   }
 
-  /// The ray shown at `px` (for diagnostics and projection checks).
+  /// The ray shown at the centre of `px` (for diagnostics and projection checks).
   [[nodiscard]] Ray<scalar_type> ray_at(Pixel px, const Region& region) const noexcept {
     const Vec2<scalar_type> uv = region.pixel_to_uv<scalar_type>(px);
     return selector_.ray_at(px, uv, surface_.point_at(uv));
@@ -71,7 +83,10 @@ public:
   requires StorableAs<Px, color_type>
   void render_row(ImageView<Px> out, const Region& region, int y, int x_begin, int x_end) const noexcept {
     Px* row = out.row(y);
-    if constexpr (BatchRaySampler<Sampler>) {
+    if constexpr (SupersamplingPolicy<Sampling> && BatchRaySampler<Sampler>) {
+      if (detail::render_supersampled(*this, out, region, y, y + 1, x_begin, x_end)) return;
+      for (int x = x_begin; x < x_end; ++x) row[x] = PixelTraits<Px>::from_color(shade(Pixel{x, y}, region));
+    } else if constexpr (BatchRaySampler<Sampler>) {
       // Rays of up to kBatchRays pixels, then one batch call to the sampler.
       constexpr int kBatch = static_cast<int>(kBatchRays);
       Ray<scalar_type> rays[kBatch];
@@ -96,7 +111,9 @@ public:
   requires StorableAs<Px, color_type>
   void render_tile(ImageView<Px> out, const Region& region, int y_begin, int y_end, int x_begin,
                    int x_end) const noexcept {
-    if constexpr (TileRaySampler<Sampler>) {
+    if constexpr (SupersamplingPolicy<Sampling> && TileRaySampler<Sampler>) {
+      if (detail::render_supersampled(*this, out, region, y_begin, y_end, x_begin, x_end)) return;
+    } else if constexpr (TileRaySampler<Sampler>) {
       const int width = x_end - x_begin, rows = y_end - y_begin;
       if (width <= 0 || rows <= 0) return;
       const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
@@ -153,16 +170,13 @@ private:
   // row[i] = colors[i] stored as Px, for i in [0, n).
   template <class Px>
   MPR_FLATTEN static void store_row(Px* row, const color_type* colors, int n) noexcept {
-    if constexpr (requires { PixelTraits<Px>::from_colors(colors, row, std::size_t{}); }) {
-      PixelTraits<Px>::from_colors(colors, row, static_cast<std::size_t>(n));
-    } else {
-      for (int i = 0; i < n; ++i) row[i] = PixelTraits<Px>::from_color(colors[i]);
-    }
+    detail::store_colors(row, colors, n);
   }
 
   [[no_unique_address]] Surface surface_{};
   [[no_unique_address]] Selector selector_{};
   [[no_unique_address]] Sampler sampler_{};
+  [[no_unique_address]] Sampling sampling_{};
 };
 
 /// One view of a multi-view render: a region of the output and the renderer that fills it.
