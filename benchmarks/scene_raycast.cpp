@@ -320,7 +320,7 @@ void same_rays(const char* scene_name, const mpr::scene::Scene<T>& scene, const 
 
 /// Gallery view G at `w` x `h`, shaded colour, `spp` samples per pixel (1: pixel centres).
 void antialiased(const std::shared_ptr<const mpr::scene::Scene<T>>& scene, int w, int h, int repeats) {
-  const Setup setup;
+  const Setup setup = classroom_setup();
   const mpr::PlanarSurface<T> plane = setup.plane();
   const mpr::GlcSelector<T> g = mpr::glc::gallery_view('G', plane, V(0, 1.6f, -8), T(14));
   const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(scene);
