@@ -93,9 +93,20 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
   CHECK(worst_depth < 1e-3);
   CHECK(worst_proxy < 2e-3); // the texture is linear: bilinear reconstruction is exact
   CHECK(worst_cylinder > 10 * worst_proxy);
-  // A ray that meets nothing the maps show (pointing away) falls back to the focal point.
+  // A ray running back toward the cameras finds nothing (the walk goes along the ray, away from
+  // the cameras), on the line or the half-line: such rays fall back to the focal point.
   const mpr::Ray<T> away(mpr::Vec3<T>(0, 0, 0), mpr::Vec3<T>(0, 0, -1));
   CHECK_FALSE(proxy.interpolation().surface(proxy.table(), away).has_value());
+  mpr::DepthProxy half{2.0};
+  half.whole_line = false;
+  CHECK_FALSE(half.surface(proxy.table(), away).has_value());
+  // A ray that starts beyond the surface finds it behind its origin (a focal plane inside the
+  // scene), or nothing on its half-line.
+  const mpr::Ray<T> beyond(mpr::Vec3<T>(T(0.2), T(0.1), T(8)), mpr::Vec3<T>(0, 0, 1));
+  const std::optional<T> back = proxy.interpolation().surface(proxy.table(), beyond);
+  REQUIRE(back.has_value());
+  CHECK(std::abs(static_cast<double>(*back) + 3.0) < 1e-3);
+  CHECK_FALSE(half.surface(proxy.table(), beyond).has_value());
 }
 
 TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the point", "[depth_proxy]", float,

@@ -52,7 +52,8 @@ template <std::floating_point T>
 ///
 /// Surface: the cameras within `radius` of the ray line are tried nearest first (at most
 /// `march_cameras` of them). In camera c the ray projects to a segment of its image, which is
-/// walked about one pixel at a time from the ray's origin (`t >= 0`); the first step where the
+/// walked about one pixel at a time from where the ray line enters c's view (`whole_line`) or
+/// from the ray's origin; the first step where the
 /// ray's depth along c's axis reaches the map's depth brackets the crossing, refined by bisection.
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
@@ -83,6 +84,11 @@ struct DepthProxy {
   double tolerance = 0.01;
   /// Cameras tried in turn for the surface search, >= 1.
   int march_cameras = 4;
+  /// Search the ray line in front of the cameras (true), or only the half-line t >= 0 from the
+  /// ray's origin (false). A GLC's rays start on its image surface, which may lie inside the
+  /// scene (a held-out camera's focal plane): the line finds what lies before it too. A ray
+  /// running toward a camera (its depth falling) finds nothing in that camera's view either way.
+  bool whole_line = true;
 
   /// Marks the interpolation as reading depth maps (the rasterized-scene sampler keeps its
   /// z-buffers for it).
@@ -115,8 +121,9 @@ struct DepthProxy {
     return blend(table, ray, X, c);
   }
 
-  /// The ray parameter t >= 0 of the first surface point along `ray` that the depth maps show
-  /// (see the class comment), or nullopt when none is found: the depth of a light-field view.
+  /// The ray parameter t of the first surface point along `ray` that the depth maps show (see
+  /// the class comment; t >= 0 unless `whole_line`), or nullopt when none is found: the depth of
+  /// a light-field view.
   template <std::floating_point T, class Px>
   [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray) const noexcept {
     Candidates<T> c;
@@ -169,7 +176,7 @@ private:
   template <std::floating_point T, class Px>
   [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray,
                                          const Candidates<T>& c) const noexcept {
-    T t = 0;
+    T t = whole_line ? -std::numeric_limits<T>::infinity() : T(0);
     int walked = 0;
     for (int j = 0; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
@@ -208,7 +215,8 @@ private:
     };
     const T e = T(0.499), W = static_cast<T>(c.width) - T(0.5) - T(1e-3),
             H = static_cast<T>(c.height) - T(0.5) - T(1e-3);
-    clip(a[2], b[2]); // in front of c (f treats depth 0 as free space)
+    // In front of c, by a margin that keeps the first pixel step (z^2 / m in t) positive.
+    clip(a[2] - T(1e-6) * (std::abs(a[2]) + std::abs(b[2])), b[2]);
     clip(a[0] + e * a[2], b[0] + e * b[2]);
     clip(W * a[2] - a[0], W * b[2] - b[0]);
     clip(a[1] + e * a[2], b[1] + e * b[2]);
