@@ -78,8 +78,8 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
   std::uniform_real_distribution<double> u(-0.8, 0.8), slope(-0.25, 0.25);
   double worst_proxy = 0, worst_cylinder = 0, worst_depth = 0;
   for (int n = 0; n < 200; ++n) {
-    const mpr::Ray<T> ray(mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
-                          mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1)));
+    const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
+                          mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))};
     const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
     REQUIRE(t.has_value());
     const mpr::Vec3<T> hit = ray.at(*t);
@@ -95,14 +95,14 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
   CHECK(worst_cylinder > 10 * worst_proxy);
   // A ray running back toward the cameras finds nothing (the walk goes along the ray, away from
   // the cameras), on the line or the half-line: such rays fall back to the focal point.
-  const mpr::Ray<T> away(mpr::Vec3<T>(0, 0, 0), mpr::Vec3<T>(0, 0, -1));
+  const mpr::Ray<T> away{mpr::Vec3<T>(0, 0, 0), mpr::Vec3<T>(0, 0, -1)};
   CHECK_FALSE(proxy.interpolation().surface(proxy.table(), away).has_value());
   mpr::DepthProxy half{2.0};
   half.whole_line = false;
   CHECK_FALSE(half.surface(proxy.table(), away).has_value());
   // A ray that starts beyond the surface finds it behind its origin (a focal plane inside the
   // scene), or nothing on its half-line.
-  const mpr::Ray<T> beyond(mpr::Vec3<T>(T(0.2), T(0.1), T(8)), mpr::Vec3<T>(0, 0, 1));
+  const mpr::Ray<T> beyond{mpr::Vec3<T>(T(0.2), T(0.1), T(8)), mpr::Vec3<T>(0, 0, 1)};
   const std::optional<T> back = proxy.interpolation().surface(proxy.table(), beyond);
   REQUIRE(back.has_value());
   CHECK(std::abs(static_cast<double>(*back) + 3.0) < 1e-3);
@@ -124,7 +124,7 @@ TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the 
       mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
   const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(frames, mpr::DepthProxy{2.0, 4});
   for (const double x : {-0.5, -0.3, 0.0, 0.2}) {
-    const mpr::Ray<T> ray(mpr::Vec3<T>(static_cast<T>(x), 0, 0), mpr::Vec3<T>(0, T(0.05), 1));
+    const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(x), 0, 0), mpr::Vec3<T>(0, T(0.05), 1)};
     const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
     REQUIRE(t.has_value());
     const mpr::Vec3<T> hit = ray.at(*t);

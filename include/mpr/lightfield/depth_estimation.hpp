@@ -38,7 +38,7 @@ struct PlaneSweepConfig {
   int neighbours = 4;
   /// The cost of a pixel at a plane is the sum of the `best` smallest neighbour costs
   /// (1..neighbours): cameras that are occluded there do not count.
-  int best = 3;
+  int best = 2;
   /// A neighbour's cost per pixel is the sum over channels of |difference| of the sRGB codes
   /// / 255, truncated at this value (robust to specularities and occlusion), > 0.
   double truncation = 0.3;
@@ -203,14 +203,13 @@ template <std::floating_point T, class Px>
           }
           costs[seen++] = std::min(s, tau);
         }
-        // The mean of the best few of the neighbours that see the point (the truncation when
-        // none does): an unseen neighbour neither helps nor penalises a plane, so planes of
-        // large disparity are not pushed away by the image border.
-        const int use = std::min(best, seen);
-        std::partial_sort(costs, costs + use, costs + seen);
+        // A neighbour that does not see the point counts as the truncation (the worst cost),
+        // so a plane is not preferred because few neighbours see it; the best few are averaged.
+        for (int j = seen; j < m; ++j) costs[j] = tau;
+        std::partial_sort(costs, costs + best, costs + m);
         float c = 0;
-        for (int j = 0; j < use; ++j) c += costs[j];
-        cost[k] = use > 0 ? c / static_cast<float>(use) : tau;
+        for (int j = 0; j < best; ++j) c += costs[j];
+        cost[k] = c / static_cast<float>(best);
       }
     });
     if (config.spatial > 0) {
