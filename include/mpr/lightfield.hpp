@@ -7,13 +7,16 @@
 #include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/camera/pinhole_glc.hpp>
 #include <mpr/camera/planar_camera_array.hpp>
+#include <mpr/io/depth_maps.hpp>
 #include <mpr/io/lfca_calibration.hpp>
 #include <mpr/io/par_file.hpp>
+#include <mpr/io/pfm.hpp>
 #include <mpr/io/stanford_light_field.hpp>
 #include <mpr/lightfield/array_plane.hpp>
 #include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/camera_index.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>
+#include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/frame_table.hpp>

@@ -5,6 +5,7 @@
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels together", "[camera_frame_set]") {
@@ -87,4 +88,46 @@ TEST_CASE("CameraFrameSet::on_plane declares the array plane, checked against th
   CHECK_THROWS_AS(
       mpr::CameraFrameSet<double>(cams, images).on_plane({mpr::Vec3<double>::Constant(std::nan("")), {0, 0, 1}}),
       Error);
+}
+
+TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per camera", "[camera_frame_set]", float,
+                   double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(3, 1, 1.0, 4, 3, 4.0);
+  const std::vector<mpr::Image<mpr::Rgb8>> images(3, mpr::Image<mpr::Rgb8>(4, 3));
+  const mpr::CameraFrameSet<T> plain(cams, images);
+  CHECK_FALSE(plain.has_depth());
+  CHECK(plain.depths().empty());
+  std::vector<mpr::Image<float>> maps;
+  for (int k = 0; k < 3; ++k) maps.emplace_back(4, 3, 2.0f + static_cast<float>(k));
+  maps[1](3, 2) = std::numeric_limits<float>::infinity(); // nothing seen
+  const auto with = mpr::CameraFrameSet<T>(cams, images, {"a", "b", "c"}).with_depth(maps);
+  REQUIRE(with.has_depth());
+  CHECK(with.depth(2)(0, 0) == 4.0f);
+  CHECK(std::isinf(with.depth(1)(3, 2)));
+  // Leave-one-out and the scalar cast keep the maps in step with the cameras.
+  const auto without = with.without(1);
+  REQUIRE(without.has_depth());
+  CHECK(without.depths().size() == 2);
+  CHECK(without.depth(1)(0, 0) == 4.0f);
+  const auto other = with.template cast<std::conditional_t<std::is_same_v<T, float>, double, float>>();
+  REQUIRE(other.has_depth());
+  CHECK(other.depth(0)(1, 1) == 2.0f);
+  // An empty list drops them.
+  CHECK_FALSE(mpr::CameraFrameSet<T>(with).with_depth({}).has_depth());
+
+  // Wrong count, wrong size, NaN, zero and negative depths name the camera.
+  const auto refuse = [&](std::vector<mpr::Image<float>> bad, const char* what) {
+    CHECK_THROWS_WITH(mpr::CameraFrameSet<T>(cams, images, {"a", "b", "c"}).with_depth(std::move(bad)),
+                      Catch::Contains("depth maps") && Catch::Contains(what));
+  };
+  refuse({maps[0], maps[1]}, "3 cameras but 2 depth maps");
+  auto sized = maps;
+  sized[2] = mpr::Image<float>(3, 4, 1.0f);
+  refuse(sized, "c: depth map is 3x4");
+  for (const float v : {std::nanf(""), 0.0f, -1.0f, -std::numeric_limits<float>::infinity()}) {
+    auto bad = maps;
+    bad[1](2, 1) = v;
+    refuse(bad, "b: depth");
+  }
 }

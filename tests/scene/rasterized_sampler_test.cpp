@@ -307,3 +307,38 @@ TEMPLATE_TEST_CASE("a virtual array written as _par.txt + PNGs reads back and sa
   CHECK_THROWS_AS(mpr::write_frame_set(folder / "cam_000_000.png" / "sub", "x", sampler.frames()), mpr::io_error);
   std::filesystem::remove_all(folder);
 }
+
+TEMPLATE_TEST_CASE("a virtual array keeps the rasterizer's exact depth maps on request", "[scene][rasterized]", float,
+                   double) {
+  using T = TestType;
+  const Scene<T> scene = mpr::scene::classroom<T>();
+  const mpr::PinholeCamera<T> view = view_camera<T>(48, 36);
+  const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 3;
+  config.rows = 2;
+  config.width = 48;
+  config.height = 36;
+  config.raster.threads = 2;
+  CHECK_FALSE(mpr::scene::rasterize_virtual_array(scene, plane, config).frames.has_depth());
+  config.depth_maps = true;
+  const auto array = mpr::scene::rasterize_virtual_array(scene, plane, config);
+  REQUIRE(array.frames.has_depth());
+  int finite = 0, background = 0;
+  for (const std::size_t k : {std::size_t{0}, std::size_t{4}}) {
+    const mpr::scene::RasterImage r = mpr::scene::rasterize(scene, array.frames.camera(k), config.raster);
+    const mpr::Image<float>& d = array.frames.depth(k);
+    for (int y = 0; y < d.height(); ++y)
+      for (int x = 0; x < d.width(); ++x) {
+        CHECK((d(x, y) == r.depth(x, y) || (std::isinf(d(x, y)) && std::isinf(r.depth(x, y)))));
+        (std::isfinite(d(x, y)) ? finite : background) += 1;
+      }
+  }
+  CHECK(finite > 1000); // the room fills most of each view
+  // A rasterized sampler whose interpolation reads depth keeps them without being asked.
+  config.depth_maps = false;
+  const RasterSampler<T, mpr::DepthProxy> proxy(scene, plane, config, {mpr::DepthProxy{2.0}});
+  CHECK(proxy.frames().has_depth());
+  const RasterSampler<T, mpr::NearestCamera> nearest(scene, plane, config);
+  CHECK_FALSE(nearest.frames().has_depth());
+}

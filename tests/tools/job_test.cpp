@@ -49,3 +49,17 @@ TEST_CASE("mpr-render: --frames needs an animated value", "[tools][job]") {
              Catch::Contains("--frames"));
   CHECK(mpr_cli::animated_option(job_of({"--tilt-x", "3"})).empty());
 }
+
+TEST_CASE("mpr-render: --interp depth and --depth-maps", "[tools][job]") {
+  CHECK(job_of({"--raster", "2x2", "--interp", "depth"}).interpolation == mpr_cli::Interpolation::depth);
+  const mpr_cli::Job radius = job_of({"--raster", "2x2", "--interp", "depth", "--radius", "2"});
+  CHECK(radius.interpolation == mpr_cli::Interpolation::depth);
+  CHECK(radius.radius_given);
+  CHECK_THAT(error_of({"--raster", "2x2", "--interp", "bogus"}),
+             Catch::Contains("nearest, synthetic, cylinder or depth"));
+  CHECK_THAT(error_of({"--raster", "2x2", "--interp", "nearest", "--radius", "1"}),
+             Catch::Contains("needs --interp cylinder or depth"));
+  // Depth maps from files are for light fields; the rasterizer has its own.
+  CHECK_THAT(error_of({"--raster", "2x2", "--interp", "depth", "--depth-maps", "."}),
+             Catch::Contains("--depth-maps") && Catch::Contains("light fields"));
+}

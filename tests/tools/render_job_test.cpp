@@ -435,3 +435,39 @@ TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API",
   CHECK_THROWS_AS(job_of({"--raster", "3x2", "--stanford", "/nonexistent"}), mpr::error);
   CHECK_THROWS_AS(job_of({"--focal-depth", "9"}), mpr::argument_error); // scene without --raster
 }
+
+TEST_CASE("mpr-render: --interp depth with --depth-maps equals the C++ API; bad maps name the file", "[tools]") {
+  using T = float;
+  const std::filesystem::path dir = temp_folder("par_depth");
+  const int cw = 8, ch = 6;
+  {
+    std::ofstream par(dir / "tiny_par.txt");
+    par << "3\n";
+    for (int i = 0; i < 3; ++i) {
+      const std::string name = "view" + std::to_string(i) + ".png";
+      mpr::write_png(dir / name, noise_image(cw, ch, 7u + static_cast<unsigned>(i)));
+      mpr::write_pfm(dir / ("view" + std::to_string(i) + ".pfm"), mpr::Image<float>(cw, ch, 2.0f + 0.1f * i));
+      par << name << " 8 0 3.5 0 8 2.5 0 0 1  1 0 0 0 1 0 0 0 1  " << -0.1 * (i - 1) << " 0 0\n";
+    }
+  }
+  const std::vector<std::string> args{"--par",         (dir / "tiny_par.txt").string(),
+                                      "--focal-depth", "2",
+                                      "--interp",      "depth",
+                                      "--depth-maps",  dir.string(),
+                                      "--radius",      "0.25"};
+  const std::vector<Image> frames = mpr_cli::render_frames(job_of(args));
+  REQUIRE(frames.size() == 1);
+  mpr::CameraFrameSet<T> loaded = mpr::read_par_file<T>(dir / "tiny_par.txt");
+  std::vector<mpr::Image<float>> maps = mpr::read_depth_maps(dir, loaded);
+  const auto set = std::make_shared<const mpr::CameraFrameSet<T>>(std::move(loaded).with_depth(std::move(maps)));
+  const mpr::PinholeCamera<T>& ref = set->camera(1);
+  const mpr::PlanarSurface<T> plane = ref.image_plane(2);
+  CHECK(identical(frames[0], direct(plane, mpr::pinhole_glc(ref, plane),
+                                    mpr::CameraFrameSampler<mpr::DepthProxy, T>(set, mpr::DepthProxy{0.25}), cw, ch)));
+  // A light field under --interp depth needs maps; a map of the wrong size names its file.
+  CHECK_THROWS_WITH(job_of({"--par", (dir / "tiny_par.txt").string(), "--interp", "depth"}),
+                    Catch::Contains("--depth-maps"));
+  mpr::write_pfm(dir / "view2.pfm", mpr::Image<float>(ch, cw, 2.0f));
+  CHECK_THROWS_WITH(mpr_cli::render_frames(job_of(args)), Catch::Contains("view2.pfm") && Catch::Contains("6x8"));
+  std::filesystem::remove_all(dir);
+}

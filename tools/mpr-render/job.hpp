@@ -25,7 +25,7 @@
 namespace mpr_cli {
 
 enum class SamplerKind { scene, obj, par, stanford, lfca };
-enum class Interpolation { nearest, synthetic, cylinder };
+enum class Interpolation { nearest, synthetic, cylinder, depth };
 
 /// Everything one invocation of mpr-render does. Lengths are world units of the sampler's data
 /// (classroom: metres), angles in degrees.
@@ -52,13 +52,14 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  bool interpolation_given = false; ///< else: synthetic for refocusing, cylinder for other views
-  Track radius{10};                 ///< cylinder aperture radius
-  bool radius_given = false;        ///< else: the array's camera spacing (light fields, --raster)
-  std::optional<Track> focal_depth; ///< light fields: depth of the focal (image) plane
-  double reference_depth = 1000;    ///< Stanford / LFCA: depth of the rectified reference plane
-  double position_scale = 1;        ///< Stanford / LFCA: world units per stored position unit
-  std::optional<int> camera;        ///< light fields: the reference camera (index)
+  bool interpolation_given = false;                ///< else: synthetic for refocusing, cylinder for other views
+  Track radius{10};                                ///< cylinder aperture radius (depth proxy: candidate radius)
+  bool radius_given = false;                       ///< else: the array's camera spacing (light fields, --raster)
+  std::optional<Track> focal_depth;                ///< light fields: depth of the focal (image) plane
+  std::optional<std::filesystem::path> depth_maps; ///< light fields: folder of one PFM per camera
+  double reference_depth = 1000;                   ///< Stanford / LFCA: depth of the rectified reference plane
+  double position_scale = 1;                       ///< Stanford / LFCA: world units per stored position unit
+  std::optional<int> camera;                       ///< light fields: the reference camera (index)
   /// Light fields: called after each image is loaded with (loaded, total); not set from the
   /// command line (main.cpp draws a progress line on a terminal with it).
   std::function<void(std::size_t loaded, std::size_t total)> load_progress;
@@ -197,7 +198,7 @@ inline Job make_job(const ParsedArgs& args) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");
   }
-  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom"}) lf_only(name);
+  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom", "depth-maps"}) lf_only(name);
   if (!job.raster)
     for (const char* name : {"interp", "radius", "focal-depth"}) lf_only(name);
   if (args.has("obj-scale") && job.sampler != SamplerKind::obj)
@@ -214,13 +215,24 @@ inline Job make_job(const ParsedArgs& args) {
       job.interpolation = Interpolation::synthetic;
     else if (*v == "cylinder")
       job.interpolation = Interpolation::cylinder;
+    else if (*v == "depth")
+      job.interpolation = Interpolation::depth;
     else
-      throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic or cylinder");
+      throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic, cylinder or depth");
   }
+  if (const auto v = args.get("depth-maps")) {
+    if (job.interpolation != Interpolation::depth) throw mpr::argument_error("--depth-maps", "needs --interp depth");
+    job.depth_maps = *v;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(job.depth_maps.value(), ec)) throw mpr::io_error(*v, "no such folder");
+  }
+  if (job.interpolation == Interpolation::depth && light_field && !job.depth_maps)
+    throw mpr::argument_error("--interp depth", "needs --depth-maps FOLDER (one PFM per camera) for a light field");
   if (const auto v = args.get("radius")) {
-    if (job.interpolation_given && job.interpolation != Interpolation::cylinder)
-      throw mpr::argument_error("--radius", "needs --interp cylinder");
-    job.interpolation = Interpolation::cylinder;
+    if (job.interpolation_given && job.interpolation != Interpolation::cylinder &&
+        job.interpolation != Interpolation::depth)
+      throw mpr::argument_error("--radius", "needs --interp cylinder or depth");
+    if (job.interpolation != Interpolation::depth) job.interpolation = Interpolation::cylinder;
     job.radius_given = true;
     job.radius = parse_track(*v, "--radius");
     for (const Track::Key& k : job.radius.keys())

@@ -54,7 +54,8 @@ Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   // cameras): blending neighbours at one focal plane ghosts, the nearest camera shows seams instead.
   if (!job.interpolation_given && !job.radius_given && detail::any_other_view(job))
     out.interpolation = l.footprint && !l.footprint->planar ? Interpolation::nearest : Interpolation::cylinder;
-  if (out.interpolation == Interpolation::cylinder && !job.radius_given) {
+  if ((out.interpolation == Interpolation::cylinder || out.interpolation == Interpolation::depth) &&
+      !job.radius_given) {
     double spacing = 0;
     if (l.footprint) {
       spacing = static_cast<double>(l.footprint->spacing);
@@ -63,6 +64,8 @@ Job with_array_defaults(const Job& job, const Loaded<T>& l) {
       const FrameParams p = frame_params(job, l.default_focal_depth, 0);
       spacing = static_cast<double>(base_plane(job, l, p, w, h).width_vector().norm()) / job.raster->first;
     }
+    // The depth proxy weighs cameras by angle itself: it considers the two rings around the ray.
+    if (out.interpolation == Interpolation::depth) spacing *= 2;
     if (spacing > 0 && std::isfinite(spacing)) out.radius = Track(spacing);
   }
   return out;

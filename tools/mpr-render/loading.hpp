@@ -63,6 +63,14 @@ Loaded<T> load(const Job& job) {
   Loaded<T> l;
   mpr::LoadLimits limits;
   limits.progress = job.load_progress;
+  // A light field, with the depth maps of --depth-maps attached.
+  const auto frames = [&](mpr::CameraFrameSet<T> set) {
+    if (job.depth_maps) {
+      std::vector<mpr::Image<float>> maps = mpr::read_depth_maps(*job.depth_maps, set, limits);
+      set = std::move(set).with_depth(std::move(maps));
+    }
+    return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));
+  };
   switch (job.sampler) {
   case SamplerKind::scene:
     l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
@@ -96,16 +104,15 @@ Loaded<T> load(const Job& job) {
 #endif
   }
   case SamplerKind::par:
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_par_file<T>(job.input, limits));
+    l.frames = frames(mpr::read_par_file<T>(job.input, limits));
     break;
   case SamplerKind::stanford:
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-        mpr::read_stanford_light_field<T>(job.input, detail::array_options(job), limits));
+    l.frames = frames(mpr::read_stanford_light_field<T>(job.input, detail::array_options(job), limits));
     break;
   case SamplerKind::lfca: {
     mpr::LfcaOptions o;
     o.array = detail::array_options(job);
-    l.frames = std::make_shared<const mpr::CameraFrameSet<T>>(mpr::read_lfca<T>(job.input, o, limits));
+    l.frames = frames(mpr::read_lfca<T>(job.input, o, limits));
     break;
   }
   }

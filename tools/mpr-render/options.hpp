@@ -66,10 +66,15 @@ inline const std::vector<OptionSpec>& options() {
       {"lfca", "POSITIONS.txt",
        "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
        "--lfca $MPR_DATA_DIR/lfca/positions.txt"},
-      {"interp", "nearest|synthetic|cylinder",
-       "Light-field interpolation: nearest camera, full synthetic aperture, or cylinder aperture of --radius "
-       "(default synthetic).",
+      {"interp", "nearest|synthetic|cylinder|depth",
+       "Light-field interpolation: nearest camera, full synthetic aperture, cylinder aperture of --radius, or depth "
+       "proxy (the surface from per-camera depth maps, the cameras that see it blended by angle; --raster keeps the "
+       "rasterizer's depth, light fields need --depth-maps; --radius: the cameras considered, default twice the "
+       "spacing) (default synthetic).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3"},
+      {"depth-maps", "FOLDER",
+       "Light fields with --interp depth: one PFM depth map per camera, named after its image (cam.png -> cam.pfm).",
+       "--stanford $MPR_DATA_DIR/stanford/chess --interp depth --depth-maps chess-depth"},
       {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.",
        "--raster 8x6 --interp cylinder --radius 0.5:3 --frames 9"},
       {"focal-depth", "D|A:B|T=V,...",

@@ -19,7 +19,9 @@ using SamplerVariant =
                  mpr::CameraFrameSampler<mpr::SyntheticAperture, T>, mpr::CameraFrameSampler<mpr::CylinderAperture, T>,
                  mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::NearestCamera>>,
                  mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::SyntheticAperture>>,
-                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>>>;
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>>,
+                 mpr::CameraFrameSampler<mpr::DepthProxy, T>,
+                 mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::DepthProxy>>>;
 
 /// The rasterized virtual-array sampler (--raster) on the frame's untilted image plane.
 template <std::floating_point T>
@@ -36,6 +38,9 @@ SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const 
     return mpr::SceneSampler<S, mpr::Rasterized<mpr::NearestCamera>>(*l.scene, plane, config);
   case Interpolation::synthetic:
     return mpr::SceneSampler<S, mpr::Rasterized<mpr::SyntheticAperture>>(*l.scene, plane, config);
+  case Interpolation::depth:
+    return mpr::SceneSampler<S, mpr::Rasterized<mpr::DepthProxy>>(
+        *l.scene, plane, config, mpr::Rasterized<mpr::DepthProxy>{mpr::DepthProxy{p.radius}});
   case Interpolation::cylinder:
     break;
   }
@@ -53,6 +58,8 @@ SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FramePa
     return mpr::CameraFrameSampler<mpr::NearestCamera, T>(l.frames);
   case Interpolation::synthetic:
     return mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(l.frames);
+  case Interpolation::depth:
+    return mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, mpr::DepthProxy{p.radius});
   case Interpolation::cylinder:
     break;
   }

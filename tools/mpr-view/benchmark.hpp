@@ -114,6 +114,7 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
   }
   const char* interp = job.interpolation == mpr_cli::Interpolation::nearest     ? "nearest"
                        : job.interpolation == mpr_cli::Interpolation::synthetic ? "synthetic"
+                       : job.interpolation == mpr_cli::Interpolation::depth     ? "depth"
                                                                                 : "cylinder";
   const bool focus = job.raster || job.sampler == mpr_cli::SamplerKind::par ||
                      job.sampler == mpr_cli::SamplerKind::stanford || job.sampler == mpr_cli::SamplerKind::lfca;

@@ -78,8 +78,11 @@ inline std::string shell_word(const std::string& s) {
   if (light_field || job.raster) {
     add("--interp", job.interpolation == Interpolation::nearest     ? "nearest"
                     : job.interpolation == Interpolation::synthetic ? "synthetic"
+                    : job.interpolation == Interpolation::depth     ? "depth"
                                                                     : "cylinder");
-    if (job.interpolation == Interpolation::cylinder) add("--radius", detail::number(job.radius.at(time)));
+    if (job.interpolation == Interpolation::cylinder || job.interpolation == Interpolation::depth)
+      add("--radius", detail::number(job.radius.at(time)));
+    if (job.depth_maps) add("--depth-maps", job.depth_maps->string());
     if (job.focal_depth) add("--focal-depth", detail::number(job.focal_depth->at(time)));
   }
   if (light_field) {

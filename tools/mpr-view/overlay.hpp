@@ -58,6 +58,9 @@ inline const std::vector<std::string>& control_lines() {
       std::snprintf(buf, sizeof buf, "r %.3g", s.job.radius.at(s.time()));
       aperture = buf;
       break;
+    case mpr_cli::Interpolation::depth:
+      aperture = "depth";
+      break;
     }
   }
   const std::string preview = frame.full ? "" : " (1/" + std::to_string(frame.scale * frame.scale) + ")";

@@ -56,7 +56,7 @@ public:
 
   /// A sampler over an existing table, shared, not copied: samplers of several interpolations
   /// over the same frames then hold one set of texels. Throws `argument_error` naming "table"
-  /// (null) or what `interpolation.validate()` names.
+  /// (null) or what `interpolation.validate()` or `interpolation.validate(table)` names.
   [[nodiscard]] static CameraFrameSampler sharing(std::shared_ptr<const table_type> table,
                                                   Interpolation interpolation = {}) {
     return CameraFrameSampler(std::move(table), std::move(interpolation), Sharing{});
@@ -95,6 +95,7 @@ private:
       : table_(std::move(table)), interpolation_(std::move(interpolation)) {
     if (!table_) throw argument_error("table", "null");
     if constexpr (requires { interpolation_.validate(); }) interpolation_.validate();
+    if constexpr (requires { interpolation_.validate(*table_); }) interpolation_.validate(*table_);
   }
 
   std::shared_ptr<const table_type> table_;

@@ -79,7 +79,8 @@ static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(Srgb8Texel) == 
 /// Every image has exactly its camera's width and height; different cameras may differ in size.
 /// At construction every image is also decoded once into linear texels, which the samplers read:
 /// `Srgb8Texel` (3 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
-/// this is the bulk of the memory a frame set takes.
+/// this is the bulk of the memory a frame set takes. Optionally the set carries one depth map per
+/// camera (`with_depth`), read only by geometry-aware interpolations (`DepthProxy`).
 template <std::floating_point T, class Px = Rgb8>
 class CameraFrameSet {
   static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
@@ -153,6 +154,41 @@ public:
     return std::move(*this);
   }
 
+  /// True when the set carries a depth map per camera (`with_depth`).
+  [[nodiscard]] bool has_depth() const noexcept { return !depths_.empty(); }
+  /// Camera `i`'s depth map (precondition: `has_depth()`): per pixel, the depth of the surface
+  /// the pixel sees along the camera's optical axis (camera-space z, world units, > 0), +inf
+  /// where nothing was seen. Same size as image `i`.
+  [[nodiscard]] const Image<float>& depth(std::size_t i) const noexcept { return depths_[i]; }
+  /// Every depth map, in camera order; empty when the set carries none.
+  [[nodiscard]] const std::vector<Image<float>>& depths() const noexcept { return depths_; }
+
+  /// This set, carrying `depths[i]` as camera `i`'s depth map (see `depth`); an empty list drops
+  /// the depth maps. Throws `argument_error` ("depth maps") naming the camera when the counts
+  /// differ, a map's size differs from its camera's, or a depth is NaN, zero, negative or -inf.
+  /// Samplers that do not read depth never look at the maps.
+  [[nodiscard]] CameraFrameSet with_depth(std::vector<Image<float>> depths) && {
+    if (!depths.empty() && depths.size() != cameras_.size())
+      throw argument_error("depth maps", std::to_string(cameras_.size()) + " cameras but " +
+                                             std::to_string(depths.size()) + " depth maps");
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+      const Image<float>& d = depths[i];
+      if (d.width() != cameras_[i].width() || d.height() != cameras_[i].height())
+        throw argument_error("depth maps", names_[i] + ": depth map is " + std::to_string(d.width()) + "x" +
+                                               std::to_string(d.height()) + " but its camera expects " +
+                                               std::to_string(cameras_[i].width()) + "x" +
+                                               std::to_string(cameras_[i].height()));
+      for (int y = 0; y < d.height(); ++y)
+        for (int x = 0; x < d.width(); ++x)
+          if (!(d(x, y) > 0))
+            throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(x, y)) + " at pixel (" +
+                                                   std::to_string(x) + ", " + std::to_string(y) +
+                                                   ") (depths are positive, +inf where nothing was seen)");
+    }
+    depths_ = std::move(depths);
+    return std::move(*this);
+  }
+
   /// The same frames without frame `i` (for leave-one-out evaluation).
   [[nodiscard]] CameraFrameSet without(std::size_t i) const {
     if (i >= size()) throw argument_error("frame index", "out of range");
@@ -161,6 +197,7 @@ public:
     out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
     out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
     out.texels_.erase(out.texels_.begin() + static_cast<std::ptrdiff_t>(i));
+    if (!out.depths_.empty()) out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
     return out;
   }
 
@@ -174,7 +211,7 @@ public:
           c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(), c.height(),
           typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1), static_cast<U>(c.distortion().k2)},
           std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
-    CameraFrameSet<U, Px> out(std::move(cameras), images_, names_);
+    CameraFrameSet<U, Px> out = CameraFrameSet<U, Px>(std::move(cameras), images_, names_).with_depth(depths_);
     if (array_plane_)
       return std::move(out).on_plane(
           Plane<U>{array_plane_->point.template cast<U>(), array_plane_->normal.template cast<U>()});
@@ -197,6 +234,7 @@ private:
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
   std::vector<texel_vector> texels_;
+  std::vector<Image<float>> depths_;
   std::optional<Plane<T>> array_plane_;
 };
 

@@ -6,7 +6,8 @@
 /// optionally, a batch `sample_rays` and a tile `sample_tile` that fall back to its own per-ray
 /// function; `CameraFrameSampler<Interpolation>` offers to the renderer exactly the interfaces
 /// the interpolation has. An optional `validate()` const member throws `argument_error` for bad
-/// parameters; the sampler calls it at construction.
+/// parameters, and an optional `validate(table)` for frames it cannot use (e.g. `DepthProxy`
+/// without depth maps); the sampler calls both at construction.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/ray.hpp>

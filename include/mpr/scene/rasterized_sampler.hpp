@@ -96,6 +96,10 @@ struct VirtualArrayConfig {
   PixelFilter filter = PixelFilter::bilinear;
   /// Rasterizer settings (threads, near plane, tile size) for building the array.
   RasterOptions raster{};
+  /// Keep each camera's z-buffer as the frame set's depth map (`CameraFrameSet::with_depth`;
+  /// exact camera-space depth, +inf on background), for geometry-aware interpolations such as
+  /// `DepthProxy`. Off by default: 4 bytes per pixel more.
+  bool depth_maps = false;
 };
 
 /// The cameras of a virtual array on `plane` (see `VirtualArrayConfig` for the frame). Throws
@@ -160,7 +164,8 @@ struct VirtualArray {
 };
 
 /// Rasterizes `scene` into every camera of the array (the expensive step: one rasterized view
-/// per camera). Frames are named "cam_<r>_<c>.png". Throws as `virtual_array_cameras`.
+/// per camera). Frames are named "cam_<r>_<c>.png"; with `config.depth_maps` the set carries the
+/// z-buffers as depth maps. Throws as `virtual_array_cameras`.
 template <class Px = Rgb8, std::floating_point T>
 [[nodiscard]] VirtualArray<T, Px> rasterize_virtual_array(const Scene<T>& scene, const PlanarSurface<T>& plane,
                                                           const VirtualArrayConfig<T>& config) {
@@ -170,6 +175,7 @@ template <class Px = Rgb8, std::floating_point T>
   std::vector<std::string> names;
   images.reserve(cameras.size());
   std::vector<float> depths; // a subsample of visible depths, for the default focal depth
+  std::vector<Image<float>> depth_maps;
   Image<Color> color(config.width, config.height);
   Image<float> depth(config.width, config.height);
   for (std::size_t i = 0; i < cameras.size(); ++i) {
@@ -182,6 +188,7 @@ template <class Px = Rgb8, std::floating_point T>
     } else {
       images.push_back(color);
     }
+    if (config.depth_maps) depth_maps.push_back(depth);
     if (!config.focal_depth)
       for (int yy = 0; yy < config.height; yy += 4)
         for (int xx = 0; xx < config.width; xx += 4)
@@ -199,7 +206,9 @@ template <class Px = Rgb8, std::floating_point T>
     std::nth_element(depths.begin(), mid, depths.end());
     focal = std::max(static_cast<T>(*mid) - config.behind, static_cast<T>(config.raster.near));
   }
-  return {CameraFrameSet<T, Px>(std::move(cameras), std::move(images), std::move(names)), focal};
+  return {
+      CameraFrameSet<T, Px>(std::move(cameras), std::move(images), std::move(names)).with_depth(std::move(depth_maps)),
+      focal};
 }
 
 } // namespace scene
@@ -222,12 +231,13 @@ public:
   using frame_set_type = CameraFrameSet<T, Px>;
   using frame_sampler_type = CameraFrameSampler<Interpolation, T, Px>;
 
-  /// Rasterizes `scene` into the array on `plane` described by `config`. Throws
+  /// Rasterizes `scene` into the array on `plane` described by `config` (keeping the depth maps
+  /// when `Interpolation::uses_depth_maps`, as for `DepthProxy`). Throws
   /// `argument_error` as `scene::virtual_array_cameras`, and "radius" for a bad cylinder radius.
   SceneSampler(const scene::Scene<T>& scene, const PlanarSurface<T>& plane,
                const scene::VirtualArrayConfig<T>& config = {}, Rasterized<Interpolation, Px> policy = {})
-      : SceneSampler(scene::rasterize_virtual_array<Px>(scene, plane, config), scene.background(), config.filter,
-                     policy) {}
+      : SceneSampler(scene::rasterize_virtual_array<Px>(scene, plane, with_depth_maps(config)), scene.background(),
+                     config.filter, policy) {}
 
   /// Samples an already rasterized (or reloaded) array.
   SceneSampler(scene::VirtualArray<T, Px> array, const Color& background, PixelFilter filter = PixelFilter::bilinear,
@@ -254,6 +264,13 @@ public:
   }
 
 private:
+  // The config, keeping the z-buffers when the interpolation reads depth maps (`DepthProxy`).
+  static scene::VirtualArrayConfig<T> with_depth_maps(scene::VirtualArrayConfig<T> config) {
+    if constexpr (requires { Interpolation::uses_depth_maps; })
+      config.depth_maps = config.depth_maps || Interpolation::uses_depth_maps;
+    return config;
+  }
+
   static typename frame_sampler_type::Config make_config(T depth, const Color& background, PixelFilter filter) {
     typename frame_sampler_type::Config c;
     c.filter = filter;

@@ -1,0 +1,133 @@
+#pragma once
+/// \file
+/// Reading and writing one-channel PFM files (Portable Float Map, "Pf"): the format of the depth
+/// and disparity maps of the HCI 4D light-field benchmark and of Middlebury stereo.
+///
+/// Layout: the ASCII header `Pf`, the width and height, and a scale whose sign gives the byte
+/// order (negative: little-endian, positive: big-endian), separated by white space, then exactly
+/// one white-space byte and `width * height` 32-bit IEEE floats, rows from the BOTTOM of the
+/// image up. `read_pfm` returns rows top-down (row 0 at the top, as every mpr image); the
+/// scale's magnitude is ignored. Reading refuses non-regular files, files above
+/// `LoadLimits::max_image_file_bytes`, images above `LoadLimits::max_image_pixels` (from the
+/// header, before allocating) and any malformed header or size with an `io_error` naming the file.
+
+#include <mpr/core/error.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/io/file_write.hpp>
+#include <mpr/io/image_io.hpp>
+#include <mpr/io/load_limits.hpp>
+
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mpr {
+
+namespace detail {
+
+/// Reads one white-space separated token of the PFM header starting at `i` (skipping white
+/// space first); at most 32 bytes. Empty when the header ends first.
+[[nodiscard]] inline std::string pfm_token(const std::vector<unsigned char>& b, std::size_t& i) {
+  const auto space = [](unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+  while (i < b.size() && space(b[i])) ++i;
+  std::string token;
+  while (i < b.size() && !space(b[i]) && token.size() <= 32) token.push_back(static_cast<char>(b[i++]));
+  return token;
+}
+
+/// The positive integer `token` (a PFM width or height), or -1 when it is not one (digits only,
+/// at most 9 of them).
+[[nodiscard]] inline long pfm_size(const std::string& token) noexcept {
+  if (token.empty() || token.size() > 9) return -1;
+  long v = 0;
+  for (const char c : token) {
+    if (c < '0' || c > '9') return -1;
+    v = v * 10 + (c - '0');
+  }
+  return v;
+}
+
+} // namespace detail
+
+/// Reads a one-channel PFM file (see the file comment) into a float image, top row first.
+/// Values are returned as stored (NaN and infinities included; `CameraFrameSet::with_depth`
+/// checks depths). Throws `io_error` naming the file for a file that cannot be read or lies
+/// outside `limits`, a colour PFM ("PF"), a bad header (magic, size, scale) or data of the wrong
+/// length.
+[[nodiscard]] inline Image<float> read_pfm(const std::filesystem::path& path, const LoadLimits& limits = {}) {
+  const std::vector<unsigned char> b = detail::read_image_bytes(path, limits);
+  const auto bad = [&](const std::string& reason) { return io_error(path.string(), "bad PFM: " + reason); };
+  std::size_t i = 0;
+  const std::string magic = detail::pfm_token(b, i);
+  if (magic == "PF") throw bad("a colour map (PF); a one-channel map (Pf) is expected");
+  if (magic != "Pf") throw bad("the file does not start with Pf");
+  const std::string w_token = detail::pfm_token(b, i), h_token = detail::pfm_token(b, i);
+  const long width = detail::pfm_size(w_token), height = detail::pfm_size(h_token);
+  if (width <= 0 || height <= 0) throw bad("size '" + w_token + " " + h_token + "' is not two positive integers");
+  detail::check_image_pixels(path, static_cast<int>(width), static_cast<int>(height), limits);
+  const std::string scale_token = detail::pfm_token(b, i);
+  char* end = nullptr;
+  errno = 0;
+  const double scale = scale_token.empty() ? 0.0 : std::strtod(scale_token.c_str(), &end);
+  if (scale_token.empty() || end != scale_token.c_str() + scale_token.size() || !std::isfinite(scale) || scale == 0)
+    throw bad("scale '" + scale_token + "' is not a non-zero number");
+  if (i >= b.size()) throw bad("no data after the header");
+  ++i; // the single white-space byte that ends the header
+  const std::uint64_t count = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  const std::uint64_t have = b.size() - i;
+  if (have != 4 * count)
+    throw bad(std::to_string(width) + "x" + std::to_string(height) + " needs " + std::to_string(4 * count) +
+              " bytes of data, the file has " + std::to_string(have));
+  const bool little = scale < 0;
+  const bool swap = little != (std::endian::native == std::endian::little);
+  Image<float> image(static_cast<int>(width), static_cast<int>(height));
+  const unsigned char* p = b.data() + i;
+  for (long y = height - 1; y >= 0; --y) {
+    float* row = image.view().row(static_cast<int>(y));
+    for (long x = 0; x < width; ++x, p += 4) {
+      unsigned char v[4] = {p[0], p[1], p[2], p[3]};
+      if (swap) {
+        std::swap(v[0], v[3]);
+        std::swap(v[1], v[2]);
+      }
+      std::memcpy(&row[x], v, 4);
+    }
+  }
+  return image;
+}
+
+/// The bytes of a little-endian one-channel PFM file of `image` (top row first in `image`,
+/// bottom row first in the file).
+[[nodiscard]] inline std::vector<unsigned char> encode_pfm(ImageView<const float> image) {
+  const std::string header = "Pf\n" + std::to_string(image.width()) + " " + std::to_string(image.height()) + "\n-1\n";
+  std::vector<unsigned char> bytes(header.begin(), header.end());
+  bytes.reserve(bytes.size() + 4 * static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
+  for (int y = image.height() - 1; y >= 0; --y)
+    for (int x = 0; x < image.width(); ++x) {
+      unsigned char v[4];
+      std::memcpy(v, &image(x, y), 4);
+      if constexpr (std::endian::native != std::endian::little) {
+        std::swap(v[0], v[3]);
+        std::swap(v[1], v[2]);
+      }
+      bytes.insert(bytes.end(), v, v + 4);
+    }
+  return bytes;
+}
+
+/// Writes `image` as a little-endian one-channel PFM file through `write_file_atomically`: a
+/// failed write throws `io_error` naming the file and leaves no partial file.
+inline void write_pfm(const std::filesystem::path& path, ImageView<const float> image) {
+  if (image.empty()) throw io_error(path.string(), "cannot write an empty image");
+  write_file_atomically(path, encode_pfm(image));
+}
+
+inline void write_pfm(const std::filesystem::path& path, const Image<float>& image) { write_pfm(path, image.view()); }
+
+} // namespace mpr

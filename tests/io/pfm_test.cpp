@@ -1,0 +1,105 @@
+#include <mpr/io/pfm.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+namespace {
+std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("mpr_pfm_" + name);
+}
+
+void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string float_bytes(float v, bool little) {
+  unsigned char b[4];
+  std::memcpy(b, &v, 4);
+  if (little != (std::endian::native == std::endian::little)) {
+    std::swap(b[0], b[3]);
+    std::swap(b[1], b[2]);
+  }
+  return std::string(reinterpret_cast<const char*>(b), 4);
+}
+} // namespace
+
+TEST_CASE("PFM round trip keeps every float, infinities included, top row first", "[io][pfm]") {
+  mpr::Image<float> image(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) image(x, y) = 0.25f * static_cast<float>(x) + 10.0f * static_cast<float>(y) + 1e-3f;
+  image(4, 2) = std::numeric_limits<float>::infinity();
+  const auto path = temp_path("roundtrip.pfm");
+  mpr::write_pfm(path, image);
+  const mpr::Image<float> back = mpr::read_pfm(path);
+  REQUIRE(back.width() == 5);
+  REQUIRE(back.height() == 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) CHECK(back(x, y) == image(x, y));
+  // The file stores the bottom row first, little-endian.
+  const std::vector<unsigned char> bytes = mpr::encode_pfm(image.view());
+  const std::string header = "Pf\n5 3\n-1\n";
+  REQUIRE(bytes.size() == header.size() + 60);
+  float first = 0;
+  std::memcpy(&first, bytes.data() + header.size(), 4);
+  if constexpr (std::endian::native == std::endian::little) CHECK(first == image(0, 2));
+}
+
+TEST_CASE("PFM reads both byte orders and any white space in the header", "[io][pfm]") {
+  const auto path = temp_path("big.pfm");
+  // 2 x 2, big-endian (positive scale), header split over spaces and tabs; bottom row first.
+  write_bytes(path, "Pf 2\t2\n1.0\n" + float_bytes(3, false) + float_bytes(4, false) + float_bytes(1, false) +
+                        float_bytes(2, false));
+  const mpr::Image<float> big = mpr::read_pfm(path);
+  CHECK(big(0, 0) == 1.0f);
+  CHECK(big(1, 0) == 2.0f);
+  CHECK(big(0, 1) == 3.0f);
+  CHECK(big(1, 1) == 4.0f);
+  write_bytes(path, "Pf\n1 1\n-0.5\n" + float_bytes(7.5f, true));
+  CHECK(mpr::read_pfm(path)(0, 0) == 7.5f);
+}
+
+TEST_CASE("bad PFM files are one io_error naming the file and the reason", "[io][pfm]") {
+  const auto path = temp_path("bad.pfm");
+  const auto refuse = [&](const std::string& bytes, const char* reason) {
+    write_bytes(path, bytes);
+    try {
+      (void)mpr::read_pfm(path);
+      FAIL("no exception for: " << reason);
+    } catch (const mpr::io_error& e) {
+      CHECK(e.path() == path.string());
+      CHECK_THAT(e.what(), Catch::Contains(reason));
+    }
+  };
+  const std::string one = float_bytes(1, true);
+  refuse("P6\n1 1\n255\n", "does not start with Pf");
+  refuse("PF\n1 1\n-1\n" + one + one + one, "colour map (PF)");
+  refuse("Pf\n0 1\n-1\n", "not two positive integers");
+  refuse("Pf\n-3 1\n-1\n", "not two positive integers");
+  refuse("Pf\n1x 1\n-1\n" + one, "not two positive integers");
+  refuse("Pf\n99999999999 1\n-1\n", "not two positive integers");
+  refuse("Pf\n1 1\n0\n" + one, "is not a non-zero number");
+  refuse("Pf\n1 1\nnan\n" + one, "is not a non-zero number");
+  refuse("Pf\n1 1\n-1x\n" + one, "is not a non-zero number");
+  refuse("Pf\n1 1\n-1", "no data after the header");
+  refuse("Pf\n2 2\n-1\n" + one, "needs 16 bytes of data, the file has 4");
+  refuse("Pf\n1 1\n-1\n" + one + "x", "needs 4 bytes of data, the file has 5");
+  refuse("Pf", "not two positive integers");
+  refuse("", "empty file");
+  // Above the pixel limit: refused from the header, before allocating.
+  mpr::LoadLimits small;
+  small.max_image_pixels = 100;
+  write_bytes(path, "Pf\n20 20\n-1\n");
+  CHECK_THROWS_WITH(mpr::read_pfm(path, small), Catch::Contains("max_image_pixels"));
+  // Not a regular file, missing file.
+  CHECK_THROWS_WITH(mpr::read_pfm(std::filesystem::temp_directory_path()), Catch::Contains("not a regular file"));
+  CHECK_THROWS_WITH(mpr::read_pfm(temp_path("missing.pfm")), Catch::Contains("missing.pfm"));
+  // Writing: an empty image and a missing folder are refused, nothing left behind.
+  CHECK_THROWS_AS(mpr::write_pfm(temp_path("empty.pfm"), mpr::Image<float>()), mpr::io_error);
+  CHECK_THROWS_AS(mpr::write_pfm(temp_path("no_such_folder/x.pfm"), mpr::Image<float>(1, 1)), mpr::io_error);
+}

@@ -1,0 +1,172 @@
+#include "lightfield/frame_test_scenes.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/lightfield.hpp>
+#include <mpr/mpr.hpp>
+#include <mpr/scene.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace {
+
+// 3 x 3 cameras (spacing 1, 40 x 30 pixels, focal 30) on z = 0 looking at the textured plane
+// z = 5, with exact depth maps (camera z of the plane: 5 everywhere).
+template <class T>
+std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> plane_set(float depth = 5.0f) {
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps(cams.size(), mpr::Image<float>(40, 30, depth));
+  return std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+}
+
+} // namespace
+
+TEST_CASE("DepthProxy is a per-ray frame interpolation", "[depth_proxy]") {
+  STATIC_REQUIRE(mpr::FrameInterpolation<mpr::DepthProxy, float, mpr::Rgb8>);
+  STATIC_REQUIRE(mpr::FrameInterpolation<mpr::DepthProxy, double, mpr::Color>);
+  STATIC_REQUIRE_FALSE(mpr::BatchFrameInterpolation<mpr::DepthProxy, float, mpr::Rgb8>);
+  STATIC_REQUIRE_FALSE(mpr::TileFrameInterpolation<mpr::DepthProxy, double, mpr::Rgb8>);
+  STATIC_REQUIRE(mpr::RaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
+  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
+  STATIC_REQUIRE(mpr::DepthProxy::uses_depth_maps);
+}
+
+TEMPLATE_TEST_CASE("DepthProxy refuses bad parameters and frames without depth maps", "[depth_proxy]", float, double) {
+  using T = TestType;
+  const auto frames = plane_set<T>();
+  using Sampler = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>;
+  CHECK_NOTHROW(Sampler(frames, mpr::DepthProxy{}));
+  const auto refuse = [&](mpr::DepthProxy p, const char* parameter) {
+    try {
+      (void)Sampler(frames, p);
+      FAIL("no exception for " << parameter);
+    } catch (const mpr::argument_error& e) {
+      CHECK(e.parameter() == parameter);
+    }
+  };
+  refuse({0.0}, "radius");
+  refuse({std::nan("")}, "radius");
+  refuse({1.0, 0}, "k");
+  refuse({1.0, 4, 0.0}, "tolerance");
+  refuse({1.0, 4, 1.0}, "tolerance");
+  refuse({1.0, 4, 0.01, 0}, "march_cameras");
+  const auto cams = mpr_test::grid_cameras<T>(2, 1, 1.0, 8, 6, 8.0);
+  const auto bare = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      cams, mpr_test::plane_images(cams, 5.0), std::vector<std::string>{"left", "right"});
+  CHECK_THROWS_WITH(Sampler(bare), Catch::Contains("depth maps") && Catch::Contains("left"));
+}
+
+TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever the focal depth", "[depth_proxy]", float,
+                   double) {
+  using T = TestType;
+  const auto frames = plane_set<T>();
+  // The configured focal plane (z = 2) is wrong: the cylinder aperture blends the wrong pixels,
+  // the depth proxy finds z = 5 and reads the texture there.
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(2);
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  const auto proxy = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, mpr::DepthProxy{2.0});
+  const auto cylinder =
+      mpr::CameraFrameSampler<mpr::CylinderAperture, T, mpr::Color>::sharing(table, mpr::CylinderAperture{1.5});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.8, 0.8), slope(-0.25, 0.25);
+  double worst_proxy = 0, worst_cylinder = 0, worst_depth = 0;
+  for (int n = 0; n < 200; ++n) {
+    const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
+                          mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))};
+    const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
+    REQUIRE(t.has_value());
+    const mpr::Vec3<T> hit = ray.at(*t);
+    worst_depth = std::max(worst_depth, std::abs(static_cast<double>(hit.z()) - 5.0));
+    const mpr::Color truth = mpr_test::plane_texture(static_cast<double>(hit.x()), static_cast<double>(hit.y()));
+    worst_proxy = std::max(worst_proxy, static_cast<double>((proxy.sample(ray) - truth).abs().maxCoeff()));
+    worst_cylinder = std::max(worst_cylinder, static_cast<double>((cylinder.sample(ray) - truth).abs().maxCoeff()));
+  }
+  INFO("worst depth error " << worst_depth << ", colour error proxy " << worst_proxy << ", cylinder "
+                            << worst_cylinder);
+  CHECK(worst_depth < 1e-3);
+  CHECK(worst_proxy < 2e-3); // the texture is linear: bilinear reconstruction is exact
+  CHECK(worst_cylinder > 10 * worst_proxy);
+  // A ray running back toward the cameras finds nothing (the walk goes along the ray, away from
+  // the cameras), on the line or the half-line: such rays fall back to the focal point.
+  const mpr::Ray<T> away{mpr::Vec3<T>(0, 0, 0), mpr::Vec3<T>(0, 0, -1)};
+  CHECK_FALSE(proxy.interpolation().surface(proxy.table(), away).has_value());
+  mpr::DepthProxy half{2.0};
+  half.whole_line = false;
+  CHECK_FALSE(half.surface(proxy.table(), away).has_value());
+  // A ray that starts beyond the surface finds it behind its origin (a focal plane inside the
+  // scene), or nothing on its half-line.
+  const mpr::Ray<T> beyond{mpr::Vec3<T>(T(0.2), T(0.1), T(8)), mpr::Vec3<T>(0, 0, 1)};
+  const std::optional<T> back = proxy.interpolation().surface(proxy.table(), beyond);
+  REQUIRE(back.has_value());
+  CHECK(std::abs(static_cast<double>(*back) + 3.0) < 1e-3);
+  CHECK_FALSE(half.surface(proxy.table(), beyond).has_value());
+}
+
+TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the point", "[depth_proxy]", float,
+                   double) {
+  using T = TestType;
+  // Cameras at x = -0.5, 0 and 0.5 see the plane z = 5; the third one's map claims an occluder
+  // at z = 2 and its image is red. Rays nearer the other two find z = 5 from their maps, and the
+  // third camera, which would see the point only behind its occluder, must not contribute.
+  const auto cams = mpr_test::grid_cameras<T>(3, 1, 0.5, 40, 30, 30.0);
+  std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
+  images[2] = mpr::Image<mpr::Color>(40, 30, mpr::Color(1, 0, 0));
+  std::vector<mpr::Image<float>> maps(3, mpr::Image<float>(40, 30, 5.0f));
+  maps[2] = mpr::Image<float>(40, 30, 2.0f);
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(frames, mpr::DepthProxy{2.0, 4});
+  for (const double x : {-0.5, -0.3, 0.0, 0.2}) {
+    const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(x), 0, 0), mpr::Vec3<T>(0, T(0.05), 1)};
+    const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
+    REQUIRE(t.has_value());
+    const mpr::Vec3<T> hit = ray.at(*t);
+    const mpr::Color c = proxy.sample(ray);
+    INFO("ray from x = " << x);
+    CHECK(std::abs(static_cast<double>(hit.z()) - 5.0) < 1e-3);
+    CHECK((c - mpr_test::plane_texture(static_cast<double>(hit.x()), static_cast<double>(hit.y()))).abs().maxCoeff() <
+          2e-3f);
+  }
+}
+
+TEST_CASE("DepthProxy on a rasterized classroom array is far closer to the ray cast than a focal plane",
+          "[depth_proxy]") {
+  using T = float;
+  using Scene = mpr::scene::Scene<T>;
+  const auto scene = std::make_shared<const Scene>(mpr::scene::classroom<T>());
+  const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
+      mpr::Vec3<T>(0.3f, 2.2f, 4.5f), mpr::Vec3<T>(0, 1.3f, -8), mpr::Vec3<T>(0, 1, 0), T(1.0), 96, 72);
+  const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
+  const auto render = [&](const auto& sampler) {
+    const mpr::Renderer renderer(plane, mpr::pinhole_glc(view, plane), sampler);
+    mpr::Image<mpr::Rgb8> image(96, 72);
+    renderer.render(image.view(), mpr::Region(0, 0, 96, 72), {2});
+    return image;
+  };
+  const mpr::Image<mpr::Rgb8> truth = render(mpr::SceneSampler<Scene, mpr::RayCast>(scene));
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 4;
+  config.rows = 3;
+  config.width = 192;
+  config.height = 144;
+  config.raster.threads = 2;
+  config.depth_maps = true;
+  const auto array = mpr::scene::rasterize_virtual_array(*scene, plane, config);
+  const T spacing = plane.width_vector().norm() / 4;
+  const auto psnr = [&](const auto& sampler) { return mpr::compare_images(render(sampler).view(), truth.view()).psnr; };
+  const double cylinder = psnr(mpr::SceneSampler<Scene, mpr::Rasterized<mpr::CylinderAperture>>(
+      array, scene->background(), mpr::PixelFilter::bilinear,
+      mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{spacing}}));
+  const double proxy = psnr(mpr::SceneSampler<Scene, mpr::Rasterized<mpr::DepthProxy>>(
+      array, scene->background(), mpr::PixelFilter::bilinear, {mpr::DepthProxy{2 * spacing}}));
+  // Measured: 17.6 and 21.1 dB (the rest is edge pixels resampled twice: frames, then view).
+  std::printf("classroom 4x3 array of 192x144 vs ray cast: cylinder %.1f dB, depth proxy %.1f dB\n", cylinder, proxy);
+  CHECK(proxy > cylinder + 3);
+}
