@@ -40,6 +40,15 @@ ViewContext make_context(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, i
   ctx.plane_width = job.plane_size ? job.plane_size->first : l.plane_width;
   ctx.plane_height = job.plane_size ? job.plane_size->second : ctx.plane_width * view_height / view_width;
   ctx.focal_depth = l.default_focal_depth;
+  // What mpr-render would choose for a gallery letter on this array (with_array_defaults): the
+  // letter keys apply it when the user gave no interpolation or radius.
+  if (ctx.light_field || ctx.raster) {
+    mpr_cli::Job lettered = job;
+    lettered.views = {"A"};
+    const mpr_cli::Job chosen = mpr_cli::with_array_defaults(lettered, l);
+    ctx.letter_interpolation = chosen.interpolation;
+    ctx.letter_radius = chosen.radius;
+  }
   return ctx;
 }
 

@@ -27,6 +27,11 @@ struct ViewContext {
   /// The focal depth in use when the job gives none (light fields: the reference plane; raster:
   /// the median depth the array chose, known after its first render).
   double focal_depth = 1;
+  /// Arrays: the interpolation and radius mpr-render's defaults give a gallery letter (a
+  /// ray-dependent one; see `mpr_cli::with_array_defaults`), applied by the letter keys unless
+  /// the command line chose them.
+  std::optional<mpr_cli::Interpolation> letter_interpolation;
+  std::optional<mpr_cli::Track> letter_radius;
   /// Does the focal depth (wheel) apply? Light fields and rasterized arrays.
   [[nodiscard]] bool has_focus() const noexcept { return light_field || raster; }
 };
@@ -110,6 +115,10 @@ inline Action on_key(ViewState& s, const ViewContext& ctx, const std::string& ke
     if (job.views.size() == 1 && current == std::string(1, letter)) return Action::none;
     job.views = {std::string(1, letter)};
     job.cols = job.rows = 1;
+    if (!job.interpolation_given && !job.radius_given && ctx.letter_interpolation) {
+      job.interpolation = *ctx.letter_interpolation;
+      if (ctx.letter_radius) job.radius = *ctx.letter_radius;
+    }
     return Action::changed;
   }
   if (key == "Left" || key == "Right") {

@@ -40,6 +40,27 @@ TEST_CASE("gallery keys choose one view and remember the previous one", "[view]"
   CHECK(mpr_view::on_key(s, ctx, "K") == Action::none);
 }
 
+TEST_CASE("on an array, gallery keys take mpr-render's defaults for a letter unless the user chose", "[view]") {
+  mpr_view::ViewContext ctx;
+  ctx.light_field = true;
+  ctx.letter_interpolation = mpr_cli::Interpolation::cylinder;
+  ctx.letter_radius = mpr_cli::Track(4.5);
+  mpr_view::ViewState s; // refocusing: the synthetic aperture, as mpr-render starts it
+  s.job.interpolation = mpr_cli::Interpolation::synthetic;
+  CHECK(mpr_view::on_key(s, ctx, "G") == Action::changed);
+  CHECK(s.job.interpolation == mpr_cli::Interpolation::cylinder);
+  CHECK(s.job.radius.at(0) == Approx(4.5));
+  mpr_view::ViewState chosen;
+  chosen.job.interpolation = mpr_cli::Interpolation::nearest;
+  chosen.job.interpolation_given = true;
+  CHECK(mpr_view::on_key(chosen, ctx, "G") == Action::changed);
+  CHECK(chosen.job.interpolation == mpr_cli::Interpolation::nearest);
+  mpr_view::ViewState scene; // scenes have no letter defaults
+  scene.job.interpolation = mpr_cli::Interpolation::synthetic;
+  CHECK(mpr_view::on_key(scene, scene_context(), "G") == Action::changed);
+  CHECK(scene.job.interpolation == mpr_cli::Interpolation::synthetic);
+}
+
 TEST_CASE("scene drags orbit about the look-at point and pan the plane", "[view]") {
   mpr_view::ViewState s;
   const mpr_view::ViewContext ctx = scene_context();
