@@ -73,8 +73,9 @@ inline const std::vector<OptionSpec>& options() {
        "spacing) (default synthetic).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3"},
       {"depth-maps", "FOLDER",
-       "Light fields with --interp depth: one PFM depth map per camera, named after its image (cam.png -> cam.pfm).",
-       "--stanford $MPR_DATA_DIR/stanford/chess --interp depth --depth-maps chess-depth"},
+       "Light fields with --interp depth: one PFM depth map per camera, named after its image (cam.png -> cam.pfm); "
+       "write them with mpr::estimate_depth and mpr::write_depth_maps (docs/lightfield.md).",
+       "--stanford $MPR_DATA_DIR/stanford/chess --interp depth --depth-maps $MPR_DATA_DIR/stanford/chess-depth"},
       {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.",
        "--raster 8x6 --interp cylinder --radius 0.5:3 --frames 9"},
       {"focal-depth", "D|A:B|T=V,...",
