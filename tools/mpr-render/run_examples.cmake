@@ -11,6 +11,7 @@
 # OUT/<n>.png (.jpg when the example writes JPEG). It must exit 0 and write its image (or its
 # first frame). A command whose --stanford/--par/--lfca input (real data, never in the
 # repository) is missing is skipped with a line saying so. Prints one line per command: seconds, output, command.
+# With -DFULL=ON the commands run at their own size and frame count (for timing them; not in ctest).
 set(_commands)
 if(FROM STREQUAL "help")
   execute_process(COMMAND "${TOOL}" --help OUTPUT_VARIABLE _help RESULT_VARIABLE _rc)
@@ -105,7 +106,7 @@ foreach(_cmd IN LISTS _commands)
     endif()
     if(_prev STREQUAL "--frames")
       set(_frames TRUE)
-      if(_a GREATER 3)
+      if(_a GREATER 3 AND NOT FULL)
         set(_a 3)
       endif()
     endif()
@@ -128,7 +129,11 @@ foreach(_cmd IN LISTS _commands)
   endif()
   file(REMOVE "${_written}")
   string(TIMESTAMP _t0 "%s.%f")
-  execute_process(COMMAND "${TOOL}" ${_small} --size 32x24 --output "${_output}" WORKING_DIRECTORY "${SOURCE_DIR}"
+  set(_shrink --size 32x24)
+  if(FULL)
+    set(_shrink)
+  endif()
+  execute_process(COMMAND "${TOOL}" ${_small} ${_shrink} --output "${_output}" WORKING_DIRECTORY "${SOURCE_DIR}"
                   RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _err TIMEOUT 120)
   string(TIMESTAMP _t1 "%s.%f")
   # Seconds with two decimals from the two timestamps (math() has integers only).
