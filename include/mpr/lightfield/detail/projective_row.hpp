@@ -115,28 +115,19 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void gather_tap_avx512(const C* texels, cons
     sum[0] = _mm512_fmadd_ps(weight, words_to_floats(low256(rg)), sum[0]);
     sum[1] = _mm512_fmadd_ps(weight, words_to_floats(_mm512_maskz_extracti64x4_epi64(0xF, rg, 1)), sum[1]);
     sum[2] = _mm512_fmadd_ps(weight, words_to_floats(low256(bb)), sum[2]);
-  } else if constexpr (std::is_same_v<C, float>) {
+  } else {
+    static_assert(std::is_same_v<C, float>, "8-bit codes or float channels");
     for (int k = 0; k < 3; ++k) {
       const __m512 v = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAll,
                                                 _mm512_add_epi32(offset, _mm512_set1_epi32(k)), texels, 4);
       sum[k] = _mm512_fmadd_ps(weight, v, sum[k]);
     }
-  } else {
-    static_assert(std::is_same_v<C, std::uint16_t>, "float or 16-bit channels");
-    // Two 32-bit gathers at channels k and k + 1 (16-bit units): (r | g << 16), (g | b << 16).
-    const __m512i rg = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), kAll, offset, texels, 2);
-    const __m512i gb = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), kAll,
-                                                   _mm512_add_epi32(offset, _mm512_set1_epi32(1)), texels, 2);
-    const __m512i low = _mm512_set1_epi32(0xFFFF);
-    sum[0] = _mm512_fmadd_ps(weight, _mm512_maskz_cvtepi32_ps(kAll, _mm512_and_si512(rg, low)), sum[0]);
-    sum[1] = _mm512_fmadd_ps(weight, _mm512_maskz_cvtepi32_ps(kAll, _mm512_maskz_srli_epi32(kAll, rg, 16)), sum[1]);
-    sum[2] = _mm512_fmadd_ps(weight, _mm512_maskz_cvtepi32_ps(kAll, _mm512_maskz_srli_epi32(kAll, gb, 16)), sum[2]);
   }
 }
 
 // Points ahead of the current ones whose texels are prefetched, and every how many lanes.
 inline constexpr int kAhead = 64;
-inline constexpr int kPrefetchLanes = 16;
+inline constexpr int kPrefetchLanes = 2;
 
 // The AVX-512 step: 16 points at a time, float coordinates. Lanes the camera does not see get
 // zero weights and clamped in-range texel indices, so every gather reads inside the image.
@@ -232,13 +223,13 @@ MPR_TARGET_AVX512 inline std::size_t projective_row_avx512(const ProjectiveRow<f
 #endif
 
 /// `projective_row_portable` over [0, n), with the hand-written step of `level` where there is
-/// one (float coordinates; 8-bit, 16-bit or float channels; images `gather_indexable`).
+/// one (float coordinates; 8-bit or float channels -- the texels of `CameraFrameSet`; images
+/// `gather_indexable`). Other channel types run the plain loop.
 template <class T, class C>
 inline void projective_row(const ProjectiveRow<T, C>& r, std::size_t n, const float* rw, float* acc, float* seen,
                            SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
-  if constexpr (std::is_same_v<T, float> &&
-                (std::is_same_v<C, float> || std::is_same_v<C, std::uint16_t> || std::is_same_v<C, std::uint8_t>)) {
+  if constexpr (std::is_same_v<T, float> && (std::is_same_v<C, float> || std::is_same_v<C, std::uint8_t>)) {
     if (level == SimdLevel::avx512 && gather_indexable(r.width, r.height)) {
       projective_row_avx512(r, n, rw, acc, seen);
       return;
