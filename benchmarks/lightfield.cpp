@@ -338,13 +338,24 @@ int main(int argc, char** argv) {
   Kh(0, 2) = T(349.5);
   Kh(1, 2) = T(199.5);
   const mpr::PinholeCamera<T> half(Kh, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), 700, 400);
-  std::printf("\nOutput at half the cameras' scale (700x400) and the README's Chess animations, per frame (middle "
+  std::printf("\nOutput at other scales (700x400: half the cameras'; 960x540: mpr-view's window) and the README's "
+              "Chess animations, per frame (middle "
               "frame of each)\n\n| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | "
               "Mrays/s |\n|---|---|---|---|---|---|\n");
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> chess_cylinder16(lf, mpr::CylinderAperture{16.0});
   for (int threads : {1, 2}) {
     const mpr::PlanarSurface<T> p = half.image_plane(T(1000));
     measure("Chess 700x400 synthetic z=1000", p, mpr::pinhole_glc(half, p), chess_full, 700, 400, threads, repeats,
+            threads == 2);
+    // mpr-view's default window on Chess: 960x540, 1.458 camera pixels per output pixel.
+    mpr::Mat3<T> Kv = Kc;
+    Kv(0, 0) *= T(960) / T(1400);
+    Kv(1, 1) *= T(960) / T(1400);
+    Kv(0, 2) = T(479.5);
+    Kv(1, 2) = T(269.5);
+    const mpr::PinholeCamera<T> window(Kv, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), 960, 540);
+    const mpr::PlanarSurface<T> pw = window.image_plane(T(1000));
+    measure("Chess 960x540 synthetic z=1000", pw, mpr::pinhole_glc(window, pw), chess_full, 960, 540, threads, repeats,
             threads == 2);
     const mpr::PlanarSurface<T> tilt = half.image_plane(T(825)).tilted(T(-14) * T(3.14159265358979) / 180, T(0));
     measure("README chess_tilt (-14 deg, z=825)", tilt, mpr::pinhole_glc(half, tilt), chess_full, 700, 400, threads,

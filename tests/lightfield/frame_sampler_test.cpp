@@ -511,11 +511,11 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
 }
 
-TEMPLATE_TEST_CASE("output at a whole fraction of the cameras' scale gives the per-pixel image",
-                   "[camera_frame_sampler]", float, double) {
+TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,
+                   double) {
   using T = TestType;
-  // Rows that step 2 or 3 camera pixels per output pixel (the strided shift-and-add), and 1.5
-  // (the projective rows), on a plane parallel to the array; 8-bit frames with fine detail.
+  // Rows that step 2 or 3 camera pixels per output pixel (the strided shift-and-add), 0.75, 1.5
+  // and 2.4 (resampled rows), on a plane parallel to the array; 8-bit frames with fine detail.
   auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 40, 320.0);
   const auto linear = mpr_test::plane_images(cams, 12.0);
   std::vector<mpr::Image<mpr::Rgb8>> images;
@@ -530,7 +530,7 @@ TEMPLATE_TEST_CASE("output at a whole fraction of the cameras' scale gives the p
     images.push_back(std::move(px));
   }
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
-  for (const T step : {T(2), T(3), T(1.5)}) {
+  for (const T step : {T(2), T(3), T(0.75), T(1.5), T(2.4)}) {
     INFO("camera pixels per output pixel: " << step);
     mpr::Mat3<T> K = cams[0].K();
     K(0, 0) /= step;

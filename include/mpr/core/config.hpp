@@ -24,6 +24,8 @@
 /// | `MPR_TARGET_AVX2`     | `target("avx2,fma")` attribute (only with `MPR_SIMD_X86`)       |
 /// | `MPR_TARGET_AVX512`   | `target("avx512f,avx512bw,avx512vl,avx512dq,fma")` attribute,   |
 /// |                       | on GCC also preferring 512-bit vectors (only with MPR_SIMD_X86) |
+/// | `MPR_TARGET_AVX512_VBMI` | the AVX-512 attribute plus `avx512vbmi` (byte permutes; run   |
+/// |                       | time check `cpu_has_avx512_vbmi()`, only with MPR_SIMD_X86)     |
 /// | `MPR_TARGET_AVX2_NOFMA` | `target("avx2")` attribute, no FMA: the compiler cannot fuse a  |
 /// |                       | multiply-add, so results equal the SSE2 ones (BVH packet walk)  |
 /// | `MPR_BVH_PACKET_AVX2` | 1 with `MPR_SIMD_X86` and `MPR_BVH_SSE`: the BVH's packet walk  |
@@ -82,6 +84,9 @@
 // that gain from the full width.
 #define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
 #endif
+// AVX-512 with the byte permutes of VBMI (Ice Lake, Zen 4 and later): kernels that pick bytes
+// across 128-byte windows; checked at run time with `cpu_has_avx512_vbmi()`.
+#define MPR_TARGET_AVX512_VBMI __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,avx512vbmi,fma,avx2")))
 #endif
 
 // SSE2 is part of x86-64, so the BVH's 4-wide float kernels need no run-time check.

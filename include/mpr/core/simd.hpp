@@ -38,6 +38,17 @@ enum class SimdLevel { portable = 0, avx2 = 1, avx512 = 2 };
   return level;
 }
 
+/// Whether the CPU has AVX-512 VBMI (byte permutes) on top of the `avx512` level (checked once).
+/// Kernels that use it take it as an extra step of that level and fall back without it.
+[[nodiscard]] inline bool cpu_has_avx512_vbmi() noexcept {
+#if defined(MPR_SIMD_X86)
+  static const bool vbmi = cpu_simd_level() == SimdLevel::avx512 && __builtin_cpu_supports("avx512vbmi");
+  return vbmi;
+#else
+  return false;
+#endif
+}
+
 /// The widest kernel set this CPU runs, lowered by `MPR_SIMD` when set (checked once).
 /// `MPR_SIMD` only ever lowers the choice: `avx512` (or `avx2` on a CPU without AVX-512) and any
 /// other value leave it as detected. It is read on the render path, which must not throw, so an

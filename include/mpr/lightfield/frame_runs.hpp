@@ -9,6 +9,7 @@
 
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/detail/projective_row.hpp>
+#include <mpr/lightfield/detail/resample_row.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
@@ -86,7 +87,7 @@ public:
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
       if (e.texels == static_cast<const void*>(texels) && e.m == m && e.stride == stride &&
-          std::abs(e.ax - ax) <= 1e-4f) {
+          std::abs(e.ax - static_cast<double>(ax)) <= 1e-4) {
         last_ = k;
         return e.h.data();
       }
@@ -111,6 +112,39 @@ public:
     return e.h.data();
   }
 
+  /// The `pixels` pixels of the camera row `texels` (of `width` texels; 8-bit codes decoded by
+  /// `lut`) at positions x + s i (`detail::resample_row`), computed or kept; nullptr when memory
+  /// runs out. Reuse needs the same row and length, x within 1e-4 pixel and s within 1e-4 pixel
+  /// over the row.
+  template <class C>
+  [[nodiscard]] const float* resampled(const C* texels, std::size_t width, const std::uint16_t* lut, std::size_t pixels,
+                                       double x, double s, float scale) noexcept {
+    const std::size_t m = 3 * pixels;
+    for (int k = 0; k < 2; ++k) {
+      const Entry& e = entries_[k];
+      if (e.texels == static_cast<const void*>(texels) && e.m == m && e.stride == 0 && std::abs(e.ax - x) <= 1e-4 &&
+          std::abs(e.step - s) * static_cast<double>(pixels) <= 1e-4) {
+        last_ = k;
+        return e.h.data();
+      }
+    }
+    last_ ^= 1;
+    Entry& e = entries_[last_];
+    try {
+      if (e.h.size() < m) e.h.resize(m);
+    } catch (...) {
+      e.texels = nullptr;
+      return nullptr;
+    }
+    detail::resample_row(texels, width, lut, x, s, scale, e.h.data(), pixels);
+    e.texels = texels;
+    e.m = m;
+    e.stride = 0; // marks a resampled row
+    e.ax = x;
+    e.step = s;
+    return e.h.data();
+  }
+
   /// Forgets every row (call before rows of other frames, or texels that may have changed).
   void clear() noexcept {
     for (Entry& e : entries_) e.texels = nullptr;
@@ -119,13 +153,59 @@ public:
 private:
   struct Entry {
     const void* texels = nullptr;
-    std::size_t m = 0, stride = 1;
-    float ax = 0;
+    std::size_t m = 0, stride = 1; // stride 0: a row of `resampled`
+    double ax = 0, step = 0;
     std::vector<float> h;
   };
   Entry entries_[2];
   int last_ = 0;
 };
+
+namespace detail {
+// The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy + 1 (ay the
+// vertical offset): pixels whose texel pairs lie inside the row are blended from two resampled
+// rows (`LerpRowCache::resampled`), the others go ray by ray. False when none lies inside.
+template <std::floating_point T, class Px>
+bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
+                         const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
+                         float* weight, const float* ray_weight, LerpRowCache* cache) noexcept {
+  using texel_type = typename FrameTable<T, Px>::texel_type;
+  // Pixels i with 0 <= x0 + step i <= width - 1: [first, last).
+  const T right = static_cast<T>(c.width - 1);
+  std::size_t first = x0 >= 0 ? 0 : static_cast<std::size_t>(std::min(std::ceil(-x0 / step), static_cast<T>(n)));
+  while (first < n && x0 + step * static_cast<T>(first) < 0) ++first;
+  while (first > 0 && x0 + step * static_cast<T>(first - 1) >= 0) --first;
+  std::size_t last =
+      x0 > right ? 0 : static_cast<std::size_t>(std::min(std::floor((right - x0) / step) + 1, static_cast<T>(n)));
+  while (last > first && x0 + step * static_cast<T>(last - 1) > right) --last;
+  while (last < n && x0 + step * static_cast<T>(last) <= right) ++last;
+  if (first >= last) return false;
+  table.add_per_ray(c, points, first, acc, weight, ray_weight);
+  table.add_per_ray(c, points + last, n - last, acc + 3 * last, weight + last,
+                    ray_weight != nullptr ? ray_weight + last : nullptr);
+  thread_local LerpRowCache own;
+  LerpRowCache& rows = cache != nullptr ? *cache : own;
+  if (cache == nullptr) own.clear();
+  const std::size_t m = last - first;
+  const double x = static_cast<double>(x0) + static_cast<double>(step) * static_cast<double>(first);
+  const auto* row0 = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width].c;
+  const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
+  const std::uint16_t* lut = texel_decode_table<texel_type>();
+  const std::size_t width = static_cast<std::size_t>(c.width);
+  const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale);
+  const float* h1 =
+      h0 != nullptr ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale) : nullptr;
+  const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
+  if (h1 == nullptr) { // out of memory
+    table.add_per_ray(c, points + first, m, acc + 3 * first, weight + first, rw);
+    return true;
+  }
+  blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * first, m);
+  for (std::size_t i = first; i < last; ++i)
+    if (ray_weight == nullptr || ray_weight[i] > 0) weight[i] += ray_weight != nullptr ? ray_weight[i] : 1.0f;
+  return true;
+}
+} // namespace detail
 
 /// Camera c's contribution to a run of n evenly spaced points by shift-and-add: when c sees the
 /// run one camera pixel apart along its rows (checked at both ends and the middle against the
@@ -147,21 +227,29 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     return false;
   const T span = static_cast<T>(n - 1);
   constexpr T kTolerance = T(1e-3);
-  // The step along the camera row: one pixel, or (8-bit codes, separable form) a whole number
-  // of pixels, e.g. 2 for output at half the cameras' scale.
+  // The step along the camera row: one pixel, or (separable form: 8-bit codes, or a cache) a
+  // whole number of pixels, e.g. 2 for output at half the cameras' scale, or any step up to
+  // `detail::kResampleMaxStep` (a resampled row, e.g. a 960x540 view of 1400x800 cameras).
   constexpr bool codes = std::is_same_v<typename texel_type::channel_type, std::uint8_t>;
-  const T steps = std::round((x1 - x0) / span);
-  if (!(steps >= 1 && steps <= (codes || cache != nullptr ? T(8) : T(1)))) return false;
-  const std::size_t stride = static_cast<std::size_t>(steps);
-  if (!(std::abs(x1 - x0 - steps * span) <= kTolerance && std::abs(y1 - y0) <= kTolerance)) return false;
-  if (!(std::abs(xm - x0 - steps * static_cast<T>(n / 2)) <= kTolerance && std::abs(ym - y0) <= kTolerance))
-    return false;
+  const bool separable = codes || cache != nullptr;
+  if (!(std::abs(y1 - y0) <= kTolerance && std::abs(ym - y0) <= kTolerance)) return false;
+  const T step = (x1 - x0) / span, steps = std::round(step);
+  const bool whole = steps >= 1 && steps <= (separable ? T(8) : T(1)) &&
+                     std::abs(x1 - x0 - steps * span) <= kTolerance &&
+                     std::abs(xm - x0 - steps * static_cast<T>(n / 2)) <= kTolerance;
+  const bool resample = !whole && separable && step > 0 && step <= T(detail::kResampleMaxStep) &&
+                        std::abs(xm - x0 - step * static_cast<T>(n / 2)) <= kTolerance;
+  if (!whole && !resample) return false;
   // Rows wholly above or below the image: nothing to add (every per-ray y is outside too).
   if (y0 < T(-0.5) - kTolerance || y0 >= static_cast<T>(c.height) - T(0.5) + kTolerance) return true;
   const T fx = std::floor(x0), fy = std::floor(y0);
   if (!(std::abs(fx) < T(1e8))) return false; // keeps the integer conversion in range
   const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
   if (iy < 0 || iy + 1 > c.height - 1) return false; // the clamped border rows: per ray
+  if (resample)
+    return detail::shift_add_resampled(table, c, points, n, x0, step, iy, static_cast<float>(y0 - fy), acc, weight,
+                                       ray_weight, cache);
+  const std::size_t stride = static_cast<std::size_t>(steps);
   // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
   // and added; the others (near or past the left and right edges) go ray by ray.
   const long k = static_cast<long>(stride);

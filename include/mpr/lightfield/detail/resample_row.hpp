@@ -1,0 +1,158 @@
+#pragma once
+/// \file
+/// One camera row resampled at evenly spaced positions x + s i, any step s: the horizontal half
+/// of a separable bilinear shift-and-add when the output is not at the cameras' scale (a focal
+/// plane parallel to the camera plane seen at another pixel spacing, e.g. a 960x540 view of
+/// 1400x800 cameras). Plain C++ for every level, and on AVX-512 with VBMI a step that picks each
+/// group of 16 pixels' texel pairs out of a 128-byte window of 8-bit codes with byte permutes,
+/// decodes them to linear light in registers and interpolates them (no gathers).
+
+#include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+namespace mpr::detail {
+
+/// The largest step (camera pixels per output pixel) of the hand-written step: 16 pixels then
+/// span at most 3 (15 s + 3) bytes of codes, inside its 128-byte window.
+inline constexpr double kResampleMaxStep = 2.5;
+
+/// h[3 i + k] = scale ((1 - f) v(row[3 j + k]) + f v(row[3 j + 3 + k])) for pixels i in [0, n),
+/// where x_i = x + s i (camera pixels, texel centres at integers), j = floor(x_i) clamped to
+/// [0, texels - 2] and f = x_i - j clamped to [0, 1]; v = `channel_value`. `row` holds `texels`
+/// flat RGB texels (3 texels channels). Preconditions: texels >= 2, x >= 0, 0 < s.
+template <class C>
+MPR_ALWAYS_INLINE void resample_row_portable(const C* MPR_RESTRICT row, std::size_t texels,
+                                             const std::uint16_t* MPR_RESTRICT lut, double x, double s, float scale,
+                                             float* MPR_RESTRICT h, std::size_t n) noexcept {
+  const double last_pair = static_cast<double>(texels) - 2;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = x + s * static_cast<double>(i);
+    const double j = std::clamp(std::floor(xi), 0.0, last_pair);
+    const float f = static_cast<float>(std::clamp(xi - j, 0.0, 1.0));
+    const C* a = row + 3 * static_cast<std::size_t>(j);
+    for (int k = 0; k < 3; ++k)
+      h[3 * i + k] = scale * ((1 - f) * channel_value(a[k], lut) + f * channel_value(a[k + 3], lut));
+  }
+}
+
+#if defined(MPR_SIMD_X86)
+// Constant patterns of the VBMI step. Its three 32-code blocks hold the 96 codes of 16 pixels'
+// texel pairs as 16-bit lanes: first the left texels' r g b of pixels 0..15, then the right
+// ones'. Code c of a block comes from window byte 3 d_p + (c mod 3) + 3 [right], d_p the pixel's
+// texel offset from the group's first texel: `pixel` holds p per even byte (odd bytes are
+// zeroed), `offset` the constant part; `lane_pixel` maps each float lane of a 16-code block to
+// its pixel (for the fractions).
+struct ResamplePatterns {
+  std::uint8_t pixel[3][64];
+  std::uint8_t offset[3][64];
+  std::int32_t lane_pixel[3][16];
+};
+
+constexpr ResamplePatterns make_resample_patterns() noexcept {
+  ResamplePatterns p{};
+  for (int k = 0; k < 3; ++k) {
+    for (int b = 0; b < 64; b += 2) {
+      const int c = 32 * k + b / 2;
+      p.pixel[k][b] = static_cast<std::uint8_t>((c % 48) / 3);
+      p.offset[k][b] = static_cast<std::uint8_t>(c % 3 + (c >= 48 ? 3 : 0));
+    }
+    for (int l = 0; l < 16; ++l) p.lane_pixel[k][l] = (16 * k + l) / 3;
+  }
+  return p;
+}
+
+inline constexpr ResamplePatterns kResamplePatterns = make_resample_patterns();
+
+// 16-bit lanes 0-15 or 16-31 of v as floats.
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512 words_low_ps(__m512i v) noexcept {
+  return _mm512_maskz_cvtepi32_ps(0xFFFF,
+                                  _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 0)));
+}
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512 words_high_ps(__m512i v) noexcept {
+  return _mm512_maskz_cvtepi32_ps(0xFFFF,
+                                  _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 1)));
+}
+
+// The bytes [start, start + 64) of a row of `bytes` bytes, zero past its end (masked: nothing
+// past the end is touched).
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512i load_window64(const std::uint8_t* row, std::size_t start,
+                                                               std::size_t bytes) noexcept {
+  if (start >= bytes) return _mm512_setzero_si512();
+  const std::size_t left = bytes - start;
+  if (left >= 64) return _mm512_loadu_si512(row + start);
+  const __mmask64 k = left >= 64 ? ~__mmask64(0) : (__mmask64(1) << left) - 1;
+  return _mm512_maskz_loadu_epi8(k, row + start);
+}
+
+// `resample_row_portable` for 8-bit codes, 16 pixels a step. Precondition: s <= kResampleMaxStep.
+MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* row, std::size_t texels,
+                                                           const std::uint16_t* lut, double x, double s, float scale,
+                                                           float* h, std::size_t n) noexcept {
+  const Decode16x512 d = load_decode16(lut);
+  __m512i pixel[3], offset[3], lane_pixel[3];
+  for (int k = 0; k < 3; ++k) {
+    pixel[k] = _mm512_loadu_si512(kResamplePatterns.pixel[k]);
+    offset[k] = _mm512_loadu_si512(kResamplePatterns.offset[k]);
+    lane_pixel[k] = _mm512_loadu_si512(kResamplePatterns.lane_pixel[k]);
+  }
+  const __m512 lanes = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512 step = _mm512_set1_ps(static_cast<float>(s)), vscale = _mm512_set1_ps(scale);
+  const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+  const long last_pair = static_cast<long>(texels) - 2;
+  const std::size_t bytes = 3 * texels;
+  for (std::size_t i = 0; i < n; i += 16) {
+    // The group's first texel j0 in double; the lanes' offsets from it in float (below 40).
+    const double xg = x + s * static_cast<double>(i);
+    const long j0 = std::clamp(static_cast<long>(std::floor(xg)), 0L, last_pair);
+    const __m512 xl = _mm512_fmadd_ps(step, lanes, _mm512_set1_ps(static_cast<float>(xg - static_cast<double>(j0))));
+    __m512i jl = _mm512_maskz_cvttps_epi32(0xFFFF, _mm512_maskz_max_ps(0xFFFF, xl, zero));
+    jl = _mm512_maskz_min_epi32(0xFFFF, jl, _mm512_set1_epi32(static_cast<int>(std::min(last_pair - j0, 40L))));
+    const __m512 f = _mm512_maskz_min_ps(
+        0xFFFF, _mm512_maskz_max_ps(0xFFFF, _mm512_sub_ps(xl, _mm512_maskz_cvtepi32_ps(0xFFFF, jl)), zero), one);
+    const __m128i jb = _mm512_maskz_cvtepi32_epi8(0xFFFF, jl);
+    const __m512i j3 = _mm512_maskz_broadcast_i32x4(0xFFFF, _mm_add_epi8(jb, _mm_add_epi8(jb, jb)));
+    const std::size_t start = 3 * static_cast<std::size_t>(j0);
+    const __m512i lo = load_window64(row, start, bytes), hi = load_window64(row, start + 64, bytes);
+    __m512i v[3];
+    for (int k = 0; k < 3; ++k) {
+      const __m512i index = _mm512_add_epi8(_mm512_maskz_permutexvar_epi8(~__mmask64(0), pixel[k], j3), offset[k]);
+      v[k] = decode16x32(d, _mm512_maskz_permutex2var_epi8(0x5555555555555555ull, lo, index, hi));
+    }
+    const __m512 left[3] = {words_low_ps(v[0]), words_high_ps(v[0]), words_low_ps(v[1])};
+    const __m512 right[3] = {words_high_ps(v[1]), words_low_ps(v[2]), words_high_ps(v[2])};
+    const std::size_t count = 3 * std::min<std::size_t>(16, n - i); // floats to store
+    for (int k = 0; k < 3; ++k) {
+      const __m512 fk = _mm512_maskz_permutexvar_ps(0xFFFF, lane_pixel[k], f);
+      const __m512 value = _mm512_mul_ps(vscale, _mm512_fmadd_ps(fk, _mm512_sub_ps(right[k], left[k]), left[k]));
+      const std::size_t first = 16 * static_cast<std::size_t>(k);
+      if (count >= first + 16)
+        _mm512_storeu_ps(h + 3 * i + first, value);
+      else if (count > first)
+        _mm512_mask_storeu_ps(h + 3 * i + first, static_cast<__mmask16>((1u << (count - first)) - 1), value);
+    }
+  }
+}
+#endif
+
+/// `resample_row_portable`, with the VBMI step for 8-bit codes when `level` is `avx512`, the CPU
+/// has VBMI and s <= `kResampleMaxStep`.
+template <class C>
+inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* lut, double x, double s, float scale,
+                         float* h, std::size_t n, SimdLevel level = simd_level()) noexcept {
+#if defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep)
+      return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n);
+#endif
+  (void)level;
+  resample_row_portable(row, texels, lut, x, s, scale, h, n);
+}
+
+} // namespace mpr::detail
