@@ -21,11 +21,11 @@
 /// K's coordinates. The camera's radial distortion is not modelled (straight lines stay straight):
 /// a distorted camera is rejected.
 
+#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
-#include <mpr/camera/pinhole_camera.hpp>
 #include <mpr/scene/scene.hpp>
 
 #include <algorithm>
@@ -176,12 +176,12 @@ void rasterize(const Scene<T>& scene, const PinholeCamera<T>& camera, ImageView<
       const Eigen::Vector3d c0 = (R * tri.p[0] + t).template cast<double>();
       const Eigen::Vector3d e1 = (R * tri.p[1] + t).template cast<double>() - c0;
       const Eigen::Vector3d e2 = (R * tri.p[2] + t).template cast<double>() - c0;
-      const Eigen::Vector3d n = e1.cross(e2);
-      const double nn = n.squaredNorm();
-      const double d = n.dot(c0);
-      if (!(nn > 0) || d == 0 || !std::isfinite(d)) continue; // seen edge-on: covers no area
-      const Eigen::Vector3d abc = K_inverse.transpose() * n;  // n . (K^-1 (x, y, 1))
-      const Eigen::Vector3d g1 = e2.cross(n) / nn, g2 = n.cross(e1) / nn;
+      const Eigen::Vector3d normal = e1.cross(e2);
+      const double nn = normal.squaredNorm();
+      const double d = normal.dot(c0);
+      if (!(nn > 0) || d == 0 || !std::isfinite(d)) continue;     // seen edge-on: covers no area
+      const Eigen::Vector3d abc = K_inverse.transpose() * normal; // n . (K^-1 (x, y, 1))
+      const Eigen::Vector3d g1 = e2.cross(normal) / nn, g2 = normal.cross(e1) / nn;
       planes.push_back({abc.x(),
                         abc.y(),
                         abc.z(),

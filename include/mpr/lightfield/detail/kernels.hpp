@@ -332,9 +332,11 @@ MPR_ALWAYS_INLINE bool evenly_spaced_body(const T* MPR_RESTRICT x, const T* MPR_
   int bad = 0;
   for (int i = 1; i < n - 1; ++i) {
     const T t = static_cast<T>(i);
-    const bool good = (std::abs(x[i] - (x0 + t * sx)) <= tolerance) & (std::abs(y[i] - (y0 + t * sy)) <= tolerance) &
-                      (std::abs(z[i] - (z0 + t * sz)) <= tolerance);
-    bad |= good ? 0 : 1;
+    // `&` of ints, not `&&`: no branch, so the loop vectorises.
+    const int good = static_cast<int>(std::abs(x[i] - (x0 + t * sx)) <= tolerance) &
+                     static_cast<int>(std::abs(y[i] - (y0 + t * sy)) <= tolerance) &
+                     static_cast<int>(std::abs(z[i] - (z0 + t * sz)) <= tolerance);
+    bad |= good ^ 1;
   }
   return bad == 0;
 }
