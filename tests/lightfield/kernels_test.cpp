@@ -554,11 +554,29 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
       for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
       std::vector<float> acc0(m + kGuard, kSentinel<float>);
       for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
-      for (const Kernel k : kernels())
+      // Every level, and on a CPU with VBMI (whose avx512 level decodes with byte permutes) the
+      // word-permute AVX-512 kernel of CPUs without it as well (`plain512`).
+      std::vector<std::pair<Kernel, bool>> variants;
+      for (const Kernel k : kernels()) variants.push_back({k, false});
+#if defined(MPR_SIMD_X86)
+      if (std::is_same_v<C, std::uint8_t> && cpu_avx512() && mpr::detail::cpu_has_avx512_vbmi())
+        variants.push_back({Kernel::avx512, true});
+#endif
+      for (const std::pair<Kernel, bool>& variant : variants)
         for (int weighted = 0; weighted < 2; ++weighted) {
+          const Kernel k = variant.first;
+          const bool plain512 = variant.second;
+          INFO((plain512 ? "AVX-512 without VBMI" : kernel_name(k)));
           std::vector<float> h0(m + kGuard, kSentinel<float>), h1(m + kGuard, kSentinel<float>);
-          mpr::detail::lerp_row(a.data(), lut, ax, scale, h0.data(), m, level(k));
-          mpr::detail::lerp_row(b.data(), lut, ax, scale, h1.data(), m, level(k));
+          const auto lerp = [&](const std::vector<C>& row, std::vector<float>& h) {
+#if defined(MPR_SIMD_X86)
+            if constexpr (std::is_same_v<C, std::uint8_t>)
+              if (plain512) return mpr::detail::lerp_row_codes_avx512(row.data(), lut, ax, scale, h.data(), m);
+#endif
+            mpr::detail::lerp_row(row.data(), lut, ax, scale, h.data(), m, level(k));
+          };
+          lerp(a, h0);
+          lerp(b, h1);
           std::vector<float> acc = acc0;
           mpr::detail::blend_rows(h0.data(), h1.data(), 1 - ay, ay, weighted ? rw.data() : nullptr, acc.data(), n,
                                   level(k));

@@ -19,6 +19,7 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/geometry/detail/plane_kernels.hpp>
+#include <mpr/lightfield/detail/decode_vbmi.hpp>
 
 namespace mpr::detail {
 
@@ -155,13 +156,16 @@ MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const
 }
 #endif
 
-/// `lerp_row_portable` at `level`, with the hand-written AVX-512 step for 8-bit codes.
+/// `lerp_row_portable` at `level`, with the hand-written AVX-512 step for 8-bit codes (its VBMI
+/// form where the CPU has it).
 template <class C>
 inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale, float* h, std::size_t m,
                      SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
-  if constexpr (std::is_same_v<C, std::uint8_t>)
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m);
     if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m);
+  }
 #endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m); });
 }

@@ -8,6 +8,7 @@
 /// decodes them to linear light in registers and interpolates them (no gathers).
 
 #include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/decode_vbmi.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 
 #include <algorithm>
@@ -43,42 +44,32 @@ MPR_ALWAYS_INLINE void resample_row_portable(const C* MPR_RESTRICT row, std::siz
 }
 
 #if defined(MPR_SIMD_X86)
-// Constant patterns of the VBMI step. Its three 32-code blocks hold the 96 codes of 16 pixels'
-// texel pairs as 16-bit lanes: first the left texels' r g b of pixels 0..15, then the right
-// ones'. Code c of a block comes from window byte 3 d_p + (c mod 3) + 3 [right], d_p the pixel's
-// texel offset from the group's first texel: `pixel` holds p per even byte (odd bytes are
-// zeroed), `offset` the constant part; `lane_pixel` maps each float lane of a 16-code block to
-// its pixel (for the fractions).
+// Constant patterns of the VBMI step. Its two 64-byte blocks hold the 96 codes of 16 pixels'
+// texel pairs (the second block half used): first the left texels' r g b of pixels 0..15, then
+// the right ones'. Code c comes from window byte 3 d_p + (c mod 3) + 3 [right], d_p the pixel's
+// texel offset from the group's first texel: `pixel` holds p per byte, `offset` the constant
+// part; `lane_pixel` maps each float lane of a 16-code vector to its pixel (for the fractions).
 struct ResamplePatterns {
-  std::uint8_t pixel[3][64];
-  std::uint8_t offset[3][64];
+  std::uint8_t pixel[2][64];
+  std::uint8_t offset[2][64];
   std::int32_t lane_pixel[3][16];
 };
 
 constexpr ResamplePatterns make_resample_patterns() noexcept {
   ResamplePatterns p{};
-  for (int k = 0; k < 3; ++k) {
-    for (int b = 0; b < 64; b += 2) {
-      const int c = 32 * k + b / 2;
+  for (int k = 0; k < 2; ++k)
+    for (int b = 0; b < 64; ++b) {
+      const int c = 64 * k + b;
+      if (c >= 96) break;
       p.pixel[k][b] = static_cast<std::uint8_t>((c % 48) / 3);
       p.offset[k][b] = static_cast<std::uint8_t>(c % 3 + (c >= 48 ? 3 : 0));
     }
+  for (int k = 0; k < 3; ++k)
     for (int l = 0; l < 16; ++l) p.lane_pixel[k][l] = (16 * k + l) / 3;
-  }
   return p;
 }
 
 inline constexpr ResamplePatterns kResamplePatterns = make_resample_patterns();
-
-// 16-bit lanes 0-15 or 16-31 of v as floats.
-MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512 words_low_ps(__m512i v) noexcept {
-  return _mm512_maskz_cvtepi32_ps(0xFFFF,
-                                  _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 0)));
-}
-MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512 words_high_ps(__m512i v) noexcept {
-  return _mm512_maskz_cvtepi32_ps(0xFFFF,
-                                  _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 1)));
-}
 
 // The bytes [start, start + 64) of a row of `bytes` bytes, zero past its end (masked: nothing
 // past the end is touched).
@@ -95,13 +86,13 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512i load_window64(const std::uint8_
 MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* row, std::size_t texels,
                                                            const std::uint16_t* lut, double x, double s, float scale,
                                                            float* h, std::size_t n) noexcept {
-  const Decode16x512 d = load_decode16(lut);
-  __m512i pixel[3], offset[3], lane_pixel[3];
-  for (int k = 0; k < 3; ++k) {
+  const DecodeBytes d = load_decode_bytes(lut);
+  __m512i pixel[2], offset[2], lane_pixel[3];
+  for (int k = 0; k < 2; ++k) {
     pixel[k] = _mm512_loadu_si512(kResamplePatterns.pixel[k]);
     offset[k] = _mm512_loadu_si512(kResamplePatterns.offset[k]);
-    lane_pixel[k] = _mm512_loadu_si512(kResamplePatterns.lane_pixel[k]);
   }
+  for (int k = 0; k < 3; ++k) lane_pixel[k] = _mm512_loadu_si512(kResamplePatterns.lane_pixel[k]);
   const __m512 lanes = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m512 step = _mm512_set1_ps(static_cast<float>(s)), vscale = _mm512_set1_ps(scale);
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
@@ -120,11 +111,12 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
     const __m512i j3 = _mm512_maskz_broadcast_i32x4(0xFFFF, _mm_add_epi8(jb, _mm_add_epi8(jb, jb)));
     const std::size_t start = 3 * static_cast<std::size_t>(j0);
     const __m512i lo = load_window64(row, start, bytes), hi = load_window64(row, start + 64, bytes);
-    __m512i v[3];
-    for (int k = 0; k < 3; ++k) {
+    __m512i v[4];
+    for (int k = 0; k < 2; ++k) {
       const __m512i index = _mm512_add_epi8(_mm512_maskz_permutexvar_epi8(~__mmask64(0), pixel[k], j3), offset[k]);
-      v[k] = decode16x32(d, _mm512_maskz_permutex2var_epi8(0x5555555555555555ull, lo, index, hi));
+      decode16x64(d, _mm512_permutex2var_epi8(lo, index, hi), v[2 * k], v[2 * k + 1]);
     }
+    // v: codes 0-31, 32-63, 64-95 (and 32 unused).
     const __m512 left[3] = {words_low_ps(v[0]), words_high_ps(v[0]), words_low_ps(v[1])};
     const __m512 right[3] = {words_high_ps(v[1]), words_low_ps(v[2]), words_high_ps(v[2])};
     const std::size_t count = 3 * std::min<std::size_t>(16, n - i); // floats to store
