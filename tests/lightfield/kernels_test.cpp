@@ -2,6 +2,7 @@
 // one and against a long-double reference, on many lengths (vector bodies and tails) and on
 // edge inputs; then the row paths of CameraFrameSampler that use them (nearest camera and
 // cylinder aperture on planar arrays) against brute force and against per-pixel `sample`.
+#include "lightfield/channel_values.hpp"
 #include "lightfield/frame_test_scenes.hpp"
 #include "simd_levels.hpp"
 
@@ -526,14 +527,10 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
   using C = TestType;
   std::mt19937_64 rng(1996 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
-  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? mpr::Srgb8Texel::linear16() : nullptr;
-  const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
-  const auto value = [&](C c) -> LD {
-    if constexpr (std::is_same_v<C, std::uint8_t>)
-      return LD(lut[c]);
-    else
-      return LD(c);
-  };
+  const mpr_test::ChannelValues<C> channels;
+  const std::uint16_t* lut = channels.lut;
+  const float scale = channels.scale;
+  const auto value = [&](C c) -> LD { return channels.value(c); };
   int failures = 0;
   for (const std::size_t n : kLengths)
     for (int trial = 0; trial < 3; ++trial) {

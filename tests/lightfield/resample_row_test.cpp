@@ -3,6 +3,7 @@
 // pixel (and past the VBMI step's limit, where the plain loop runs), positions that reach the
 // row's last texel pair and run past it (clamped), and lengths around the 16-pixel step. Nothing
 // past the row's end is written.
+#include "lightfield/channel_values.hpp"
 #include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
@@ -26,14 +27,10 @@ template <class C>
 void check_resample() {
   std::mt19937_64 rng(2026 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
-  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? mpr::Srgb8Texel::linear16() : nullptr;
-  const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
-  const auto value = [&](C c) -> LD {
-    if constexpr (std::is_same_v<C, std::uint8_t>)
-      return LD(lut[c]);
-    else
-      return LD(c);
-  };
+  const mpr_test::ChannelValues<C> channels;
+  const std::uint16_t* lut = channels.lut;
+  const float scale = channels.scale;
+  const auto value = [&](C c) -> LD { return channels.value(c); };
   constexpr float kSentinel = -12345.0f;
   constexpr std::size_t kGuard = 50;
   int failures = 0, cases = 0;
