@@ -30,7 +30,12 @@
 /// |                       | multiply-add, so results equal the SSE2 ones (BVH packet walk)  |
 /// | `MPR_BVH_PACKET_AVX2` | 1 with `MPR_SIMD_X86` and `MPR_BVH_SSE`: the BVH's packet walk  |
 /// |                       | has AVX2 kernels, chosen at run time; else 0                    |
+/// | `MPR_BVH_PACKET_AVX512` | 1 with `MPR_SIMD_X86` and `MPR_BVH_SSE`: the BVH's packet walk |
+/// |                       | has AVX-512 kernels (explicit rounding, never fused), chosen at |
+/// |                       | run time; else 0                                                |
 /// | `MPR_ALWAYS_INLINE`   | `inline` that always inlines (GCC/Clang), for kernel bodies     |
+/// | `MPR_NOINLINE`        | never inlined (GCC/Clang): keeps code compiled without FMA out  |
+/// |                       | of the AVX-512 kernels that call it                             |
 /// | `MPR_INLINE_LAMBDA`   | always-inline attribute for the lambdas handed to `run_at`      |
 /// | `MPR_RESTRICT`        | `__restrict__` (GCC/Clang), else nothing                        |
 /// | `MPR_FLATTEN`         | `flatten` attribute (GCC/Clang): inline every call into the     |
@@ -51,6 +56,9 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define MPR_ALWAYS_INLINE __attribute__((always_inline)) inline
+/// Never inlined: a function compiled for a target without FMA keeps its values when called
+/// from one with FMA (inlined, its multiply-adds could be fused there).
+#define MPR_NOINLINE __attribute__((noinline))
 /// For the bodies handed to `run_at`: `[&]() MPR_INLINE_LAMBDA { ... }`.
 #define MPR_INLINE_LAMBDA __attribute__((always_inline))
 #define MPR_RESTRICT __restrict__
@@ -60,6 +68,7 @@
 #define MPR_FLATTEN __attribute__((flatten))
 #else
 #define MPR_ALWAYS_INLINE inline
+#define MPR_NOINLINE
 #define MPR_INLINE_LAMBDA
 #define MPR_RESTRICT
 #define MPR_FLATTEN
@@ -104,4 +113,12 @@
 #define MPR_BVH_PACKET_AVX2 1
 #else
 #define MPR_BVH_PACKET_AVX2 0
+#endif
+
+// Its AVX-512 kernels (bvh/detail/packet_kernels_avx512.hpp) likewise; they call the no-FMA
+// SSE leaf kernels for their scalar steps.
+#if defined(MPR_SIMD_X86) && MPR_BVH_SSE
+#define MPR_BVH_PACKET_AVX512 1
+#else
+#define MPR_BVH_PACKET_AVX512 0
 #endif

@@ -1,4 +1,5 @@
 #include "scene/bvh/bvh_test_util.hpp"
+#include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -38,32 +39,44 @@ std::vector<mpr::Ray<T>> block_rays(const mpr::PlanarSurface<T>& plane, const mp
   return rays;
 }
 
-/// Every packet kernel set there is for T: the portable one, and AVX2 for float when the CPU
-/// has it (called directly, whatever `MPR_SIMD` says).
+/// Which packet kernels `packet_hits` runs: those of a SIMD level (portable, AVX2, AVX-512;
+/// the x86 ones for float only, called directly whatever `MPR_SIMD` says), or `Bvh`'s choice.
+struct KernelSet {
+  bool bvh_choice = false;
+  mpr_test::SimdLevel level = mpr_test::SimdLevel::portable;
+};
+
+/// The hits of `rays` in packets of `sd::kPacketRays` with the kernels of `set`.
 template <class T>
 std::vector<mpr::scene::Hit<T>> packet_hits(const mpr::scene::Bvh<T>& bvh, const std::vector<mpr::Ray<T>>& rays,
-                                            int kernels, T t_max) {
+                                            KernelSet set, T t_max) {
   std::vector<mpr::scene::Hit<T>> hits(rays.size());
   for (std::size_t i = 0; i < rays.size(); i += sd::kPacketRays) {
     const std::size_t n = std::min<std::size_t>(sd::kPacketRays, rays.size() - i);
     const std::span<const mpr::Ray<T>> r(rays.data() + i, n);
     const std::span<mpr::scene::Hit<T>> h(hits.data() + i, n);
-    if (kernels == 0) {
-      sd::packet_closest_hits_with<sd::PortablePacketKernels<T>, sd::WalkKernels<T>>(bvh.tree(), r, h, t_max);
-    } else if (kernels == 1) {
+    if (set.bvh_choice) {
       bvh.closest_hits_coherent(r, h, t_max);
+    } else if (set.level == mpr_test::SimdLevel::portable || !std::is_same_v<T, float>) {
+      sd::packet_closest_hits_with<sd::PortablePacketKernels<T>, sd::WalkKernels<T>>(bvh.tree(), r, h, t_max);
     } else {
 #if MPR_BVH_PACKET_AVX2
       if constexpr (std::is_same_v<T, float>) {
         for (auto& x : h) x = mpr::scene::Hit<T>{t_max};
-        // Both set-ups: the portable one (any axes) and the AVX2 one (falls back more often).
+        // Both set-ups: the portable one (any axes) and the level's own (falls back more often).
+        const bool avx512 = set.level == mpr_test::SimdLevel::avx512;
         sd::RayPacket<T> p;
-        const bool formed = (i / sd::kPacketRays) % 2 == 0 ? sd::RayPacket<T>::make(r, h.data(), p)
-                                                           : sd::Avx2PacketKernels::make(r, t_max, p);
-        if (formed)
-          sd::packet_walk_avx2(bvh.tree(), p, h.data());
+        bool formed = false;
+        if ((i / sd::kPacketRays) % 2 == 0)
+          formed = sd::RayPacket<T>::make(r, h.data(), p);
         else
+          formed = avx512 ? sd::Avx512PacketKernels::make(r, t_max, p) : sd::Avx2PacketKernels::make(r, t_max, p);
+        if (!formed)
           for (std::size_t k = 0; k < n; ++k) h[k] = bvh.closest_hit(r[k], t_max);
+        else if (avx512)
+          sd::packet_walk_avx512(bvh.tree(), p, h.data());
+        else
+          sd::packet_walk_avx2(bvh.tree(), p, h.data());
       }
 #endif
     }
@@ -71,32 +84,31 @@ std::vector<mpr::scene::Hit<T>> packet_hits(const mpr::scene::Bvh<T>& bvh, const
   return hits;
 }
 
-int kernel_sets() {
-#if MPR_BVH_PACKET_AVX2
-  if (mpr::detail::cpu_simd_level() >= mpr::detail::SimdLevel::avx2) return 3;
-#endif
-  return 2;
-}
-
-/// Packets give every ray the single-ray hit bit for bit; returns the number of hits.
+/// Packets give every ray the single-ray hit bit for bit, with `Bvh`'s choice of kernels and
+/// those of every SIMD level this machine runs; returns the number of hits.
 template <class T>
 int check_same_hits(const mpr::scene::Bvh<T>& bvh, const std::vector<mpr::Ray<T>>& rays,
                     T t_max = std::numeric_limits<T>::infinity()) {
+  std::vector<mpr::scene::Hit<T>> want(rays.size());
   int hits = 0;
-  for (int kernels = 0; kernels < (std::is_same_v<T, float> ? kernel_sets() : 2); ++kernels) {
-    INFO("packet kernels " << kernels << " (0 portable, 1 Bvh's choice, 2 AVX2)");
-    const std::vector<mpr::scene::Hit<T>> got = packet_hits(bvh, rays, kernels, t_max);
-    int wrong = 0;
-    hits = 0;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-      const mpr::scene::Hit<T> want = bvh.closest_hit(rays[i], t_max);
-      hits += want.valid();
-      if (got[i].triangle != want.triangle || !same_bits(got[i].t, want.t) || !same_bits(got[i].b1, want.b1) ||
-          !same_bits(got[i].b2, want.b2))
-        ++wrong;
-    }
-    CHECK(wrong == 0);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    want[i] = bvh.closest_hit(rays[i], t_max);
+    hits += want[i].valid();
   }
+  const auto check = [&](KernelSet set) {
+    const std::vector<mpr::scene::Hit<T>> got = packet_hits(bvh, rays, set, t_max);
+    int wrong = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      if (got[i].triangle != want[i].triangle || !same_bits(got[i].t, want[i].t) || !same_bits(got[i].b1, want[i].b1) ||
+          !same_bits(got[i].b2, want[i].b2))
+        ++wrong;
+    CHECK(wrong == 0);
+  };
+  {
+    INFO("packet kernels: Bvh's choice");
+    check({.bvh_choice = true});
+  }
+  mpr_test::for_each_simd_level([&](mpr_test::SimdLevel level) { check({.level = level}); });
   return hits;
 }
 
@@ -162,6 +174,45 @@ TEMPLATE_TEST_CASE("packets: ties on shared edges and vertices go to the single-
   }
 }
 
+TEMPLATE_TEST_CASE("packets: coincident triangles tie at equal t, and the lowest index wins", "[scene][bvh][packet]",
+                   float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  // Three copies of a bumpy grid: every hit is a tie between three triangles with the same t
+  // bit for bit, in different leaves (one triangle per leaf) or in one leaf (four per leaf).
+  const mpr::scene::Scene<T> grid = bumpy_grid<T>(10);
+  mpr::scene::Mesh<T> copy;
+  for (const auto& tri : grid.triangles()) {
+    const auto first = static_cast<std::uint32_t>(copy.positions.size());
+    for (int j = 0; j < 3; ++j) copy.positions.push_back(tri.p[j]);
+    copy.triangles.push_back({first, first + 1, first + 2});
+  }
+  mpr::scene::Scene<T> scene;
+  for (int k = 0; k < 3; ++k) scene.add(copy);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<T> uni(0, 1);
+  std::vector<mpr::Ray<T>> rays;
+  for (const bool ortho : {false, true})
+    for (const auto& tri : grid.triangles()) {
+      const T a = uni(rng), b = uni(rng) * (1 - a);
+      const V target = tri.p[0] + a * (tri.p[1] - tri.p[0]) + b * (tri.p[2] - tri.p[0]);
+      const V eye = ortho ? V(target + V(T(0.3), T(7), T(-0.2))) : V(T(4.3), T(9), T(-3.1));
+      rays.push_back({eye, target - eye});
+    }
+  for (const int leaf : {1, 4}) {
+    INFO("max_leaf " << leaf);
+    const mpr::scene::Bvh<T> bvh(scene, {.bins = 16, .max_leaf = leaf, .traversal_cost = 1.0f});
+    CHECK(check_same_hits(bvh, rays) > 300);
+    // The reference itself: the first copy's triangle (the least index of the three).
+    int first_copy = 0;
+    for (const auto& ray : rays) {
+      const auto hit = bvh.closest_hit(ray);
+      first_copy += hit.valid() && hit.triangle < grid.triangles().size();
+    }
+    CHECK(first_copy > 300);
+  }
+}
+
 TEMPLATE_TEST_CASE("packets: mixed signs, degenerate rays and partial packets fall back or drop out",
                    "[scene][bvh][packet][bad_input]", float, double) {
   using T = TestType;
@@ -194,7 +245,7 @@ TEMPLATE_TEST_CASE("packets: mixed signs, degenerate rays and partial packets fa
   CHECK(p.active == 1U); // the zero direction hits nothing and is left out
 }
 
-TEMPLATE_TEST_CASE("packet beam: conservative for every ray, and the AVX2 kernels equal the portable ones",
+TEMPLATE_TEST_CASE("packet beam: conservative for every ray, and the AVX2 and AVX-512 kernels equal the portable ones",
                    "[scene][bvh][packet][simd]", float, double) {
   using T = TestType;
   using V = mpr::Vec3<T>;
@@ -228,18 +279,25 @@ TEMPLATE_TEST_CASE("packet beam: conservative for every ray, and the AVX2 kernel
       culled += (beam >> lane & 1U) == 0;
 #if MPR_BVH_PACKET_AVX2
       if constexpr (std::is_same_v<T, float>) {
-        if (mpr::detail::cpu_simd_level() >= mpr::detail::SimdLevel::avx2) {
+        if (mpr_test::runs(mpr_test::SimdLevel::avx2)) {
+          INFO("AVX2");
           sd::Avx2PacketKernels::Least entry;
           CHECK(sd::Avx2PacketKernels::rays(node, lane, p, p.active, entry) == m);
           if (m != 0) CHECK(sd::Avx2PacketKernels::least_value(entry) == t_min);
+        }
+        if (mpr_test::runs(mpr_test::SimdLevel::avx512)) {
+          INFO("AVX-512");
+          sd::Avx512PacketKernels::Least entry;
+          CHECK(sd::Avx512PacketKernels::rays(node, lane, p, p.active, entry) == m);
+          if (m != 0) CHECK(sd::Avx512PacketKernels::least_value(entry) == t_min);
         }
       }
 #endif
     }
 #if MPR_BVH_PACKET_AVX2
     if constexpr (std::is_same_v<T, float>) {
-      if (mpr::detail::cpu_simd_level() >= mpr::detail::SimdLevel::avx2)
-        CHECK(sd::Avx2PacketKernels::beam4(node, p, cull_max) == beam);
+      if (mpr_test::runs(mpr_test::SimdLevel::avx2)) CHECK(sd::Avx2PacketKernels::beam4(node, p, cull_max) == beam);
+      if (mpr_test::runs(mpr_test::SimdLevel::avx512)) CHECK(sd::Avx512PacketKernels::beam4(node, p, cull_max) == beam);
     }
 #endif
   }
@@ -248,10 +306,12 @@ TEMPLATE_TEST_CASE("packet beam: conservative for every ray, and the AVX2 kernel
 }
 
 #if MPR_BVH_PACKET_AVX2
-TEST_CASE("packet set-up: the AVX2 one computes the portable values", "[scene][bvh][packet][simd]") {
+namespace {
+
+/// The AVX2 (`level` avx2) or AVX-512 (avx512) set-up against `RayPacket<float>::make`.
+void check_simd_setup(mpr_test::SimdLevel level) {
   using T = float;
   using V = mpr::Vec3<T>;
-  if (mpr::detail::cpu_simd_level() < mpr::detail::SimdLevel::avx2) return;
   std::mt19937 rng(11);
   std::uniform_real_distribution<T> uni(-1, 1);
   const T nan = std::numeric_limits<T>::quiet_NaN();
@@ -271,8 +331,13 @@ TEST_CASE("packet set-up: the AVX2 one computes the portable values", "[scene][b
     const T t_max = k % 2 == 0 ? std::numeric_limits<T>::infinity() : T(3);
     std::vector<mpr::scene::Hit<T>> hits(n, mpr::scene::Hit<T>{t_max});
     sd::RayPacket<T> a, b;
-    const bool ok_avx = sd::Avx2PacketKernels::make(rays, t_max, b);
+    const bool ok_avx = level == mpr_test::SimdLevel::avx512 ? sd::Avx512PacketKernels::make(rays, t_max, b)
+                                                             : sd::Avx2PacketKernels::make(rays, t_max, b);
     const bool ok_portable = sd::RayPacket<T>::make(rays, hits.data(), a);
+    if (level == mpr_test::SimdLevel::avx512) {
+      sd::RayPacket<T> c;
+      CHECK(ok_avx == sd::Avx2PacketKernels::make(rays, t_max, c)); // the same packets refused
+    }
     if (!ok_avx) {
       ++refused;
       continue;
@@ -306,9 +371,19 @@ TEST_CASE("packet set-up: the AVX2 one computes the portable values", "[scene][b
       CHECK(same_bits(a.ox[r], b.ox[r]));
       CHECK(same_bits(a.oy[r], b.oy[r]));
       CHECK(same_bits(a.oz[r], b.oz[r]));
+      CHECK(same_bits(a.best[r], b.best[r]));
     }
   }
   CHECK(formed > 1000);
   CHECK(refused > 100);
+}
+
+} // namespace
+
+TEST_CASE("packet set-up: the AVX2 and AVX-512 ones compute the portable values", "[scene][bvh][packet][simd]") {
+  mpr_test::for_each_simd_level([](mpr_test::SimdLevel level) {
+    if (level == mpr_test::SimdLevel::portable) return;
+    check_simd_setup(level);
+  });
 }
 #endif

@@ -12,6 +12,7 @@
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
+#include <mpr/scene/bvh/detail/packet_kernels_avx512.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/packet.hpp>
 #include <mpr/scene/bvh/slab.hpp>
@@ -376,6 +377,20 @@ MPR_TARGET_AVX2_NOFMA inline void packet_walk_avx2(const BvhTree<float>& tree, R
 template <std::floating_point T>
 void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, std::span<Hit<T>> hits,
                          T t_max) noexcept {
+#if MPR_BVH_PACKET_AVX512
+  if constexpr (std::is_same_v<T, float>) {
+    if (mpr::detail::simd_level() >= mpr::detail::SimdLevel::avx512) {
+      for (Hit<T>& h : hits) h = Hit<T>{t_max};
+      RayPacket<T> p;
+      if (Avx512PacketKernels::make(rays, t_max, p)) {
+        packet_walk_avx512(tree, p, hits.data());
+      } else {
+        for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = closest_hit_walk<SseKernels>(tree, rays[r], t_max);
+      }
+      return;
+    }
+  }
+#endif
 #if MPR_BVH_PACKET_AVX2
   if constexpr (std::is_same_v<T, float>) {
     if (mpr::detail::simd_level() >= mpr::detail::SimdLevel::avx2) {
