@@ -3,7 +3,12 @@
 // the original 2004 system (pure virtual base classes). 500 x 500 rays, float and double.
 // Then the cost of the pixel-sampling policy (include/mpr/sampling/): the default PixelCentre
 // against Supersample<Stratified(1)> and Supersample<OwenSobol(1)> at one sample per pixel, and
-// OwenSobol at 16 (Mrays/s counts every sample's ray).
+// OwenSobol at 16 (Mrays/s counts every sample's ray). Last, issue 15's target "the
+// pixel-sampling policy costs nothing at 1 spp": the renderer with PixelCentre against the loop
+// the renderer ran before the policy existed, written out here (uv, point, ray, sample per pixel,
+// rows over threads), timed alternately in the same run, with the median of the per-pair time
+// ratios (renderer / direct; 1.00 = the same speed) and their spread. With one thread the times
+// are the rendering thread's CPU time, steadier than the wall clock on a shared machine.
 //
 // usage: renderer_loop [--quick]
 #include "bench_common.hpp"
@@ -11,8 +16,11 @@
 
 #include <mpr/mpr.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <memory>
+#include <vector>
 
 namespace {
 
@@ -85,6 +93,82 @@ void sampling_cost(int size, int repeats, int threads) {
   row("Supersample<OwenSobol(16)>, Mitchell", 16, mpr::Supersample(mpr::OwenSobol(16), mpr::MitchellFilter()));
 }
 
+/// Seconds of CPU time of the calling thread.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+/// Seconds of wall-clock time.
+double wall_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+/// The renderer (PixelCentre) against the pre-policy loop: `repeats` pairs, alternating which
+/// goes first, each pair's time ratio renderer / direct.
+void pixel_centre_vs_direct(int size, int repeats, int threads) {
+  using T = float;
+  const mpr::PlanarSurface<T> plane({-1, -1, 1}, {2, 0, 0}, {0, 2, 0});
+  const mpr::Vec3<T> eye(0, 0, 0);
+  const mpr::GlcSelector<T> glc(plane, plane.point_at({0, 0}) - eye, plane.point_at({1, 0}) - eye,
+                                plane.point_at({0, 1}) - eye);
+  const DirectionColor<T> sampler;
+  const mpr::Region region(0, 0, size, size);
+  const mpr::Renderer renderer(plane, glc, sampler, mpr::PixelCentre{});
+  mpr::Image<mpr::Color> a(size, size), b(size, size);
+  const auto with_renderer = [&] { renderer.render(a.view(), region, mpr::RenderOptions{threads}); };
+  // The renderer's loop before the pixel-sampling policy (a sampler without batch paths).
+  const auto direct = [&] {
+    mpr::ImageView<mpr::Color> out = b.view();
+    mpr::detail::parallel_rows(0, size, threads, [&](int y) noexcept {
+      mpr::Color* row = out.row(y);
+      for (int x = 0; x < size; ++x) {
+        const mpr::Pixel px{x, y};
+        const mpr::Vec2<T> uv = region.pixel_to_uv<T>(px);
+        const mpr::Vec3<T> point = plane.point_at(uv);
+        row[x] = sampler.sample(glc.ray_at(px, uv, point));
+      }
+    });
+  };
+  const auto clock = threads == 1 ? thread_cpu_seconds : wall_seconds;
+  const auto time = [&](const auto& fn) {
+    const double t0 = clock();
+    fn();
+    return clock() - t0;
+  };
+  with_renderer();
+  direct();
+  if (!(a == b)) {
+    std::fprintf(stderr, "renderer_loop: the renderer and the direct loop differ\n");
+    std::exit(1);
+  }
+  std::vector<double> tr, td, ratio;
+  for (int i = 0; i < repeats; ++i) {
+    double r = 0, d = 0;
+    if (i % 2 == 0) {
+      r = time(with_renderer);
+      d = time(direct);
+    } else {
+      d = time(direct);
+      r = time(with_renderer);
+    }
+    tr.push_back(r);
+    td.push_back(d);
+    ratio.push_back(r / d);
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  const double rays = double(size) * size;
+  std::printf("| %d | %s | %8.1f | %8.1f | %.3f (%.3f-%.3f) |\n", threads, threads == 1 ? "thread CPU" : "wall",
+              rays / median(tr) * 1e-6, rays / median(td) * 1e-6, median(ratio),
+              *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end()));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -101,5 +185,10 @@ int main(int argc, char** argv) {
   std::printf("\npixel sampling policy, float, %dx%d pixels, Mrays/s (every sample is a ray)\n\n", size, size);
   std::printf("| policy | threads | spp | Mrays/s |\n|---|---|---|---|\n");
   for (int threads : {1, 2}) sampling_cost(size, repeats, threads);
+  std::printf("\nrenderer with PixelCentre (1 spp) against the loop before the policy, float, %dx%d pixels, %d "
+              "alternating pairs; ratio = renderer time / direct time, median (min-max)\n\n",
+              size, size, repeats);
+  std::printf("| threads | clock | renderer Mrays/s | direct Mrays/s | ratio |\n|---|---|---|---|---|\n");
+  for (int threads : {1, 2}) pixel_centre_vs_direct(size, repeats, threads);
   return 0;
 }

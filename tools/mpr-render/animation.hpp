@@ -63,6 +63,13 @@ private:
   std::vector<Key> keys_;
 };
 
+/// An animatable value: a plain number is constant, otherwise Track::parse.
+inline Track parse_track(const std::string& text, const std::string& option) {
+  if (text.find(':') == std::string::npos && text.find('=') == std::string::npos)
+    return Track(parse_number(text, option));
+  return Track::parse(text, option);
+}
+
 /// The animation time of frame `index` of `frames`: 0 for the first, 1 for the last.
 [[nodiscard]] inline double frame_time(int index, int frames) noexcept {
   return frames <= 1 ? 0.0 : static_cast<double>(index) / (frames - 1);

@@ -1,29 +1,40 @@
 #pragma once
-// mpr-render's finite aperture (issue 15): --aperture SHAPE:SIZE[:DISTANCE] and
-// --focus D | DU,DV parsed into mpr::glc::FiniteAperture around each view's selector
+// mpr-render's finite aperture (issue 15): --aperture SHAPE:SIZE (SIZE animatable, e.g.
+// disc:0:0.5 opens the aperture over an animation), --lens-distance D and --focus D | DU,DV
+// parsed into mpr::glc::FiniteAperture around each view's selector
 // (include/mpr/glc/finite_aperture.hpp). Needs --spp N > 1: each sample gets its own aperture
 // point.
 
+#include "animation.hpp"
 #include "cli_args.hpp"
 
 #include <mpr/glc.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace mpr_cli {
 
+/// `v` as std::ostream writes a double (6 significant digits): "0.2", "4", "12.5".
+inline std::string format_number(double v) {
+  std::ostringstream text;
+  text << v;
+  return text.str();
+}
+
 /// A finite aperture: shape, size and lens-plane distance (world units), and the focus.
 struct ApertureSpec {
   mpr::glc::AnyAperture shape;
-  double size = 0;                ///< radius (disc, polygon), half side (square), sigma (gaussian)
+  Track size{0};                  ///< radius (disc, polygon), half side (square), sigma (gaussian); over the animation
   std::optional<double> distance; ///< lens plane behind the image plane; default: the plane's width
   std::vector<double> focus;      ///< {} (on the image plane), {D} or {DU, DV} in front of the image plane
 };
 
-/// --aperture SHAPE:SIZE[:DISTANCE]: SHAPE disc, square, gaussian or polygonN (N blades, 3 to 64).
+/// SHAPE of --aperture: disc, square, gaussian or polygonN (N blades, 3 to 64).
 inline mpr::glc::AnyAperture parse_aperture_shape(const std::string& name) {
   if (name == "disc") return mpr::glc::DiscAperture{};
   if (name == "square") return mpr::glc::SquareAperture{};
@@ -33,19 +44,25 @@ inline mpr::glc::AnyAperture parse_aperture_shape(const std::string& name) {
   throw mpr::argument_error("--aperture", "'" + name + "' is not disc, square, gaussian or polygonN (N = 3..64)");
 }
 
+/// --aperture SHAPE:SIZE, SIZE a number, FROM:TO or keyframes T=V,T=V,... (animation.hpp), each
+/// >= 0 (0: the pinhole).
 inline ApertureSpec parse_aperture(const std::string& text) {
-  const std::vector<std::string> parts = split(text, ':');
-  if (parts.size() < 2 || parts.size() > 3)
-    throw mpr::argument_error("--aperture", "'" + text + "' is not SHAPE:SIZE or SHAPE:SIZE:DISTANCE");
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos || colon + 1 == text.size())
+    throw mpr::argument_error("--aperture", "'" + text + "' is not SHAPE:SIZE, SHAPE:FROM:TO or SHAPE:T=V,T=V,...");
   ApertureSpec spec;
-  spec.shape = parse_aperture_shape(parts[0]);
-  spec.size = parse_number(parts[1], "--aperture");
-  if (!(spec.size >= 0)) throw mpr::argument_error("--aperture", "size " + parts[1] + " is negative");
-  if (parts.size() == 3) {
-    spec.distance = parse_number(parts[2], "--aperture");
-    if (!(*spec.distance > 0)) throw mpr::argument_error("--aperture", "distance " + parts[2] + " must be positive");
-  }
+  spec.shape = parse_aperture_shape(text.substr(0, colon));
+  spec.size = parse_track(text.substr(colon + 1), "--aperture");
+  for (const Track::Key& k : spec.size.keys())
+    if (!(k.value >= 0)) throw mpr::argument_error("--aperture", "size " + format_number(k.value) + " is negative");
   return spec;
+}
+
+/// --lens-distance D: the lens plane D > 0 behind the image plane (world units).
+inline double parse_lens_distance(const std::string& text) {
+  const double d = parse_number(text, "--lens-distance");
+  if (!(d > 0)) throw mpr::argument_error("--lens-distance", text + " must be positive");
+  return d;
 }
 
 /// --focus D (anastigmatic, at D in front of the image plane) or DU,DV (astigmatic).
@@ -75,30 +92,52 @@ mpr::glc::Mat2<T> focus_matrix(const ApertureSpec& spec, T h) {
   }
 }
 
-/// `selector` with the finite aperture of `spec` on `plane`; a view whose rays run parallel to
-/// the image plane (no focal-plane crossing) is refused naming --focus.
+/// `selector` with the finite aperture of `spec`, opened to `size` (the frame's value of
+/// spec.size), on `plane`. A view whose rays run (nearly) parallel to the image plane, and so
+/// to its lens and focal planes, is refused naming --focus (--aperture when no --focus was given).
 template <std::floating_point T, class Selector>
 mpr::glc::FiniteAperture<Selector, mpr::glc::AnyAperture>
-with_aperture(const ApertureSpec& spec, const mpr::PlanarSurface<T>& plane, const Selector& selector) {
+with_aperture(const ApertureSpec& spec, double size, const mpr::PlanarSurface<T>& plane, const Selector& selector) {
   const T h = static_cast<T>(lens_distance(spec, plane.width_vector().norm()));
   const mpr::glc::Mat2<T> f = focus_matrix<T>(spec, h);
   try {
-    return {plane, selector, spec.shape, static_cast<T>(spec.size), h, f};
+    return {plane, selector, spec.shape, static_cast<T>(size), h, f};
   } catch (const mpr::argument_error& e) {
     if (e.parameter() != "focus") throw;
-    throw mpr::argument_error("--focus", "the view's rays run parallel to the image plane (no focal plane crossing)");
+    throw mpr::argument_error(spec.focus.empty() ? "--aperture" : "--focus",
+                              "the view's rays run parallel to the image plane, so they cross no focal plane "
+                              "(the lens and focal planes are parallel to the image plane)");
   }
 }
 
-/// The --print-camera line of the focus (glc::classify_focus) of `spec` on `plane`.
+/// The focus of `spec` on `plane` (glc::classify_focus) in words: "anastigmatic at depth 9",
+/// "astigmatic, focal lines at depths 4 and 12"; `brief`: "anastigmatic at 9", "astigmatic at 4
+/// and 12".
+template <std::floating_point T>
+std::string focus_text(const ApertureSpec& spec, const mpr::PlanarSurface<T>& plane, bool brief = false) {
+  const T h = static_cast<T>(lens_distance(spec, plane.width_vector().norm()));
+  const mpr::glc::FocusClassification<T> c = mpr::glc::classify_focus(focus_matrix<T>(spec, h), h);
+  std::string text(mpr::glc::to_string(c.type));
+  if (c.count == 1) text += (brief ? " at " : " at depth ") + format_number(static_cast<double>(c.depths[0]));
+  if (c.count == 2)
+    text += (brief ? " at " : ", focal lines at depths ") + format_number(static_cast<double>(c.depths[0])) + " and " +
+            format_number(static_cast<double>(c.depths[1]));
+  return text;
+}
+
+/// The --print-camera line of the focus (glc::classify_focus) of `spec` on `plane`, with the
+/// aperture size (its smallest and largest over an animation).
 template <std::floating_point T>
 void print_focus(std::ostream& out, const ApertureSpec& spec, const mpr::PlanarSurface<T>& plane) {
   const T h = static_cast<T>(lens_distance(spec, plane.width_vector().norm()));
-  const mpr::glc::FocusClassification<T> c = mpr::glc::classify_focus(focus_matrix<T>(spec, h), h);
-  out << "  focus: " << mpr::glc::to_string(c.type);
-  if (c.count == 1) out << " at depth " << c.depths[0];
-  if (c.count == 2) out << ", focal lines at depths " << c.depths[0] << " and " << c.depths[1];
-  out << " (aperture size " << spec.size << ", lens plane " << h << " behind the image plane)\n";
+  double lo = spec.size.keys().front().value, hi = lo;
+  for (const Track::Key& k : spec.size.keys()) {
+    lo = std::min(lo, k.value);
+    hi = std::max(hi, k.value);
+  }
+  out << "  focus: " << focus_text(spec, plane) << " (aperture size " << format_number(lo);
+  if (hi != lo) out << " to " << format_number(hi);
+  out << ", lens plane " << format_number(static_cast<double>(h)) << " behind the image plane)\n";
 }
 
 } // namespace mpr_cli

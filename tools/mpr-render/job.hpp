@@ -39,9 +39,10 @@ struct Job {
   int threads = 0;
   bool use_double = false;
   bool print_camera = false;
-  bool video = true; ///< also write an MP4 of an animation when ffmpeg is on PATH
-  int frames = 0;    ///< 0: a single image; N >= 1: an animation of N frames
-  double fps = 12;   ///< frame rate of the MP4 of an animation
+  bool labels = false; ///< --labels: each tile labelled with its GLC type (and focus)
+  bool video = true;   ///< also write an MP4 of an animation when ffmpeg is on PATH
+  int frames = 0;      ///< 0: a single image; N >= 1: an animation of N frames
+  double fps = 12;     ///< frame rate of the MP4 of an animation
   // Pixel sampling (pixel_sampling.hpp).
   int spp = 1;                          ///< samples per pixel (1: the pixel centre, as before)
   mpr::AnyFilter filter;                ///< reconstruction filter of spp > 1 (default: the box of radius 0.5)
@@ -78,13 +79,6 @@ struct Job {
   Track morph = Track::parse("0:1", "--morph"); ///< morph weight (0: the view, 1: morph_to)
 };
 
-/// An animatable value: a plain number is constant, otherwise Track::parse.
-inline Track parse_track(const std::string& text, const std::string& option) {
-  if (text.find(':') == std::string::npos && text.find('=') == std::string::npos)
-    return Track(parse_number(text, option));
-  return Track::parse(text, option);
-}
-
 /// True when the track takes more than one value over the animation.
 [[nodiscard]] inline bool animated(const Track& track) noexcept {
   for (const Track::Key& k : track.keys())
@@ -100,6 +94,7 @@ inline Track parse_track(const std::string& text, const std::string& option) {
   if (animated(job.tilt_y)) return "--tilt-y";
   if (animated(job.radius)) return "--radius";
   if (job.focal_depth && animated(*job.focal_depth)) return "--focal-depth";
+  if (job.aperture && animated(job.aperture->size)) return "--aperture";
   return "";
 }
 
@@ -111,7 +106,8 @@ inline void check_animation(const Job& job) {
     throw mpr::argument_error(option, "is animated (it changes over time): give --frames N to render N frames");
   if (option.empty() && job.frames > 0)
     throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
-                                          "--tilt-y, --radius, --focal-depth or --morph, or --morph-to VIEW)");
+                                          "--tilt-y, --radius, --focal-depth, --aperture's size or --morph, or "
+                                          "--morph-to VIEW)");
 }
 
 /// Builds the Job from a parsed command line; throws argument_error naming the option.
@@ -157,10 +153,15 @@ inline Job make_job(const ParsedArgs& args) {
     job.aperture = parse_aperture(*v);
     if (job.spp == 1) throw mpr::argument_error("--aperture", "needs --spp N with N > 1 (samples over the aperture)");
   }
+  if (const auto v = args.get("lens-distance")) {
+    if (!job.aperture) throw mpr::argument_error("--lens-distance", "needs --aperture SHAPE:SIZE");
+    job.aperture->distance = parse_lens_distance(*v);
+  }
   if (const auto v = args.get("focus")) {
     if (!job.aperture) throw mpr::argument_error("--focus", "needs --aperture SHAPE:SIZE");
     job.aperture->focus = parse_focus(*v);
   }
+  job.labels = args.has("labels");
   if (const auto v = args.get("fps")) {
     if (job.frames == 0) throw mpr::argument_error("--fps", "applies to animations (--frames N)");
     job.fps = parse_number(*v, "--fps");
@@ -303,6 +304,7 @@ inline Job make_job(const ParsedArgs& args) {
 /// The parameters of one frame.
 struct FrameParams {
   double tilt_x = 0, tilt_y = 0, radius = 10, focal_depth = 1, morph = 0;
+  double aperture_size = 0; ///< --aperture: the finite aperture's size in this frame
 };
 
 inline FrameParams frame_params(const Job& job, double default_focal_depth, double t) {
@@ -312,6 +314,7 @@ inline FrameParams frame_params(const Job& job, double default_focal_depth, doub
   p.radius = job.radius.at(t);
   p.focal_depth = job.focal_depth ? job.focal_depth->at(t) : default_focal_depth;
   p.morph = job.morph.at(t);
+  if (job.aperture) p.aperture_size = job.aperture->size.at(t);
   return p;
 }
 

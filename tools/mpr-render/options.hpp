@@ -38,15 +38,23 @@ inline const std::vector<OptionSpec>& options() {
        "Reconstruction filter of --spp N > 1: box, tent, gaussian, mitchell or lanczos, radius in pixels "
        "(defaults as in pbrt-v4: box 0.5, tent 2, gaussian 1.5, mitchell 2, lanczos 4).",
        "--size 320x240 --spp 16 --filter mitchell:2"},
-      {"aperture", "SHAPE:SIZE[:DISTANCE]",
+      {"aperture", "SHAPE:SIZE|SHAPE:A:B|SHAPE:T=V,...",
        "Finite aperture (Adams & Levoy 2007): disc, square, gaussian or polygonN (N blades), SIZE its radius "
-       "(half side, sigma) in world units, on a lens plane DISTANCE behind the image plane (default: the plane's "
-       "width). Needs --spp N > 1; focused on the image plane unless --focus.",
+       "(half side, sigma) in world units, >= 0 (0: the pinhole); animatable (SHAPE:0:0.5 opens it over --frames N). "
+       "Needs --spp N > 1; focused on the image plane unless --focus.",
        "--view A --spp 32 --aperture disc:0.3 --focus 9"},
+      {"lens-distance", "D",
+       "With --aperture: the lens plane's distance behind the image plane, world units (default: the image plane's "
+       "width).",
+       "--view A --spp 32 --aperture disc:0.3 --lens-distance 4 --focus 9"},
       {"focus", "D|DU,DV",
        "With --aperture: focus at distance D in front of the image plane (a refocused thin lens), or two focal lines "
        "(astigmatic: the horizontal direction sharp at DU, the vertical at DV); --print-camera names the focus.",
        "--view G --spp 32 --aperture polygon6:0.4 --focus 4,12 --print-camera"},
+      {"labels", "",
+       "Label each tile with its view, GLC type (mpr::glc::classify) and, with --aperture, its focus "
+       "(mpr::glc::classify_focus).",
+       "--layout 3x1 --views A,D,G --size 320x240 --spp 8 --aperture disc:0.3 --focus 9 --labels"},
       {"print-camera", "", "Print each view's GLC type, slits and centre (mpr::glc::classify) to stdout.",
        "--view G --print-camera"},
       {"scene", "classroom", "Sampler: the built-in classroom demo scene, ray cast through a BVH (default).",

@@ -5,7 +5,8 @@
 // below (its estimate, with a time estimate, is in the message); and every frame's cameras (and
 // sampler settings) of an animation are built once, so that a sweep that becomes impossible
 // partway (a tilt at which a corner ray runs parallel to the plane, a focal depth that
-// overflows) is refused before frame 1 is written.
+// overflows, a finite aperture whose rays cannot reach its lens plane) is refused before frame 1
+// is written.
 
 #include "framing.hpp"
 #include "job.hpp"
@@ -23,6 +24,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <variant>
 
 namespace mpr_cli {
 
@@ -109,6 +111,11 @@ void check_value_ranges(const Job& job) {
     for (const mpr::Vec3<double>& p : *job.rectify) require_in_range<T>(p, "--rectify");
   if (job.scene_centre) require_in_range<T>(*job.scene_centre, "--scene-centre");
   if (job.scene_scale) require_in_range<T>(*job.scene_scale, "--scene-scale");
+  if (job.aperture) {
+    require_in_range<T>(job.aperture->size, "--aperture");
+    if (job.aperture->distance) require_in_range<T>(*job.aperture->distance, "--lens-distance");
+    for (const double d : job.aperture->focus) require_in_range<T>(d, "--focus");
+  }
 }
 
 /// "frame 7 of 24: " for animations, "" for a single image.
@@ -159,7 +166,16 @@ void preflight(const Job& job, const Loaded<T>& l) {
                                                : std::string("no image plane: ")) +
                                       detail::nested(e));
       }
-      for (std::size_t k = 0; k < job.views.size(); ++k) (void)make_camera(job, l, p, k, w, h);
+      for (std::size_t k = 0; k < job.views.size(); ++k) {
+        const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
+        // The lens of every view and frame (the focus, rays parallel to the image plane).
+        if (job.aperture)
+          std::visit(
+              [&](const auto& cam) {
+                (void)with_aperture(*job.aperture, p.aperture_size, plane_of(camera), cam.selector);
+              },
+              camera);
+      }
       if (job.raster) {
         mpr::scene::VirtualArrayConfig<T> config;
         config.columns = job.raster->first;

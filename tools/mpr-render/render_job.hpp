@@ -7,6 +7,7 @@
 
 #include "framing.hpp"
 #include "job.hpp"
+#include "labels.hpp"
 #include "light_field_views.hpp"
 #include "loading.hpp"
 #include "output.hpp"
@@ -27,16 +28,17 @@ namespace mpr_cli {
 
 /// Renders one view with the pixel sampling of --spp / --filter: the only run-time dispatch of a
 /// render (one std::visit). With `aperture` (and a supersampling policy: make_job requires
-/// --spp N > 1), the view's selector integrates over that finite aperture (aperture.hpp).
+/// --spp N > 1), the view's selector integrates over that finite aperture (aperture.hpp), opened
+/// to `aperture_size`.
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
                  mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options,
-                 const ApertureSpec* aperture = nullptr) {
+                 const ApertureSpec* aperture = nullptr, double aperture_size = 0) {
   std::visit(
       [&](const auto& cam, const auto& smp, const auto& pixels) {
         if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(pixels)>, mpr::PixelCentre>) {
           if (aperture != nullptr) {
-            const auto lens = with_aperture(*aperture, plane_of(camera), cam.selector);
+            const auto lens = with_aperture(*aperture, aperture_size, plane_of(camera), cam.selector);
             mpr::Renderer(cam.surface, lens, smp, pixels).render(out, region, options);
             return;
           }
@@ -84,8 +86,10 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
       }
       if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
       const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
-      render_view(camera, sampler, sampling, image.view(), mpr::Region(col * w, row * h, w, h), options,
-                  job.aperture ? &*job.aperture : nullptr);
+      const mpr::Region tile(col * w, row * h, w, h);
+      const ApertureSpec* aperture = job.aperture ? &*job.aperture : nullptr;
+      render_view(camera, sampler, sampling, image.view(), tile, options, aperture, p.aperture_size);
+      if (job.labels) draw_tile_label(image.view(), tile, tile_label(job.views[k], camera, aperture));
     }
     sink(f, count, image);
   }

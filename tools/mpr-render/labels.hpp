@@ -1,0 +1,51 @@
+#pragma once
+// mpr-render --labels: each tile of the output labelled, in its top-left corner, with its view,
+// the GLC type of its camera (mpr::glc::classify) and, with --aperture, the focus of its lens
+// (mpr::glc::classify_focus), drawn with mpr::draw_label (include/mpr/core/label.hpp).
+
+#include "aperture.hpp"
+#include "framing.hpp"
+
+#include <mpr/core/label.hpp>
+#include <mpr/core/region.hpp>
+#include <mpr/glc.hpp>
+
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mpr_cli {
+
+/// The label lines of a tile: "G: cross_slit" (the view as given when it has at most 16
+/// characters, then the type; "(rectified)" after a --rectify view) and, with `aperture`,
+/// "focus: anastigmatic at 9" or "focus: astigmatic at 4 and 12" (focal depths in front of the
+/// image plane, world units).
+template <std::floating_point T>
+std::vector<std::string> tile_label(const std::string& spec, const CameraVariant<T>& camera,
+                                    const ApertureSpec* aperture) {
+  const mpr::glc::Classification<T> c = mpr::glc::classify(plane_of(camera), glc_of(camera));
+  std::string first = spec.size() <= 16 ? spec + ": " : std::string();
+  first += mpr::glc::to_string(c.type);
+  if (std::holds_alternative<mpr::glc::Rectified<T>>(camera)) first += " (rectified)";
+  std::vector<std::string> lines{first};
+  if (aperture != nullptr) lines.push_back("focus: " + focus_text(*aperture, plane_of(camera), true));
+  return lines;
+}
+
+/// Draws `lines` into the tile `tile` of `image` (one line under the other, 2 pixels in from its
+/// top-left corner, clipped to the tile); glyphs twice as large on tiles at least 400 pixels wide
+/// when every line fits so.
+inline void draw_tile_label(mpr::ImageView<mpr::Rgb8> image, const mpr::Region& tile,
+                            const std::vector<std::string>& lines) noexcept {
+  mpr::LabelStyle style{tile.width >= 400 ? 2 : 1};
+  for (const std::string& line : lines)
+    if (2 + mpr::label_size(line, style).first > tile.width) style.scale = 1;
+  const mpr::ImageView<mpr::Rgb8> view = image.subview(tile.x, tile.y, tile.width, tile.height);
+  int y = 2;
+  for (const std::string& line : lines) {
+    mpr::draw_label(view, 2, y, line, style);
+    y += mpr::label_size(line, style).second;
+  }
+}
+
+} // namespace mpr_cli
