@@ -23,3 +23,4 @@
 #include <mpr/lightfield/interpolation.hpp>
 #include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/lightfield/synthetic_aperture.hpp>
+#include <mpr/lightfield/view_depth.hpp>

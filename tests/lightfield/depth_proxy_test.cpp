@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -134,6 +135,30 @@ TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the 
     CHECK((c - mpr_test::plane_texture(static_cast<double>(hit.x()), static_cast<double>(hit.y()))).abs().maxCoeff() <
           2e-3f);
   }
+}
+
+TEMPLATE_TEST_CASE("DepthProxy: a ray that runs to its vanishing point where the maps show nothing is background",
+                   "[depth_proxy]", float, double) {
+  using T = TestType;
+  // The cameras' images show the plane z = 5, but their maps say they saw nothing (+inf): sky.
+  const auto frames = plane_set<T>(std::numeric_limits<float>::infinity());
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(5);
+  config.background = mpr::Color(0.1f, 0.2f, 0.3f);
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  const auto proxy = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, mpr::DepthProxy{2.0});
+  // 27 degrees off the axis: its vanishing point lies inside the cameras' images (half field of
+  // view 34 degrees), where the maps are +inf: the ray escapes, the background answers.
+  const mpr::Ray<T> up{mpr::Vec3<T>(T(0.1), T(0.2), 0), mpr::Vec3<T>(T(0.5), 0, 1)};
+  CHECK((proxy.sample(up) - config.background).abs().maxCoeff() < 1e-6f);
+  CHECK_FALSE(proxy.interpolation().surface(proxy.table(), up).has_value());
+  // 35 degrees: its vanishing point lies outside every image; nothing is known beyond them, so
+  // the colour is the cameras' at the focal point, as without depth (the plane's texture there).
+  const mpr::Ray<T> side{mpr::Vec3<T>(T(0.1), T(0.2), 0), mpr::Vec3<T>(T(0.7), 0, 1)};
+  const mpr::Vec3<T> focal = side.at(T(5));
+  CHECK((proxy.sample(side) - mpr_test::plane_texture(static_cast<double>(focal.x()), static_cast<double>(focal.y())))
+            .abs()
+            .maxCoeff() < 2e-3f);
 }
 
 TEST_CASE("DepthProxy on a rasterized classroom array is far closer to the ray cast than a focal plane",

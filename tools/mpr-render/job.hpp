@@ -53,14 +53,17 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  bool interpolation_given = false;                ///< else: synthetic for refocusing, cylinder for other views
-  Track radius{10};                                ///< cylinder aperture radius (depth proxy: candidate radius)
-  bool radius_given = false;                       ///< else: the array's camera spacing (light fields, --raster)
-  std::optional<Track> focal_depth;                ///< light fields: depth of the focal (image) plane
-  std::optional<std::filesystem::path> depth_maps; ///< light fields: folder of one PFM per camera
-  double reference_depth = 1000;                   ///< Stanford / LFCA: depth of the rectified reference plane
-  double position_scale = 1;                       ///< Stanford / LFCA: world units per stored position unit
-  std::optional<int> camera;                       ///< light fields: the reference camera (index)
+  bool interpolation_given = false;                 ///< else: synthetic for refocusing, cylinder for other views
+  Track radius{10};                                 ///< cylinder aperture radius (depth proxy: candidate radius)
+  bool radius_given = false;                        ///< else: the array's camera spacing (light fields, --raster)
+  std::optional<Track> focal_depth;                 ///< light fields: depth of the focal (image) plane
+  std::optional<std::filesystem::path> depth_maps;  ///< light fields: folder of one PFM per camera
+  bool all_in_focus = false;                        ///< --all-in-focus: the same as --interp depth
+  std::optional<std::pair<int, int>> focus_at;      ///< --focus-at X,Y: output pixel whose depth sets the focus
+  std::optional<std::filesystem::path> write_depth; ///< --write-depth FILE.pfm: the depth of the view(s)
+  double reference_depth = 1000;                    ///< Stanford / LFCA: depth of the rectified reference plane
+  double position_scale = 1;                        ///< Stanford / LFCA: world units per stored position unit
+  std::optional<int> camera;                        ///< light fields: the reference camera (index)
   /// Light fields: called after each image is loaded with (loaded, total); not set from the
   /// command line (main.cpp draws a progress line on a terminal with it).
   std::function<void(std::size_t loaded, std::size_t total)> load_progress;
@@ -108,6 +111,13 @@ inline void check_animation(const Job& job) {
     throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
                                           "--tilt-y, --radius, --focal-depth, --aperture's size or --morph, or "
                                           "--morph-to VIEW)");
+}
+
+/// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.
+[[nodiscard]] inline std::filesystem::path depth_preview_path(const std::filesystem::path& pfm) {
+  std::filesystem::path p = pfm;
+  p.replace_filename(pfm.stem().string() + "_preview.png");
+  return p;
 }
 
 /// Builds the Job from a parsed command line; throws argument_error naming the option.
@@ -221,14 +231,56 @@ inline Job make_job(const ParsedArgs& args) {
     else
       throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic, cylinder or depth");
   }
+  if (args.has("all-in-focus")) {
+    if (job.interpolation_given && job.interpolation != Interpolation::depth)
+      throw mpr::argument_error("--all-in-focus", "is the depth interpolation; drop --interp " + *args.get("interp"));
+    if (!light_field && !job.raster)
+      throw mpr::argument_error("--all-in-focus",
+                                "applies to light fields and --raster (a ray-cast scene is sharp at every depth)");
+    job.all_in_focus = true;
+    job.interpolation = Interpolation::depth;
+    job.interpolation_given = true;
+  }
   if (const auto v = args.get("depth-maps")) {
-    if (job.interpolation != Interpolation::depth) throw mpr::argument_error("--depth-maps", "needs --interp depth");
     job.depth_maps = *v;
     std::error_code ec;
     if (!std::filesystem::is_directory(job.depth_maps.value(), ec)) throw mpr::io_error(*v, "no such folder");
   }
+  if (const auto v = args.get("focus-at")) {
+    const std::vector<std::string> xy = split(*v, ',');
+    if (xy.size() != 2) throw mpr::argument_error("--focus-at", "'" + *v + "' is not X,Y (output pixel coordinates)");
+    job.focus_at = std::pair{parse_int(xy[0], "--focus-at", 0, 1 << 20), parse_int(xy[1], "--focus-at", 0, 1 << 20)};
+    if (job.all_in_focus)
+      throw mpr::argument_error("--focus-at", "--all-in-focus has no focal depth (each ray is focused at its own)");
+    if (job.aperture && !job.aperture->focus.empty())
+      throw mpr::argument_error("--focus-at", "sets the focus itself; drop --focus");
+    if (!light_field && !job.raster && !job.aperture)
+      throw mpr::argument_error("--focus-at", "applies to light fields, --raster and --aperture (a pinhole view of a "
+                                              "ray-cast scene is sharp at every depth)");
+    if (light_field && !job.depth_maps)
+      throw mpr::argument_error("--focus-at", "needs --depth-maps FOLDER (the depth under the pixel comes from the "
+                                              "cameras' depth maps)");
+  }
+  if (const auto v = args.get("write-depth")) {
+    job.write_depth = *v;
+    if (detail::lower(job.write_depth->extension().string()) != ".pfm")
+      throw mpr::argument_error("--write-depth", "'" + *v + "': writes a .pfm file (and a PNG preview beside it)");
+    if (job.frames > 0)
+      throw mpr::argument_error("--write-depth", "writes the depth of one image, not of an animation (--frames)");
+    if (light_field && !job.depth_maps)
+      throw mpr::argument_error("--write-depth",
+                                "needs --depth-maps FOLDER for a light field (its depth comes from the "
+                                "cameras' depth maps)");
+    if (depth_preview_path(*job.write_depth) == job.output)
+      throw mpr::argument_error("--write-depth", "its preview " + depth_preview_path(*job.write_depth).string() +
+                                                     " would overwrite --output");
+  }
+  if (job.depth_maps && job.interpolation != Interpolation::depth && !job.focus_at && !job.write_depth)
+    throw mpr::argument_error(
+        "--depth-maps", "is read by --interp depth, --all-in-focus, --focus-at and --write-depth; give one of them");
   if (job.interpolation == Interpolation::depth && light_field && !job.depth_maps)
-    throw mpr::argument_error("--interp depth", "needs --depth-maps FOLDER (one PFM per camera) for a light field");
+    throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",
+                              "needs --depth-maps FOLDER (one PFM per camera) for a light field");
   if (const auto v = args.get("radius")) {
     if (job.interpolation_given && job.interpolation != Interpolation::cylinder &&
         job.interpolation != Interpolation::depth)
@@ -297,6 +349,9 @@ inline Job make_job(const ParsedArgs& args) {
     if (!job.morph_to) throw mpr::argument_error("--morph", "needs --morph-to");
     job.morph = parse_track(*v, "--morph");
   }
+  if (job.focus_at && job.focal_depth && animated(*job.focal_depth))
+    throw mpr::argument_error("--focus-at", "sets the focal depth; --focal-depth may only give the plane it starts "
+                                            "from, one number");
   check_animation(job);
   return job;
 }

@@ -81,9 +81,27 @@ inline const std::vector<OptionSpec>& options() {
        "spacing) (default synthetic).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3"},
       {"depth-maps", "FOLDER",
-       "Light fields with --interp depth: one PFM depth map per camera, named after its image (cam.png -> cam.pfm); "
-       "write them with mpr::estimate_depth and mpr::write_depth_maps (docs/lightfield.md).",
+       "Light fields: one PFM depth map per camera (depth along its optical axis, +inf where nothing was seen), named "
+       "after its image (cam.png -> cam.pfm); read by --interp depth, --all-in-focus, --focus-at and --write-depth. "
+       "Write them with mpr::estimate_depth and mpr::write_depth_maps (docs/lightfield.md).",
        "--stanford $MPR_DATA_DIR/stanford/chess --interp depth --depth-maps $MPR_DATA_DIR/stanford/chess-depth"},
+      {"all-in-focus", "",
+       "Light fields and --raster: every ray focused at its own depth, the first surface the depth maps show along it "
+       "(the same as --interp depth: the cameras within --radius that see that point, the 4 best by angle blended); "
+       "--focal-depth only serves rays no depth map explains. Light fields need --depth-maps.",
+       "--raster 8x6 --all-in-focus --view G"},
+      {"focus-at", "X,Y",
+       "Autofocus: focus on what output pixel (X, Y) shows (from the top-left corner), and print the depth chosen. "
+       "Light fields (needs --depth-maps) and --raster: sets --focal-depth (light fields: the depth along the "
+       "reference camera's axis, the focal plane moved until that pixel's ray meets the surface on it); a ray-cast "
+       "scene with --aperture: sets --focus. The depth is taken with the first frame's other settings.",
+       "--raster 8x6 --size 320x240 --focus-at 160,80"},
+      {"write-depth", "FILE.pfm",
+       "Also write the depth seen by each output pixel (one ray through its centre) as a PFM, +inf where nothing is "
+       "seen, and FILE_preview.png colour-mapped with a legend. Light fields (needs --depth-maps): the depth of the "
+       "surface the depth maps show, along the reference camera's axis (the units of --focal-depth); scenes, also "
+       "--raster: the ray cast's depth in front of the image plane. Any view, tilt or layout; not with --frames.",
+       "--layout 2x1 --views A,G --write-depth depth_AG.pfm"},
       {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.",
        "--raster 8x6 --interp cylinder --radius 0.5:3 --frames 9"},
       {"focal-depth", "D|A:B|T=V,...",
@@ -168,6 +186,8 @@ Examples:
   mpr-render --obj examples/boxes.obj --output boxes.jpg
   mpr-render --stanford $MPR_DATA_DIR/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
   mpr-render --stanford $MPR_DATA_DIR/stanford/chess --focal-depth 820 --tilt-x 0:-28 --rectify plane --frames 24 --output tilt.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps $MPR_DATA_DIR/stanford/chess-depth --focus-at 1010,540 --write-depth chess_depth.pfm --output chess_autofocus.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps $MPR_DATA_DIR/stanford/chess-depth --all-in-focus --view G --output chess_all_in_focus_G.png
 )";
 }
 

@@ -5,6 +5,7 @@
 // visit the inner loop is the same template instantiation a C++ user writes by hand
 // (benchmarks/cli_dispatch.cpp).
 
+#include "depth_output.hpp"
 #include "framing.hpp"
 #include "job.hpp"
 #include "labels.hpp"
@@ -67,7 +68,8 @@ using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr:
 template <std::floating_point T>
 void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings) {
   const Loaded<T> l = load<T>(given);
-  const Job job = with_array_defaults(given, l);
+  const Job job = with_focus_at(with_array_defaults(given, l), l, info); // --focus-at: the focal depth set
+
   preflight(job, l); // every frame checked before the first is rendered
   if (warnings != nullptr) warn_job(*warnings, job, l);
   const auto [w, h] = view_size(job, l);
@@ -93,10 +95,12 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     }
     sink(f, count, image);
   }
+  write_view_depth(job, l, info); // --write-depth (a single image)
 }
 
-/// Runs the job: every frame goes to `sink`; --print-camera text to `info` and warnings about
-/// the views (light_field_views.hpp) to `warnings` (each when not null).
+/// Runs the job: every frame goes to `sink`; --print-camera text, the depth of --focus-at and the
+/// files of --write-depth to `info`, and warnings about the views (light_field_views.hpp) to
+/// `warnings` (each when not null).
 inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr) {
   if (job.use_double)
     run_typed<double>(job, sink, info, warnings);

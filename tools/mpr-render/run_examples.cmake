@@ -8,8 +8,9 @@
 # continuations and trailing `# comments`).
 # Each command runs in SOURCE_DIR with $MPR_DATA_DIR replaced by DATA_DIR, small: `--size 32x24`
 # appended (the last value wins), `--frames N` above 3 lowered to 3, and `--output` appended as
-# OUT/<n>.png (.jpg when the example writes JPEG). It must exit 0 and write its image (or its
-# first frame). A command whose --stanford/--par/--lfca input (real data, never in the
+# OUT/<n>.png (.jpg when the example writes JPEG); a --write-depth file goes to OUT/<n>_depth.pfm,
+# and a command with --focus-at keeps its size (its pixel must lie inside the image). It must exit
+# 0 and write its image (or its first frame). A command whose --stanford/--par/--lfca input (real data, never in the
 # repository) is missing is skipped with a line saying so. Prints one line per command: seconds, output, command.
 # With -DFULL=ON the commands run at their own size and frame count (for timing them; not in ctest).
 set(_commands)
@@ -93,6 +94,7 @@ foreach(_cmd IN LISTS _commands)
   set(_prev "")
   set(_ext ".png")
   set(_frames FALSE)
+  set(_keep_size FALSE)
   set(_small)
   foreach(_a IN LISTS _args)
     if(_prev MATCHES "^--(stanford|par|lfca)$" AND NOT IS_ABSOLUTE "${_a}")
@@ -100,6 +102,12 @@ foreach(_cmd IN LISTS _commands)
     endif()
     if(_prev MATCHES "^--(stanford|par|lfca|depth-maps)$" AND NOT EXISTS "${_a}")
       set(_skip "${_a}")
+    endif()
+    if(_prev STREQUAL "--write-depth")
+      set(_a "${OUT}/${_n}_depth.pfm")
+    endif()
+    if(_prev STREQUAL "--focus-at")
+      set(_keep_size TRUE)
     endif()
     if(_prev STREQUAL "--output" AND _a MATCHES "\\.(jpg|jpeg)$")
       set(_ext ".${CMAKE_MATCH_1}")
@@ -130,7 +138,7 @@ foreach(_cmd IN LISTS _commands)
   file(REMOVE "${_written}")
   string(TIMESTAMP _t0 "%s.%f")
   set(_shrink --size 32x24)
-  if(FULL)
+  if(FULL OR _keep_size)
     set(_shrink)
   endif()
   execute_process(COMMAND "${TOOL}" ${_small} ${_shrink} --output "${_output}" WORKING_DIRECTORY "${SOURCE_DIR}"

@@ -58,8 +58,10 @@ template <std::floating_point T>
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
 /// camera continues the walk from that point; likewise when the ray leaves c's image. A ray
-/// that no tried camera finds a surface for uses the table's point (`FrameTable::point_of`: the
-/// focal depth of `FrameSamplerConfig`).
+/// whose walk reaches its vanishing point inside c's image with c's map +inf there runs to
+/// infinity unseen (sky): it gets `FrameSamplerConfig::background`. A ray that no tried camera
+/// finds a surface for otherwise uses the table's point (`FrameTable::point_of`: the focal depth
+/// of `FrameSamplerConfig`).
 ///
 /// Blend: every candidate camera that sees the point X -- projects it inside its image, and its
 /// depth map there is not nearer than X's depth by more than `tolerance` (relative) -- has the
@@ -116,7 +118,9 @@ struct DepthProxy {
   [[nodiscard]] Color sample(const FrameTable<T, Px>& table, const Ray<T>& ray) const noexcept {
     Candidates<T> c;
     collect(table, ray, c);
-    const std::optional<T> t = surface(table, ray, c);
+    bool escaped = false;
+    const std::optional<T> t = surface(table, ray, c, escaped);
+    if (escaped) return table.config().background;
     const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
     return blend(table, ray, X, c);
   }
@@ -128,7 +132,8 @@ struct DepthProxy {
   [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray) const noexcept {
     Candidates<T> c;
     collect(table, ray, c);
-    return surface(table, ray, c);
+    bool escaped = false;
+    return surface(table, ray, c, escaped);
   }
 
 private:
@@ -141,7 +146,7 @@ private:
     int count = 0;
   };
 
-  enum class Walk { hit, passed };
+  enum class Walk { hit, passed, escaped };
 
   // The cameras within the radius of the ray line, nearest first (the nearest kMaxCandidates);
   // the single nearest camera when none is that close.
@@ -173,23 +178,32 @@ private:
     }
   }
 
+  // The surface point (see the public `surface`); `escaped` is set when a walk follows the ray to
+  // its vanishing point inside a camera's image and that camera sees nothing there.
   template <std::floating_point T, class Px>
-  [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray,
-                                         const Candidates<T>& c) const noexcept {
+  [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray, const Candidates<T>& c,
+                                         bool& escaped) const noexcept {
     T t = whole_line ? -std::numeric_limits<T>::infinity() : T(0);
     int walked = 0;
     for (int j = 0; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
       if (table.camera(i).distorted) continue;
       ++walked;
-      if (walk<T, Px>(table.camera(i), table.frames().depth(i).data(), ray, t) == Walk::hit) return t;
+      const Walk w = walk<T, Px>(table.camera(i), table.frames().depth(i).data(), ray, t);
+      if (w == Walk::hit) return t;
+      if (w == Walk::escaped) {
+        escaped = true;
+        return std::nullopt;
+      }
     }
     return std::nullopt;
   }
 
   // Walks `ray` from parameter `t` through camera c's depth map `d`. Returns hit with t at the
-  // surface, or passed with t where the walk stopped (c occluded there, or the ray left c's
-  // image or field of view): the next camera continues from there.
+  // surface, escaped when the ray reaches its vanishing point inside c's image in front of
+  // everything c sees and c's map is +inf there (the ray runs to infinity: background), or passed
+  // with t where the walk stopped (c occluded there, or the ray left c's image or field of
+  // view): the next camera continues from there.
   template <std::floating_point T, class Px>
   [[nodiscard]] Walk walk(const typename FrameTable<T, Px>::Camera& c, const float* d, const Ray<T>& ray,
                           T& t) const noexcept {
@@ -259,6 +273,7 @@ private:
             t = (dv - a[2]) / b[2];
             return Walk::hit;
           }
+          if (zv > 0 && std::isinf(dv)) return Walk::escaped;
           break;
         }
         next = s + zs * zs / m;
