@@ -120,8 +120,15 @@ inline void check_animation(const Job& job) {
   return p;
 }
 
+/// What the program calling `make_job` does with the options beyond mpr-render's use of them.
+struct JobContext {
+  /// The program reads --depth-maps itself (mpr-view: click-to-focus), so they need no other
+  /// reader on the command line. Default false (mpr-render).
+  bool reads_depth_maps = false;
+};
+
 /// Builds the Job from a parsed command line; throws argument_error naming the option.
-inline Job make_job(const ParsedArgs& args) {
+inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
   Job job;
   if (const auto v = args.get("output")) {
     if (v->empty()) throw mpr::argument_error("--output", "empty file name");
@@ -275,7 +282,8 @@ inline Job make_job(const ParsedArgs& args) {
       throw mpr::argument_error("--write-depth", "its preview " + depth_preview_path(*job.write_depth).string() +
                                                      " would overwrite --output");
   }
-  if (job.depth_maps && job.interpolation != Interpolation::depth && !job.focus_at && !job.write_depth)
+  if (job.depth_maps && !context.reads_depth_maps && job.interpolation != Interpolation::depth && !job.focus_at &&
+      !job.write_depth)
     throw mpr::argument_error(
         "--depth-maps", "is read by --interp depth, --all-in-focus, --focus-at and --write-depth; give one of them");
   if (job.interpolation == Interpolation::depth && light_field && !job.depth_maps)

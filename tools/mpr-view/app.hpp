@@ -4,6 +4,7 @@
 // the same SDL events a user would cause. Rendering happens on the RenderThread; this loop only
 // composes the latest frame with the HUD and uploads it.
 
+#include "click_focus.hpp"
 #include "command_line.hpp"
 #include "controls.hpp"
 #include "overlay.hpp"
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -226,8 +228,9 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
     std::fflush(stdout);
   };
   // A click prints the ray under the cursor and, on scenes, the depth of the first surface it
-  // hits (a BVH built on the first click); on a --raster array that depth becomes the focal
-  // depth (click-to-focus: the rasterized sampler reads ray.at(focal_depth)).
+  // hits (a BVH built on the first click); on a --raster array and on a light field with depth
+  // maps it also sets the focal depth to the depth under the cursor (click-to-focus,
+  // click_focus.hpp: mpr-render's --focus-at).
   std::optional<mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast, mpr::HitDepth>> depth;
   const auto click = [&](int x, int y) -> std::optional<double> {
     const int vw = W / state.job.cols, vh = H / state.job.rows;
@@ -252,12 +255,14 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
         const double t = static_cast<double>(depth->sample(ray));
         if (std::isfinite(t) && t > 0) {
           std::printf(", first hit at ray parameter %g", t);
-          if (ctx.raster) focus = t;
         } else {
           std::printf(", no hit");
         }
       }
       std::printf("\n");
+      std::fflush(stdout);
+      focus = click_focus(state.job, l, x, y, std::cout);
+      std::cout.flush();
     } catch (const std::exception& e) {
       std::printf("pixel %d,%d: no ray (%s)\n", x, y, e.what());
     }

@@ -22,9 +22,12 @@ int run_typed(const mpr_cli::Job& given, const mpr_view::ViewerSettings& setting
   const mpr_cli::Loaded<T> loaded = mpr_cli::load<T>(given);
   // An array's defaults as in mpr-render (light_field_views.hpp): a cylinder of the camera
   // spacing for views other than the reference, and its warnings on stderr.
-  const mpr_cli::Job job = mpr_cli::with_array_defaults(given, loaded);
+  // --focus-at and --write-depth as in mpr-render (render_job.hpp): the focus set before the
+  // first frame, the depth of the command line's view written once.
+  const mpr_cli::Job job = mpr_cli::with_focus_at(mpr_cli::with_array_defaults(given, loaded), loaded, &std::cout);
   mpr_cli::preflight(job, loaded);
   mpr_cli::warn_job(std::cerr, job, loaded);
+  mpr_cli::write_view_depth(job, loaded, &std::cout);
   if (settings.benchmark) return mpr_view::run_benchmark(job, loaded, settings.benchmark_frames);
   return mpr_view::run_window(job, loaded, settings, script);
 }

@@ -28,7 +28,7 @@ inline const std::vector<std::string>& control_lines() {
       "[ ]          aperture radius smaller / larger",
       "R            rectification on / off",
       ", .          animation frame back / on",
-      "click        ray under the cursor (--raster: focus)",
+      "click        ray under the cursor (--raster, --depth-maps: focus there)",
       "S            save PNG + mpr-render command",
       "0            back to the command line's view",
       "F1 or /      help; Esc or Q: quit",

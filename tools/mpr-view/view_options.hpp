@@ -51,7 +51,7 @@ struct ViewerSettings {
 inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, const char* const* argv) {
   const mpr_cli::ParsedArgs args = mpr_cli::parse_args(argc, argv, all_options());
   ViewerSettings v;
-  mpr_cli::Job job = mpr_cli::make_job(args);
+  mpr_cli::Job job = mpr_cli::make_job(args, {.reads_depth_maps = true}); // click-to-focus reads them
   if (const auto s = args.get("script")) {
     if (s->empty()) throw mpr::argument_error("--script", "empty file name");
     v.script = *s;
