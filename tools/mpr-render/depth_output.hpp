@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
 
 namespace mpr_cli {
@@ -88,8 +89,8 @@ inline std::string format_depth(double d) {
 template <std::floating_point T>
 Job with_focus_at(const Job& job, const Loaded<T>& l, std::ostream* info) {
   if (!job.focus_at) return job;
-  const auto [w, h] = view_size(job, l);
-  const auto [x, y] = *job.focus_at;
+  const std::pair<int, int> size = view_size(job, l); // not structured bindings: a lambda below
+  const int w = size.first, h = size.second, x = job.focus_at->first, y = job.focus_at->second; // (Clang 14)
   const std::string pixel = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
   if (x >= job.cols * w || y >= job.rows * h)
     throw mpr::argument_error("--focus-at", pixel + " lies outside the " + std::to_string(job.cols * w) + "x" +
