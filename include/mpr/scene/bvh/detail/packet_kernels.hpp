@@ -11,7 +11,6 @@
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
-#include <mpr/scene/bvh/detail/beam_sse.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
 #include <mpr/scene/bvh/detail/packet_kernels_avx512.hpp>
 #include <mpr/scene/bvh/node.hpp>
@@ -172,7 +171,20 @@ struct Avx2PacketKernels {
 
   [[nodiscard]] MPR_TARGET_AVX2_NOFMA static unsigned beam4(const WideNode<float>& node, const RayPacket<float>& p,
                                                             float cull_max) noexcept {
-    return beam4_sse(node, p, cull_max);
+    const float* b = &node.bounds[0][0];
+    const __m128 widen = _mm_set1_ps(kBoxWiden<float>);
+    const __m128 cmax = _mm_set1_ps(cull_max);
+    __m128 tn = _mm_setzero_ps(), tf = cmax;
+    for (int a = 0; a < 3; ++a) {
+      const __m128 bn = _mm_load_ps(b + 4 * p.near[a]), bf = _mm_load_ps(b + 4 * p.far[a]);
+      const __m128 ilo = _mm_set1_ps(p.inv_lo[a]), ihi = _mm_set1_ps(p.inv_hi[a]);
+      const __m128 n = _mm_add_ps(_mm_min_ps(_mm_mul_ps(bn, ihi), _mm_mul_ps(bn, ilo)), _mm_set1_ps(p.off_lo[a]));
+      const __m128 f =
+          _mm_mul_ps(_mm_add_ps(_mm_max_ps(_mm_mul_ps(bf, ihi), _mm_mul_ps(bf, ilo)), _mm_set1_ps(p.off_hi[a])), widen);
+      tn = _mm_max_ps(n, tn);
+      tf = _mm_min_ps(f, tf);
+    }
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(tn, tf), _mm_cmplt_ps(tn, cmax))));
   }
 
   [[nodiscard]] MPR_TARGET_AVX2_NOFMA static std::uint32_t

@@ -15,7 +15,6 @@
 /// runs in functions compiled for AVX2 *without* FMA that are never inlined here.
 
 #include <mpr/core/config.hpp>
-#include <mpr/scene/bvh/detail/beam_sse.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/packet.hpp>
@@ -193,10 +192,24 @@ struct Avx512PacketKernels {
     return _mm512_cmp_ps_mask(_mm512_set1_ps(t), _mm512_load_ps(p.cull), _CMP_LT_OQ);
   }
 
-  /// `beam4_sse` (bvh/detail/beam_sse.hpp).
+  /// `PortablePacketKernels<float>::beam4`, four boxes per 128-bit instruction (no add follows a
+  /// multiply directly, so there is nothing to fuse).
   [[nodiscard]] MPR_TARGET_AVX512 static unsigned beam4(const WideNode<float>& node, const RayPacket<float>& p,
                                                         float cull_max) noexcept {
-    return beam4_sse(node, p, cull_max);
+    const float* b = &node.bounds[0][0];
+    const __m128 widen = _mm_set1_ps(kBoxWiden<float>);
+    const __m128 cmax = _mm_set1_ps(cull_max);
+    __m128 tn = _mm_setzero_ps(), tf = cmax;
+    for (int a = 0; a < 3; ++a) {
+      const __m128 bn = _mm_load_ps(b + 4 * p.near[a]), bf = _mm_load_ps(b + 4 * p.far[a]);
+      const __m128 ilo = _mm_set1_ps(p.inv_lo[a]), ihi = _mm_set1_ps(p.inv_hi[a]);
+      const __m128 n = _mm_add_ps(_mm_min_ps(_mm_mul_ps(bn, ihi), _mm_mul_ps(bn, ilo)), _mm_set1_ps(p.off_lo[a]));
+      const __m128 f =
+          _mm_mul_ps(_mm_add_ps(_mm_max_ps(_mm_mul_ps(bf, ihi), _mm_mul_ps(bf, ilo)), _mm_set1_ps(p.off_hi[a])), widen);
+      tn = _mm_max_ps(n, tn);
+      tf = _mm_min_ps(f, tf);
+    }
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(tn, tf), _mm_cmplt_ps(tn, cmax))));
   }
 
   [[nodiscard]] MPR_TARGET_AVX512 static std::uint32_t
