@@ -34,7 +34,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <utility>
 
 namespace mpr::scene::detail {
 
@@ -134,35 +133,6 @@ struct RayPacket {
     return m;
   }
 };
-
-/// The axes a packet's rays share, from bit masks over its rays (bit r for ray r): `valid` the
-/// rays that can hit, `axis0` / `axis1` those whose largest direction component is x / y
-/// (`Shear::make`), `negative[a]` those with a negative inverse direction on axis a. Sets
-/// `p.near`, `p.far` (rows of `WideNode::bounds`) and the watertight permutation `p.kx`, `p.ky`,
-/// `p.kz`. False when the valid rays differ in a direction sign or in the largest axis (the
-/// SIMD `make`s of bvh/detail then leave the rays to the single-ray walk).
-template <std::floating_point T>
-[[nodiscard]] bool set_shared_axes(RayPacket<T>& p, std::uint32_t valid, std::uint32_t axis0, std::uint32_t axis1,
-                                   const std::uint32_t (&negative)[3]) noexcept {
-  for (int a = 0; a < 3; ++a)
-    if (negative[a] != 0 && negative[a] != valid) return false;
-  if (axis0 == valid)
-    p.kz = 0;
-  else if (axis1 == valid)
-    p.kz = 1;
-  else if ((axis0 | axis1) == 0)
-    p.kz = 2;
-  else
-    return false;
-  for (int a = 0; a < 3; ++a) {
-    p.near[a] = negative[a] != 0 ? a + 3 : a;
-    p.far[a] = negative[a] != 0 ? a : a + 3;
-  }
-  p.kx = p.kz + 1 == 3 ? 0 : p.kz + 1;
-  p.ky = p.kx + 1 == 3 ? 0 : p.kx + 1;
-  if (negative[p.kz] != 0) std::swap(p.kx, p.ky);
-  return true;
-}
 
 /// The portable packet kernels (any scalar type): the reference for the x86 ones.
 template <std::floating_point T>

@@ -106,7 +106,23 @@ struct Avx2PacketKernels {
     }
     if (valid == 0) return true;
     if (bad != 0) return false;
-    if (!set_shared_axes(p, valid, axis0, axis1, negative)) return false;
+    for (int a = 0; a < 3; ++a)
+      if (negative[a] != 0 && negative[a] != valid) return false;
+    if (axis0 == valid)
+      p.kz = 0;
+    else if (axis1 == valid)
+      p.kz = 1;
+    else if ((axis0 | axis1) == 0)
+      p.kz = 2;
+    else
+      return false;
+    for (int a = 0; a < 3; ++a) {
+      p.near[a] = negative[a] != 0 ? a + 3 : a;
+      p.far[a] = negative[a] != 0 ? a : a + 3;
+    }
+    p.kx = p.kz + 1 == 3 ? 0 : p.kz + 1;
+    p.ky = p.kx + 1 == 3 ? 0 : p.kx + 1;
+    if (negative[p.kz] != 0) std::swap(p.kx, p.ky);
     const __m256 lo_fill = inf, hi_fill = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     __m256 ilo[3], ihi[3], olo[3], ohi[3];
     for (int g = 0; g < kPacketRays / 8; ++g) {

@@ -159,10 +159,24 @@ struct Avx512PacketKernels {
     }
     if (valid == 0) return true;
     if (bad != 0) return false;
-    const std::uint32_t negatives[3] = {negative[0], negative[1], negative[2]};
-    if (!set_shared_axes(p, std::uint32_t{valid}, std::uint32_t{static_cast<__mmask16>(is0 & valid)},
-                         std::uint32_t{static_cast<__mmask16>(is1 & valid)}, negatives))
+    for (int a = 0; a < 3; ++a)
+      if (negative[a] != 0 && negative[a] != valid) return false;
+    const __mmask16 axis0 = is0 & valid, axis1 = is1 & valid;
+    if (axis0 == valid)
+      p.kz = 0;
+    else if (axis1 == valid)
+      p.kz = 1;
+    else if ((axis0 | axis1) == 0)
+      p.kz = 2;
+    else
       return false;
+    for (int a = 0; a < 3; ++a) {
+      p.near[a] = negative[a] != 0 ? a + 3 : a;
+      p.far[a] = negative[a] != 0 ? a : a + 3;
+    }
+    p.kx = p.kz + 1 == 3 ? 0 : p.kz + 1;
+    p.ky = p.kx + 1 == 3 ? 0 : p.kx + 1;
+    if (negative[p.kz] != 0) std::swap(p.kx, p.ky);
     const __m512 dz = dv[p.kz];
     _mm512_store_ps(p.sx, div(dv[p.kx], dz));
     _mm512_store_ps(p.sy, div(dv[p.ky], dz));
