@@ -195,3 +195,47 @@ TEST_CASE("DepthProxy on a rasterized classroom array is far closer to the ray c
   std::printf("classroom 4x3 array of 192x144 vs ray cast: cylinder %.1f dB, depth proxy %.1f dB\n", cylinder, proxy);
   CHECK(proxy > cylinder + 3);
 }
+
+TEMPLATE_TEST_CASE("DepthProxy answers alike whether a linear scan or the ball tree finds its cameras", "[depth_proxy]",
+                   float, double) {
+  using T = TestType;
+  // A 9 x 8 array (72 cameras: the ball tree finds the candidates) and the same array without its
+  // last column (64: a linear scan). Rays near the middle have the same candidates in both (the
+  // dropped column is 4 spacings away, the radius 2.4), so they must get the same depth and
+  // colour; each camera's image is tinted by its own colour and k = 30 blends every candidate, so a changed set
+  // of candidates changes the colour.
+  const auto make = [](int columns) {
+    const auto all = mpr_test::grid_cameras<T>(9, 8, 0.25, 40, 30, 30.0);
+    std::vector<mpr::PinholeCamera<T>> cams;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (static_cast<int>(i % 9) < columns) cams.push_back(all[i]);
+    std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      const int grid = static_cast<int>(i) / columns * 9 + static_cast<int>(i) % columns; // index in the 9 x 8 grid
+      const mpr::Color tint = mpr_test::constant_colour(static_cast<std::size_t>(grid));
+      for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) images[i](x, y) = (images[i](x, y) + tint).eval();
+    }
+    std::vector<mpr::Image<float>> maps(cams.size(), mpr::Image<float>(40, 30, 5.0f));
+    return std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+        mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+  };
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> tree(make(9), mpr::DepthProxy{0.6, 30});
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> scan(make(8), mpr::DepthProxy{0.6, 30});
+  REQUIRE(tree.frames().size() == 72);
+  REQUIRE(scan.frames().size() == 64);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.2, 0.2), slope(-0.03, 0.03);
+  for (int n = 0; n < 100; ++n) {
+    // Around the middle of the 8-column block (x = -0.125 in the 9-column grid's frame).
+    const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(u(rng) - 0.125), static_cast<T>(u(rng)), T(0)),
+                          mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))};
+    const std::optional<T> a = tree.interpolation().surface(tree.table(), ray);
+    const std::optional<T> b = scan.interpolation().surface(scan.table(), ray);
+    REQUIRE(a.has_value());
+    REQUIRE(b.has_value());
+    CHECK(std::abs(static_cast<double>(*a - *b)) < 1e-4);
+    INFO("ray " << n);
+    CHECK((tree.sample(ray) - scan.sample(ray)).abs().maxCoeff() < 1e-4f);
+  }
+}

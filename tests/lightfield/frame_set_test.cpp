@@ -110,6 +110,15 @@ TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per
   REQUIRE(without.has_depth());
   CHECK(without.depths().size() == 2);
   CHECK(without.depth(1)(0, 0) == 4.0f);
+  // The nearest depth of each map (where a surface search may start), kept in step too.
+  maps[0](1, 1) = 1.5f;
+  const auto nearest = mpr::CameraFrameSet<T>(cams, images).with_depth(maps);
+  CHECK(nearest.depth_near(0) == 1.5f);
+  CHECK(nearest.depth_near(1) == 3.0f); // the +inf pixel does not count
+  CHECK(nearest.depth_near(2) == 4.0f);
+  CHECK(nearest.without(0).depth_near(0) == 3.0f);
+  std::vector<mpr::Image<float>> unseen(3, mpr::Image<float>(4, 3, std::numeric_limits<float>::infinity()));
+  CHECK(std::isinf(mpr::CameraFrameSet<T>(cams, images).with_depth(unseen).depth_near(2)));
   const auto other = with.template cast<std::conditional_t<std::is_same_v<T, float>, double, float>>();
   REQUIRE(other.has_depth());
   CHECK(other.depth(0)(1, 1) == 2.0f);

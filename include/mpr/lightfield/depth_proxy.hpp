@@ -138,6 +138,10 @@ struct DepthProxy {
 
 private:
   static constexpr int kMaxCandidates = 64;
+  /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
+  static constexpr std::size_t kScanCameras = 64;
+  /// Most regula-falsi steps that narrow a one-pixel bracket of the surface crossing.
+  static constexpr int kRefineSteps = 12;
 
   template <std::floating_point T>
   struct Candidates {
@@ -152,7 +156,7 @@ private:
   // the single nearest camera when none is that close.
   template <std::floating_point T, class Px>
   void collect(const FrameTable<T, Px>& table, const Ray<T>& ray, Candidates<T>& c) const noexcept {
-    table.index().within(ray.origin, ray.direction, static_cast<T>(radius), [&](int i, T d) noexcept {
+    const auto add = [&](int i, T d) noexcept {
       int at = c.count;
       if (c.count == kMaxCandidates) {
         if (!(d < c.distance[kMaxCandidates - 1])) return;
@@ -167,7 +171,19 @@ private:
       }
       c.index[at] = i;
       c.distance[at] = d;
-    });
+    };
+    if (table.size() <= kScanCameras) {
+      const T dd = ray.direction.squaredNorm();
+      if (dd > 0 && std::isfinite(dd)) {
+        const T inv = T(1) / dd, r2 = static_cast<T>(radius) * static_cast<T>(radius);
+        for (std::size_t i = 0; i < table.size(); ++i) {
+          const T d2 = line_distance2(table.camera(i).centre, ray.origin, ray.direction, inv);
+          if (d2 < r2) add(static_cast<int>(i), std::sqrt(d2));
+        }
+      }
+    } else {
+      table.index().within(ray.origin, ray.direction, static_cast<T>(radius), add);
+    }
     if (c.count == 0) {
       const int nearest = table.index().nearest(ray.origin, ray.direction);
       if (nearest >= 0) {
@@ -189,7 +205,7 @@ private:
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
       if (table.camera(i).distorted) continue;
       ++walked;
-      const Walk w = walk<T, Px>(table.camera(i), table.frames().depth(i).data(), ray, t);
+      const Walk w = walk<T, Px>(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), ray, t);
       if (w == Walk::hit) return t;
       if (w == Walk::escaped) {
         escaped = true;
@@ -205,7 +221,7 @@ private:
   // with t where the walk stopped (c occluded there, or the ray left c's image or field of
   // view): the next camera continues from there.
   template <std::floating_point T, class Px>
-  [[nodiscard]] Walk walk(const typename FrameTable<T, Px>::Camera& c, const float* d, const Ray<T>& ray,
+  [[nodiscard]] Walk walk(const typename FrameTable<T, Px>::Camera& c, const float* d, float near, const Ray<T>& ray,
                           T& t) const noexcept {
     const T* P = c.P;
     const Vec3<T>& o = ray.origin;
@@ -235,8 +251,18 @@ private:
     clip(W * a[2] - a[0], W * b[2] - b[0]);
     clip(a[1] + e * a[2], b[1] + e * b[2]);
     clip(H * a[2] - a[1], H * b[2] - b[1]);
+    // Nearer than the nearest depth in c's map the ray is in front of everything c sees (the
+    // map's depth and its interpolation are >= near): the walk starts where z reaches near.
     if (empty || !(lo < hi) || !std::isfinite(lo)) return Walk::passed;
     const T tol = static_cast<T>(tolerance);
+    const T leave = hi; // where the ray leaves c's view
+    if (std::isfinite(near)) {
+      clip(a[2] - static_cast<T>(near) * (1 - tol), b[2]);
+      if (empty || !(lo < hi) || !std::isfinite(lo)) { // in front of all c sees wherever c sees the ray
+        if (std::isfinite(leave)) t = leave;
+        return Walk::passed;
+      }
+    }
     // f(s) = ray depth - map depth at the ray's pixel (< 0: the ray is in front of the surface).
     const auto f = [&](T s, T& z) {
       z = a[2] + s * b[2];
@@ -283,22 +309,32 @@ private:
       T zn = 0;
       const T fn = f(next, zn);
       if (fn >= 0) {
-        // Bracketed in [s, next]: bisect to the crossing.
-        T s0 = s, s1 = next, f0 = fs, f1 = fn;
-        for (int it = 0; it < 20; ++it) {
-          const T mid = T(0.5) * (s0 + s1);
+        // Bracketed in [s, next], at most one pixel of c: narrowed to 1/256 of it by the
+        // Illinois variant of regula falsi (a crossing of the maps' bilinear surface is found in
+        // a few lookups; at a step between pixels, a depth edge, the halved end weights still
+        // shrink the bracket), then f interpolated linearly.
+        T s0 = s, s1 = next, f0 = fs, f1 = fn, z1 = zn;
+        T g0 = f0, g1 = f1; // the end values regula falsi weighs (halved when an end is kept)
+        const T resolution = (next - s) * T(1.0 / 256);
+        int kept = 0; // +1: the last step moved s0, -1: it moved s1
+        for (int it = 0; it < kRefineSteps && s1 - s0 > resolution; ++it) {
+          T mid = g1 - g0 > 0 ? s0 + (s1 - s0) * (-g0 / (g1 - g0)) : T(0.5) * (s0 + s1);
+          if (!(mid > s0 && mid < s1)) mid = T(0.5) * (s0 + s1);
           T zm = 0;
           const T fm = f(mid, zm);
           if (fm < 0) {
             s0 = mid;
-            f0 = fm;
+            f0 = g0 = fm;
+            if (kept == 1) g1 *= T(0.5);
+            kept = 1;
           } else {
             s1 = mid;
-            f1 = fm;
+            f1 = g1 = fm;
+            z1 = zm;
+            if (kept == -1) g0 *= T(0.5);
+            kept = -1;
           }
         }
-        T z1 = 0;
-        (void)f(s1, z1);
         if (f1 <= tol * z1 && -f0 <= tol * z1) {
           const T denom = f1 - f0;
           t = denom > 0 ? s0 + (s1 - s0) * (-f0 / denom) : s1;
@@ -310,7 +346,7 @@ private:
       s = next;
       fs = fn;
     }
-    t = std::isfinite(hi) ? hi : s;
+    t = std::isfinite(hi) ? leave : s;
     return Walk::passed;
   }
 
@@ -319,11 +355,28 @@ private:
                             const Candidates<T>& c) const noexcept {
     const T tol = static_cast<T>(tolerance);
     const T length = ray.direction.norm();
+    // The candidates in front of the ray by decreasing cosine (increasing penalty); only the
+    // first k + 1 that see X matter, so visibility is tested in that order until they are found.
+    int order[kMaxCandidates];
+    T cosine[kMaxCandidates];
+    int m = 0;
+    for (int j = 0; j < c.count; ++j) {
+      const Vec3<T> to = X - table.camera(static_cast<std::size_t>(c.index[j])).centre;
+      const T cs = to.dot(ray.direction) / (to.norm() * length);
+      if (!(cs > 0)) continue;
+      int at = m++;
+      for (; at > 0 && cosine[at - 1] < cs; --at) {
+        cosine[at] = cosine[at - 1];
+        order[at] = order[at - 1];
+      }
+      cosine[at] = std::min(cs, T(1));
+      order[at] = c.index[j];
+    }
     int seen[kMaxCandidates];
     T penalty[kMaxCandidates], px[kMaxCandidates], py[kMaxCandidates];
     int n = 0;
-    for (int j = 0; j < c.count; ++j) {
-      const std::size_t i = static_cast<std::size_t>(c.index[j]);
+    for (int j = 0; j < m && n <= k; ++j) {
+      const std::size_t i = static_cast<std::size_t>(order[j]);
       const auto& cam = table.camera(i);
       T x, y;
       if (!FrameTable<T, Px>::project(cam, X, x, y)) continue;
@@ -331,11 +384,8 @@ private:
       const T z = P[8] * X.x() + P[9] * X.y() + P[10] * X.z() + P[11];
       const T depth = detail::depth_lookup(table.frames().depth(i).data(), cam.width, cam.height, x, y, tol);
       if (depth < z * (1 - tol)) continue; // something nearer hides X from this camera
-      const Vec3<T> to = X - cam.centre;
-      const T cosine = to.dot(ray.direction) / (to.norm() * length);
-      if (!(cosine > 0)) continue;
       seen[n] = static_cast<int>(i);
-      penalty[n] = std::acos(std::min(cosine, T(1)));
+      penalty[n] = std::acos(cosine[j]);
       px[n] = x;
       py[n] = y;
       ++n;
@@ -344,16 +394,9 @@ private:
       const int nearest = c.count > 0 ? c.index[0] : -1;
       return table.camera_color(nearest, X);
     }
-    // The (k+1)-th smallest penalty, or twice the largest when at most k cameras see X.
-    T sorted[kMaxCandidates];
-    std::copy(penalty, penalty + n, sorted);
-    T threshold;
-    if (n > k) {
-      std::nth_element(sorted, sorted + k, sorted + n);
-      threshold = std::max(sorted[k], T(1e-6));
-    } else {
-      threshold = 2 * *std::max_element(sorted, sorted + n) + T(1e-6);
-    }
+    // The (k+1)-th smallest penalty of the cameras that see X, or twice the largest when at most
+    // k do.
+    const T threshold = n > k ? std::max(penalty[k], T(1e-6)) : 2 * penalty[n - 1] + T(1e-6);
     float acc[3] = {0, 0, 0};
     float weight = 0;
     for (int j = 0; j < n; ++j) {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -162,6 +163,10 @@ public:
   [[nodiscard]] const Image<float>& depth(std::size_t i) const noexcept { return depths_[i]; }
   /// Every depth map, in camera order; empty when the set carries none.
   [[nodiscard]] const std::vector<Image<float>>& depths() const noexcept { return depths_; }
+  /// The smallest depth in camera `i`'s map (precondition: `has_depth()`), +inf when the camera
+  /// saw nothing: no surface lies nearer to camera `i` along its axis, so a search for one can
+  /// start there.
+  [[nodiscard]] float depth_near(std::size_t i) const noexcept { return depth_near_[i]; }
 
   /// This set, carrying `depths[i]` as camera `i`'s depth map (see `depth`); an empty list drops
   /// the depth maps. Throws `argument_error` ("depth maps") naming the camera when the counts
@@ -171,6 +176,7 @@ public:
     if (!depths.empty() && depths.size() != cameras_.size())
       throw argument_error("depth maps", std::to_string(cameras_.size()) + " cameras but " +
                                              std::to_string(depths.size()) + " depth maps");
+    std::vector<float> near(depths.size(), std::numeric_limits<float>::infinity());
     for (std::size_t i = 0; i < depths.size(); ++i) {
       const Image<float>& d = depths[i];
       if (d.width() != cameras_[i].width() || d.height() != cameras_[i].height())
@@ -184,8 +190,11 @@ public:
             throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(x, y)) + " at pixel (" +
                                                    std::to_string(x) + ", " + std::to_string(y) +
                                                    ") (depths are positive, +inf where nothing was seen)");
+          else
+            near[i] = std::min(near[i], d(x, y));
     }
     depths_ = std::move(depths);
+    depth_near_ = std::move(near);
     return std::move(*this);
   }
 
@@ -197,7 +206,10 @@ public:
     out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
     out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
     out.texels_.erase(out.texels_.begin() + static_cast<std::ptrdiff_t>(i));
-    if (!out.depths_.empty()) out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
+    if (!out.depths_.empty()) {
+      out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
+      out.depth_near_.erase(out.depth_near_.begin() + static_cast<std::ptrdiff_t>(i));
+    }
     return out;
   }
 
@@ -235,6 +247,7 @@ private:
   std::vector<std::string> names_;
   std::vector<texel_vector> texels_;
   std::vector<Image<float>> depths_;
+  std::vector<float> depth_near_;
   std::optional<Plane<T>> array_plane_;
 };
 
