@@ -73,9 +73,10 @@ template <std::floating_point T>
 ///
 /// Requirements: the frame set carries depth maps (`validate(table)`, called by
 /// `CameraFrameSampler`, throws otherwise); cameras with lens distortion are blended but never
-/// walked. Per ray: one ball-tree query, a walk of about the ray's projected length in pixels
-/// (short for the nearest camera of a dense array), k + a few projections. No batch or tile
-/// path: `sample` per ray.
+/// walked. Per ray: the candidates (a linear scan up to 64 cameras, else one ball-tree query), a
+/// walk from where the ray reaches the nearest depth of the camera's map, about one pixel a step,
+/// the crossing narrowed by regula falsi (about 4 lookups), then the visibility of the candidates
+/// in order of angle until k + 1 see the point. No batch or tile path: `sample` per ray.
 struct DepthProxy {
   /// Cameras farther than this from the ray line (world units, positive) are neither walked nor
   /// blended. About twice the camera spacing suits planar arrays.
