@@ -90,6 +90,32 @@ TEST_CASE("the translated-row cost blends four texels with fixed weights and tru
           INFO("fu " << fu << " fv " << fv << " x " << x);
           CHECK(out[static_cast<std::size_t>(x)] == Approx(expected[static_cast<std::size_t>(x)]).margin(1e-5));
         }
+        // The same costs inserted into 1..4 sorted rows at once.
+        for (int best = 1; best <= mpr::detail::kSweepShiftKeepBest; ++best) {
+          const std::ptrdiff_t stride = n + 7;
+          std::vector<float> keep(static_cast<std::size_t>(best * stride));
+          std::vector<std::vector<float>> sorted(n);
+          const std::vector<float> start = random_values(keep.size(), 11, 0.0f, tau);
+          for (int x = 0; x < n; ++x) {
+            for (int i = 0; i < best; ++i)
+              sorted[static_cast<std::size_t>(x)].push_back(start[static_cast<std::size_t>(i * stride + x)]);
+            std::sort(sorted[static_cast<std::size_t>(x)].begin(), sorted[static_cast<std::size_t>(x)].end());
+            for (int i = 0; i < best; ++i)
+              keep[static_cast<std::size_t>(i * stride + x)] =
+                  sorted[static_cast<std::size_t>(x)][static_cast<std::size_t>(i)];
+          }
+          mpr::detail::sweep_shift_keep(ref_rows, r, tau, keep.data(), stride, best, n, level);
+          for (int x = 0; x < n; ++x) {
+            std::vector<float> e = sorted[static_cast<std::size_t>(x)];
+            e.push_back(expected[static_cast<std::size_t>(x)]);
+            std::sort(e.begin(), e.end());
+            for (int i = 0; i < best; ++i) {
+              INFO("fu " << fu << " fv " << fv << " x " << x << " best " << best << " rank " << i);
+              CHECK(keep[static_cast<std::size_t>(i * stride + x)] ==
+                    Approx(e[static_cast<std::size_t>(i)]).margin(1e-5));
+            }
+          }
+        }
       });
     }
 }
@@ -213,7 +239,7 @@ TEST_CASE("the domain-transform passes match the serial recurrence", "[sweep_ker
 
 TEST_CASE("the argmin bookkeeping tracks the cheapest plane and its neighbours' costs", "[sweep_kernels]") {
   const std::size_t n = 37;
-  const int planes = 9;
+  const int planes = 17;
   std::vector<std::vector<float>> costs;
   for (int p = 0; p < planes; ++p) costs.push_back(random_values(n, static_cast<unsigned>(100 + p)));
   // Ties: the first of equal costs stays the best.
@@ -238,14 +264,17 @@ TEST_CASE("the argmin bookkeeping tracks the cheapest plane and its neighbours' 
   mpr_test::for_each_simd_level([&](SimdLevel level) {
     std::vector<float> bc(n, INFINITY), l(n, 0), r(n, 0), pr(n, 0), s(n, 0);
     std::vector<int> bp(n, 0);
-    // The planes in batches of 4, 3, 1 and 1 (every count the kernel takes).
+    // The planes in batches of 8, 4, 3, 1 and 1 (counts the kernel takes), `stride` apart.
+    const std::size_t stride = n + 3;
     int p = 0;
-    for (const int count : {4, 3, 1, 1}) {
-      const float* rows[4];
-      for (int i = 0; i < count; ++i) rows[i] = costs[static_cast<std::size_t>(p + i)].data();
+    for (const int count : {8, 4, 3, 1, 1}) {
+      std::vector<float> rows(static_cast<std::size_t>(count) * stride);
+      for (int i = 0; i < count; ++i)
+        std::copy(costs[static_cast<std::size_t>(p + i)].begin(), costs[static_cast<std::size_t>(p + i)].end(),
+                  rows.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(i) * stride));
       mpr::detail::sweep_track(
-          rows, count, mpr::detail::SweepTrackRow{bc.data(), bp.data(), l.data(), r.data(), pr.data(), s.data()}, p, n,
-          level);
+          rows.data(), static_cast<std::ptrdiff_t>(stride), count,
+          mpr::detail::SweepTrackRow{bc.data(), bp.data(), l.data(), r.data(), pr.data(), s.data()}, p, n, level);
       p += count;
     }
     REQUIRE(p == planes);

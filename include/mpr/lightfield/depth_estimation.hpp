@@ -223,8 +223,6 @@ template <std::floating_point T, class Px>
   const SimdLevel level = simd_level();
   constexpr int rows_per_block = kSweepLockstepRows;
   const int blocks = (height + rows_per_block - 1) / rows_per_block;
-  constexpr int strip = 64;
-  const int strips = (width + strip - 1) / strip;
   const std::size_t w = static_cast<std::size_t>(width);
   // Row y's cost at depth d into `out`: per neighbour a cost row (`value`), the best few kept
   // sorted in keep[0..best).
@@ -292,6 +290,10 @@ template <std::floating_point T, class Px>
         seg_ref[c] = ref_row[c] + xb;
       }
       const std::size_t count = static_cast<std::size_t>(xe - xb);
+      if (best <= kSweepShiftKeepBest) {
+        sweep_shift_keep(seg_ref, row, tau, keep[0] + xb, static_cast<std::ptrdiff_t>(w), best, count, level);
+        continue;
+      }
       sweep_shift_cost(seg_ref, row, tau, value + xb, count, level);
       float* seg_keep[32];
       for (int i = 0; i < best; ++i) seg_keep[i] = keep[i] + xb;
@@ -301,58 +303,80 @@ template <std::floating_point T, class Px>
     // so a plane is not preferred because few neighbours see it; the best few are averaged.
     sweep_mean_best(keep, best, out, w, level);
   };
+  // One worker: the blocks in order, each row pulled towards the one above (the forward
+  // vertical pass) while in cache; more: blocks in parallel, the forward pass down strips.
+  const bool in_order = resolve_thread_count(threads, blocks) == 1;
   for (int first = 0; first < config.planes; first += batch) {
     const int count = std::min(batch, config.planes - first);
-    parallel_rows(0, blocks, threads, [&](int block) noexcept {
+    const auto row_of = [&](int i, int y) {
+      return costs.data() + static_cast<std::size_t>(i) * n + static_cast<std::size_t>(y) * w;
+    };
+    const auto ay_row = [&](int y) { return ay.data() + static_cast<std::size_t>(y) * w; };
+    const auto block_costs = [&](int block) noexcept {
       std::vector<float> scratch(static_cast<std::size_t>(best + 1) * w);
       float* keep[32];
       for (int i = 0; i < best; ++i) keep[i] = scratch.data() + static_cast<std::size_t>(i) * w;
       float* value = scratch.data() + static_cast<std::size_t>(best) * w;
       const int y0 = block * rows_per_block, y1 = std::min(height, y0 + rows_per_block);
       for (int i = 0; i < count; ++i) {
-        float* cost = costs.data() + static_cast<std::size_t>(i) * n;
         const float d = static_cast<float>(depth_of(first + i));
-        for (int y = y0; y < y1; ++y) cost_row(y, d, cost + static_cast<std::size_t>(y) * w, keep, value);
+        for (int y = y0; y < y1; ++y) cost_row(y, d, row_of(i, y), keep, value);
+        if (!(config.spatial > 0)) continue;
         // The horizontal aggregation pass, the block's rows side by side.
-        if (config.spatial > 0) {
-          const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y0) * width;
-          if (y1 - y0 == rows_per_block)
-            sweep_dt_rows(cost + at, ax.data() + at, width, width, level);
-          else
-            for (int y = y0; y < y1; ++y)
-              sweep_dt_row(cost + static_cast<std::ptrdiff_t>(y) * width,
-                           ax.data() + static_cast<std::ptrdiff_t>(y) * width, width, level);
-        }
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y0) * width;
+        if (y1 - y0 == rows_per_block)
+          sweep_dt_rows(row_of(i, y0), ax.data() + at, width, width, level);
+        else
+          for (int y = y0; y < y1; ++y)
+            sweep_dt_row(row_of(i, y), ax.data() + static_cast<std::ptrdiff_t>(y) * width, width, level);
+        if (in_order)
+          for (int y = std::max(y0, 1); y < y1; ++y) sweep_dt_link(row_of(i, y), row_of(i, y - 1), ay_row(y), w, level);
       }
-    });
-    // Down column strips: the vertical aggregation pass (forward, then backward), each row's
-    // costs final once the backward pass has reached it, then the argmin bookkeeping.
-    parallel_rows(0, strips, threads, [&](int s) noexcept {
-      const std::size_t x0 = static_cast<std::size_t>(s) * strip, len = std::min<std::size_t>(strip, w - x0);
-      const auto at = [&](int i, int y) {
-        return costs.data() + static_cast<std::size_t>(i) * n + static_cast<std::size_t>(y) * w + x0;
-      };
+    };
+    if (in_order)
+      for (int block = 0; block < blocks; ++block) block_costs(block);
+    else
+      parallel_rows(0, blocks, threads, block_costs);
+    // Column strips (the whole width for one worker): the forward vertical pass where not done,
+    // then the backward one from the bottom, each row final once reached (kept in `carry`, the
+    // costs left in place), and the argmin bookkeeping of that row.
+    const int strip = in_order ? width : 64, strips = (width + strip - 1) / strip;
+    parallel_rows(0, strips, in_order ? 1 : threads, [&](int s) noexcept {
+      const std::size_t x0 = static_cast<std::size_t>(s) * static_cast<std::size_t>(strip);
+      const std::size_t len = std::min<std::size_t>(static_cast<std::size_t>(strip), w - x0);
+      std::vector<float> carry(static_cast<std::size_t>(count) * len);
+      const float* rows = nullptr; // plane 0's costs of the row tracked, the others `stride` apart
+      std::ptrdiff_t stride = 0;
       const auto track = [&](int y) {
         const std::size_t k = static_cast<std::size_t>(y) * w + x0;
-        const float* rows[batch];
-        for (int i = 0; i < count; ++i) rows[i] = at(i, y);
-        sweep_track(rows, count,
+        sweep_track(rows, stride, count,
                     SweepTrackRow{best_cost.data() + k, best_plane.data() + k, left.data() + k, right.data() + k,
                                   previous.data() + k, sum.data() + k},
                     first, len, level);
       };
-      if (config.spatial > 0) {
-        for (int y = 1; y < height; ++y)
-          for (int i = 0; i < count; ++i)
-            sweep_dt_link(at(i, y), at(i, y - 1), ay.data() + static_cast<std::size_t>(y) * w + x0, len, level);
-        track(height - 1);
-        for (int y = height - 2; y >= 0; --y) {
-          for (int i = 0; i < count; ++i)
-            sweep_dt_link(at(i, y), at(i, y + 1), ay.data() + static_cast<std::size_t>(y + 1) * w + x0, len, level);
+      if (!(config.spatial > 0)) {
+        stride = static_cast<std::ptrdiff_t>(n);
+        for (int y = 0; y < height; ++y) {
+          rows = row_of(0, y) + x0;
           track(y);
         }
-      } else {
-        for (int y = 0; y < height; ++y) track(y);
+        return;
+      }
+      if (!in_order)
+        for (int y = 1; y < height; ++y)
+          for (int i = 0; i < count; ++i)
+            sweep_dt_link(row_of(i, y) + x0, row_of(i, y - 1) + x0, ay_row(y) + x0, len, level);
+      rows = carry.data();
+      stride = static_cast<std::ptrdiff_t>(len);
+      for (int i = 0; i < count; ++i) {
+        std::copy_n(row_of(i, height - 1) + x0, len, carry.data() + static_cast<std::size_t>(i) * len);
+      }
+      track(height - 1);
+      for (int y = height - 2; y >= 0; --y) {
+        for (int i = 0; i < count; ++i)
+          sweep_dt_carry(carry.data() + static_cast<std::size_t>(i) * len, row_of(i, y) + x0, ay_row(y + 1) + x0, len,
+                         level);
+        track(y);
       }
     });
   }

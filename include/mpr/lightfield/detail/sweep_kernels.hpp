@@ -32,32 +32,53 @@ struct SweepShiftRow {
   float fu, fv;
 };
 
-/// out[x] = min(tau, sum over channels of |bilinear(neighbour at x) - ref[c][x]|) for x in
-/// [0, n): the truncated L1 cost of a translated row (`SweepShiftRow`). `ref` holds the three
-/// reference channel rows. The blend is the one of the per-pixel path: the two rows lerped in u,
-/// then in v.
+/// The truncated L1 cost of reference pixel x of a translated row (`SweepShiftRow`), `ref` the
+/// three reference channel rows: per channel the bilinear blend of the four texels with the
+/// row's fixed weights, |blend - ref|, summed and truncated at tau.
+struct SweepShiftCost {
+  const float* MPR_RESTRICT r[3];
+  const float* MPR_RESTRICT a[3];
+  const float* MPR_RESTRICT b[3];
+  float w00, w10, w01, w11, tau;
+  MPR_ALWAYS_INLINE SweepShiftCost(const float* const ref[3], const SweepShiftRow& row, float truncation) noexcept
+      : r{ref[0], ref[1], ref[2]}, a{row.top[0], row.top[1], row.top[2]}, b{row.bottom[0], row.bottom[1],
+                                                                            row.bottom[2]},
+        w00((1 - row.fu) * (1 - row.fv)), w10(row.fu * (1 - row.fv)), w01((1 - row.fu) * row.fv), w11(row.fu * row.fv),
+        tau(truncation) {}
+  [[nodiscard]] MPR_ALWAYS_INLINE float channel(int c, std::size_t x) const noexcept {
+    return std::abs(w00 * a[c][x] + w10 * a[c][x + 1] + w01 * b[c][x] + w11 * b[c][x + 1] - r[c][x]);
+  }
+  [[nodiscard]] MPR_ALWAYS_INLINE float operator()(std::size_t x) const noexcept {
+    return std::min(channel(0, x) + channel(1, x) + channel(2, x), tau);
+  }
+};
+
+/// out[x] = the cost of pixel x (`SweepShiftCost`) for x in [0, n).
 MPR_ALWAYS_INLINE void sweep_shift_cost_body(const float* const ref[3], const SweepShiftRow& row, float tau,
                                              float* MPR_RESTRICT out, std::size_t n) noexcept {
-  const float* MPR_RESTRICT r0 = ref[0];
-  const float* MPR_RESTRICT r1 = ref[1];
-  const float* MPR_RESTRICT r2 = ref[2];
-  const float* MPR_RESTRICT a0 = row.top[0];
-  const float* MPR_RESTRICT a1 = row.top[1];
-  const float* MPR_RESTRICT a2 = row.top[2];
-  const float* MPR_RESTRICT b0 = row.bottom[0];
-  const float* MPR_RESTRICT b1 = row.bottom[1];
-  const float* MPR_RESTRICT b2 = row.bottom[2];
-  const float fu = row.fu, fv = row.fv, gu = 1 - fu, gv = 1 - fv;
+  const SweepShiftCost cost(ref, row, tau);
+  for (std::size_t x = 0; x < n; ++x) out[x] = cost(x);
+}
+
+/// The cost of pixel x (`SweepShiftCost`) inserted into the B sorted rows keep + i stride (i <
+/// B) for x in [0, n): `sweep_shift_cost_body` then `sweep_keep_best_body` in one pass.
+template <int B>
+MPR_ALWAYS_INLINE void sweep_shift_keep_body(const float* const ref[3], const SweepShiftRow& row, float tau,
+                                             float* MPR_RESTRICT keep, std::ptrdiff_t stride, std::size_t n) noexcept {
+  const SweepShiftCost cost(ref, row, tau);
   for (std::size_t x = 0; x < n; ++x) {
-    const float t0 = a0[x] * gu + a0[x + 1] * fu, u0 = b0[x] * gu + b0[x + 1] * fu;
-    const float t1 = a1[x] * gu + a1[x + 1] * fu, u1 = b1[x] * gu + b1[x + 1] * fu;
-    const float t2 = a2[x] * gu + a2[x + 1] * fu, u2 = b2[x] * gu + b2[x + 1] * fu;
-    float s = std::abs((t0 * gv + u0 * fv) - r0[x]);
-    s += std::abs((t1 * gv + u1 * fv) - r1[x]);
-    s += std::abs((t2 * gv + u2 * fv) - r2[x]);
-    out[x] = std::min(s, tau);
+    float v = cost(x);
+#pragma GCC unroll 4
+    for (int i = 0; i < B; ++i) {
+      const float k = keep[i * stride + static_cast<std::ptrdiff_t>(x)];
+      keep[i * stride + static_cast<std::ptrdiff_t>(x)] = std::min(k, v);
+      v = std::max(k, v);
+    }
   }
 }
+
+/// The most kept costs `sweep_shift_keep` takes.
+inline constexpr int kSweepShiftKeepBest = 4;
 
 /// A neighbour camera's image for the projective path: planar channels, `stride` floats per row.
 struct SweepImage {
@@ -177,6 +198,14 @@ MPR_ALWAYS_INLINE void sweep_dt_link_body(float* MPR_RESTRICT cur, const float* 
   for (std::size_t x = 0; x < n; ++x) cur[x] += a[x] * (prev[x] - cur[x]);
 }
 
+/// One step of the backward vertical pass that leaves the costs in place: carry[x] = cur[x] +
+/// a[x] (carry[x] - cur[x]) for x in [0, n), `carry` holding the final row below on entry and
+/// row `cur`'s final values on return.
+MPR_ALWAYS_INLINE void sweep_dt_carry_body(float* MPR_RESTRICT carry, const float* MPR_RESTRICT cur,
+                                           const float* MPR_RESTRICT a, std::size_t n) noexcept {
+  for (std::size_t x = 0; x < n; ++x) carry[x] = cur[x] + a[x] * (carry[x] - cur[x]);
+}
+
 /// The per-pixel state of the argmin over planes: the running sum of costs, the cheapest cost
 /// and plane, the costs at the planes before (`left`) and after (`right`) the cheapest, for the
 /// parabola, and the last plane's cost (`previous`).
@@ -190,27 +219,22 @@ struct SweepTrackRow {
 };
 
 /// The most planes `sweep_track` takes at once.
-inline constexpr int kSweepTrackPlanes = 4;
+inline constexpr int kSweepTrackPlanes = 8;
 
 /// The argmin bookkeeping of one row segment of n pixels for the K planes plane0, plane0 + 1,
-/// ... (costs c[0], ..., c[K - 1]), in plane order: the state is read and written once.
+/// ... (plane i's costs at c + i stride), in plane order: the state is read and written once.
 template <int K>
-MPR_ALWAYS_INLINE void sweep_track_body(const float* const* c, const SweepTrackRow& t, int plane0,
-                                        std::size_t n) noexcept {
-  float* MPR_RESTRICT best_cost = t.best_cost;
-  int* MPR_RESTRICT best_plane = t.best_plane;
-  float* MPR_RESTRICT left = t.left;
-  float* MPR_RESTRICT right = t.right;
-  float* MPR_RESTRICT previous = t.previous;
-  float* MPR_RESTRICT sum = t.sum;
-  const float* MPR_RESTRICT row[K];
-  for (int i = 0; i < K; ++i) row[i] = c[i];
+MPR_ALWAYS_INLINE void
+sweep_track_body(const float* MPR_RESTRICT c, std::ptrdiff_t stride, float* MPR_RESTRICT best_cost,
+                 int* MPR_RESTRICT best_plane, float* MPR_RESTRICT left, float* MPR_RESTRICT right,
+                 float* MPR_RESTRICT previous, float* MPR_RESTRICT sum, int plane0, std::size_t n) noexcept {
   for (std::size_t x = 0; x < n; ++x) {
     float bc = best_cost[x], l = left[x], r = right[x], p = previous[x], s = sum[x];
     int b = best_plane[x];
+#pragma GCC unroll 8
     for (int i = 0; i < K; ++i) {
       const int plane = plane0 + i;
-      const float v = row[i][x];
+      const float v = c[i * stride + static_cast<std::ptrdiff_t>(x)];
       s += v;
       r = b == plane - 1 ? v : r;
       const bool better = v < bc;
@@ -234,6 +258,21 @@ inline void sweep_shift_cost(const float* const ref[3], const SweepShiftRow& row
                              SimdLevel level = simd_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_cost_body(ref, row, tau, out, n); });
 }
+/// `sweep_shift_keep_body` for `best` (1..kSweepShiftKeepBest) kept rows.
+inline void sweep_shift_keep(const float* const ref[3], const SweepShiftRow& row, float tau, float* keep,
+                             std::ptrdiff_t stride, int best, std::size_t n, SimdLevel level = simd_level()) noexcept {
+  static_assert(kSweepShiftKeepBest == 4);
+  run_at(level, [&]() MPR_INLINE_LAMBDA {
+    if (best == 1)
+      sweep_shift_keep_body<1>(ref, row, tau, keep, stride, n);
+    else if (best == 2)
+      sweep_shift_keep_body<2>(ref, row, tau, keep, stride, n);
+    else if (best == 3)
+      sweep_shift_keep_body<3>(ref, row, tau, keep, stride, n);
+    else
+      sweep_shift_keep_body<4>(ref, row, tau, keep, stride, n);
+  });
+}
 inline void sweep_projective_cost(const float* const ref[3], const SweepImage& image, const SweepProjectiveRow& row,
                                   int first, float tau, float* out, std::size_t n,
                                   SimdLevel level = simd_level()) noexcept {
@@ -254,30 +293,26 @@ inline void sweep_dt_rows(float* v, const float* a, std::ptrdiff_t stride, int n
 inline void sweep_dt_row(float* v, const float* a, int n, SimdLevel level = simd_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_row_body(v, a, n); });
 }
+inline void sweep_dt_carry(float* carry, const float* cur, const float* a, std::size_t n,
+                           SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_carry_body(carry, cur, a, n); });
+}
 inline void sweep_dt_link(float* cur, const float* prev, const float* a, std::size_t n,
                           SimdLevel level = simd_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_link_body(cur, prev, a, n); });
 }
+template <int K>
+MPR_ALWAYS_INLINE void sweep_track_count(const float* c, std::ptrdiff_t stride, int count, const SweepTrackRow& t,
+                                         int plane0, std::size_t n) noexcept {
+  if constexpr (K > 1)
+    if (count < K) return sweep_track_count<K - 1>(c, stride, count, t, plane0, n);
+  sweep_track_body<K>(c, stride, t.best_cost, t.best_plane, t.left, t.right, t.previous, t.sum, plane0, n);
+}
+
 /// `sweep_track_body` for `count` (1..kSweepTrackPlanes) planes.
-inline void sweep_track(const float* const* c, int count, const SweepTrackRow& t, int plane0, std::size_t n,
-                        SimdLevel level = simd_level()) noexcept {
-  run_at(level, [&]() MPR_INLINE_LAMBDA {
-    static_assert(kSweepTrackPlanes == 4);
-    switch (count) {
-    case 1:
-      sweep_track_body<1>(c, t, plane0, n);
-      break;
-    case 2:
-      sweep_track_body<2>(c, t, plane0, n);
-      break;
-    case 3:
-      sweep_track_body<3>(c, t, plane0, n);
-      break;
-    default:
-      sweep_track_body<4>(c, t, plane0, n);
-      break;
-    }
-  });
+inline void sweep_track(const float* c, std::ptrdiff_t stride, int count, const SweepTrackRow& t, int plane0,
+                        std::size_t n, SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_track_count<kSweepTrackPlanes>(c, stride, count, t, plane0, n); });
 }
 
 } // namespace mpr::detail
