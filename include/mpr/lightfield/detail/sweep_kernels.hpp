@@ -206,6 +206,17 @@ MPR_ALWAYS_INLINE void sweep_dt_carry_body(float* MPR_RESTRICT carry, const floa
   for (std::size_t x = 0; x < n; ++x) carry[x] = cur[x] + a[x] * (carry[x] - cur[x]);
 }
 
+/// Asks for the n floats at p to be brought into cache (a hint; nothing where the compiler has
+/// no prefetch).
+inline void sweep_prefetch(const float* p, std::size_t n) noexcept {
+#if defined(__GNUC__)
+  for (std::size_t i = 0; i < n; i += 16) __builtin_prefetch(p + i);
+#else
+  (void)p;
+  (void)n;
+#endif
+}
+
 /// The per-pixel state of the argmin over planes: the running sum of costs, the cheapest cost
 /// and plane, the costs at the planes before (`left`) and after (`right`) the cheapest, for the
 /// parabola, and the last plane's cost (`previous`).
