@@ -99,6 +99,8 @@ struct SweepPlanes {
 /// `image` into `p` (its buffers reused).
 template <class Px>
 void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
+  float unit[256]; // code / 255
+  for (int c = 0; c < 256; ++c) unit[c] = static_cast<float>(c) / 255.0f;
   p.width = image.width();
   p.height = image.height();
   p.stride = (static_cast<std::ptrdiff_t>(p.width) + 16) / 16 * 16;
@@ -114,9 +116,9 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
       else
         c = to_rgb8(image(x, y));
       const std::ptrdiff_t k = y * p.stride + x;
-      out[0][k] = c.r / 255.0f;
-      out[1][k] = c.g / 255.0f;
-      out[2][k] = c.b / 255.0f;
+      out[0][k] = unit[c.r];
+      out[1][k] = unit[c.g];
+      out[2][k] = unit[c.b];
       if (keep_codes)
         p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
     }
@@ -199,11 +201,11 @@ template <std::floating_point T, class Px>
       const Rgb8 p = rt.codes[a], q = rt.codes[b];
       return std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
     };
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t x = k % static_cast<std::size_t>(width);
-      if (x > 0) ax[k] = table[diff(k, k - 1)];
-      if (k >= static_cast<std::size_t>(width)) ay[k] = table[diff(k, k - static_cast<std::size_t>(width))];
-    }
+    for (std::size_t k = 0, y = 0; y < static_cast<std::size_t>(height); ++y)
+      for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x, ++k) {
+        if (x > 0) ax[k] = table[diff(k, k - 1)];
+        if (y > 0) ay[k] = table[diff(k, k - static_cast<std::size_t>(width))];
+      }
   }
 
   // The planes go in batches of kSweepTrackPlanes: one cost image each, so that the argmin
