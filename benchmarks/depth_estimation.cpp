@@ -5,8 +5,9 @@
 //   build/bench/benchmarks/depth_estimation [DATA_DIR] [--quick] [--planes=N] [--views=N]
 //
 // DATA_DIR (default: $MPR_DATA_DIR) holds stanford/chess; without it the Chess part is skipped.
-// --quick (ctest's smoke run) sweeps a small classroom array only. --planes sets the classroom's
-// plane count (default 64); --views limits the Chess views timed (default all, else one by one
+// --quick (ctest's smoke run) sweeps a small classroom array only. --planes=, --neighbours=,
+// --best=, --truncation=, --spatial=, --range= change the classroom's settings (default: the
+// PlaneSweepConfig defaults, 64 planes); --views limits the Chess views timed (default all, else one by one
 // with estimate_depth); --threads=N times only N threads; --no-classroom skips the accuracy part.
 
 #include "bench_common.hpp"
@@ -63,7 +64,7 @@ double median(std::vector<double> v) {
 
 // The classroom as an 8 x 6 array of rasterized cameras (as examples/lightfield_glc_gallery.cpp
 // makes it), camera 28's depth estimated from the colours against its exact z-buffer.
-void classroom_accuracy(bool quick, int planes) {
+void classroom_accuracy(bool quick, mpr::PlaneSweepConfig sweep) {
   using T = float;
   const auto scene = mpr::scene::classroom<T>();
   const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
@@ -79,10 +80,9 @@ void classroom_accuracy(bool quick, int planes) {
   config.depth_maps = true;
   const auto array = mpr::scene::rasterize_virtual_array(scene, room, config);
   const std::size_t camera = 28;
-  mpr::PlaneSweepConfig sweep;
   sweep.near = 1.5;
   sweep.far = 30;
-  sweep.planes = quick ? 16 : planes;
+  if (quick) sweep.planes = 16;
   sweep.threads = 2;
   mpr::DepthEstimate e;
   const double s = seconds([&] { e = mpr::estimate_depth(array.frames, camera, sweep); });
@@ -93,7 +93,7 @@ void classroom_accuracy(bool quick, int planes) {
     const mpr::Rgb8 p = image(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1));
     return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b;
   };
-  std::vector<double> all, textured;
+  std::vector<double> all, textured, signed_textured;
   int within1 = 0, within5 = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -104,7 +104,10 @@ void classroom_accuracy(bool quick, int planes) {
       within1 += error <= 0.01;
       within5 += error <= 0.05;
       const double gx = luma(x + 1, y) - luma(x - 1, y), gy = luma(x, y + 1) - luma(x, y - 1);
-      if (std::hypot(gx, gy) > 60) textured.push_back(error);
+      if (std::hypot(gx, gy) > 60) {
+        textured.push_back(error);
+        signed_textured.push_back((static_cast<double>(e.depth(x, y)) - z) / z);
+      }
     }
   const double count = static_cast<double>(all.size());
   std::printf("\nclassroom, 8x6 rasterized cameras of %dx%d, camera %zu from colours, %d planes %.1f..%.0f m, "
@@ -112,10 +115,10 @@ void classroom_accuracy(bool quick, int planes) {
               w, h, camera, sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation,
               sweep.spatial, sweep.range);
   std::printf("| time s | median rel. error, textured (%zu px, luma gradient > 60) | median rel. error, all (%zu px) "
-              "| within 1%% | within 5%% |\n|---|---|---|---|---|\n",
+              "| within 1%% | within 5%% | median signed error, textured |\n|---|---|---|---|---|---|\n",
               textured.size(), all.size());
-  std::printf("| %.3f | %.2f%% | %.2f%% | %.1f%% | %.1f%% |\n", s, 100 * median(textured), 100 * median(all),
-              100 * within1 / count, 100 * within5 / count);
+  std::printf("| %.3f | %.2f%% | %.2f%% | %.1f%% | %.1f%% | %+.2f%% |\n", s, 100 * median(textured), 100 * median(all),
+              100 * within1 / count, 100 * within5 / count, 100 * median(signed_textured));
 }
 
 } // namespace
@@ -123,12 +126,23 @@ void classroom_accuracy(bool quick, int planes) {
 int main(int argc, char** argv) {
   const bool quick = mpr_bench::quick_mode(argc, argv);
   std::string data;
-  int planes = 64, views = 0, only_threads = 0;
+  int views = 0, only_threads = 0;
+  mpr::PlaneSweepConfig classroom_config; // the settings of the classroom run (defaults, 64 planes)
   bool classroom = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.rfind("--planes=", 0) == 0)
-      planes = std::atoi(a.c_str() + 9);
+      classroom_config.planes = std::atoi(a.c_str() + 9);
+    else if (a.rfind("--neighbours=", 0) == 0)
+      classroom_config.neighbours = std::atoi(a.c_str() + 13);
+    else if (a.rfind("--best=", 0) == 0)
+      classroom_config.best = std::atoi(a.c_str() + 7);
+    else if (a.rfind("--truncation=", 0) == 0)
+      classroom_config.truncation = std::atof(a.c_str() + 13);
+    else if (a.rfind("--spatial=", 0) == 0)
+      classroom_config.spatial = std::atof(a.c_str() + 10);
+    else if (a.rfind("--range=", 0) == 0)
+      classroom_config.range = std::atof(a.c_str() + 8);
     else if (a.rfind("--views=", 0) == 0)
       views = std::atoi(a.c_str() + 8);
     else if (a.rfind("--threads=", 0) == 0)
@@ -145,7 +159,7 @@ int main(int argc, char** argv) {
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("plane-sweep kernels: %s; load average at start: %s\n", mpr::detail::simd_level_name(),
               load_average().c_str());
-  if (classroom) classroom_accuracy(quick, planes);
+  if (classroom) classroom_accuracy(quick, classroom_config);
 
   const std::filesystem::path chess = std::filesystem::path(data) / "stanford" / "chess";
   if (quick || data.empty() || !std::filesystem::is_directory(chess)) {
