@@ -15,12 +15,16 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/sweep_kernels.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -57,17 +61,6 @@ struct DepthEstimate {
   Image<float> confidence;
 };
 
-namespace detail {
-
-/// One pass of the recursive domain-transform filter along a line of `n` values `v` (stride
-/// `step`) with per-link feedback `a[k]` between elements k-1 and k, forward then backward.
-inline void domain_transform_line(float* v, const float* a, int n, std::ptrdiff_t step) noexcept {
-  for (int k = 1; k < n; ++k) v[k * step] += a[k * step] * (v[(k - 1) * step] - v[k * step]);
-  for (int k = n - 2; k >= 0; --k) v[k * step] += a[(k + 1) * step] * (v[(k + 1) * step] - v[k * step]);
-}
-
-} // namespace detail
-
 /// Checks `config`; throws `argument_error` naming the field ("near", "far", "planes",
 /// "neighbours", "best", "truncation", "spatial", "range").
 inline void validate(const PlaneSweepConfig& c) {
@@ -81,17 +74,71 @@ inline void validate(const PlaneSweepConfig& c) {
   if (!(c.range > 0) || !std::isfinite(c.range)) throw argument_error("range", "must be positive");
 }
 
-/// The depth map of camera `camera` of `frames` by the plane sweep of the file comment, compared
-/// with its `config.neighbours` nearest cameras. Throws `argument_error` for a bad config, a
-/// camera index out of range ("camera"), a set of fewer than two cameras or a camera with lens
-/// distortion ("frames", naming it).
+namespace detail {
+
+/// Zeros before an image's first row (`SweepPlanes`).
+inline constexpr std::ptrdiff_t kSweepPad = 16;
+
+/// An image as planar float channels (sRGB codes / 255), rows `stride` floats apart with at
+/// least one zero past each row's end and `kSweepPad` before the first (read by the sweep
+/// kernels with weight 0, or a rounding error of weight, at the image's border), and, for the
+/// reference camera, its 8-bit codes (for the aggregation's colour edges).
+struct SweepPlanes {
+  std::vector<float> data;
+  std::vector<Rgb8> codes;
+  std::ptrdiff_t stride = 0;
+  int width = 0, height = 0;
+  [[nodiscard]] const float* channel(int c) const noexcept {
+    return data.data() + kSweepPad + static_cast<std::ptrdiff_t>(c) * stride * height;
+  }
+  [[nodiscard]] SweepImage view() const noexcept {
+    return {{channel(0), channel(1), channel(2)}, stride, width, height};
+  }
+};
+
+/// `image` into `p` (its buffers reused).
+template <class Px>
+void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
+  float unit[256]; // code / 255
+  for (int c = 0; c < 256; ++c) unit[c] = static_cast<float>(c) / 255.0f;
+  p.width = image.width();
+  p.height = image.height();
+  p.stride = (static_cast<std::ptrdiff_t>(p.width) + 16) / 16 * 16;
+  p.data.assign(3 * static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height) + kSweepPad, 0.0f);
+  if (keep_codes) p.codes.resize(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height));
+  float* out[3] = {p.data.data() + kSweepPad, p.data.data() + kSweepPad + p.stride * p.height,
+                   p.data.data() + kSweepPad + 2 * p.stride * p.height};
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      Rgb8 c;
+      if constexpr (std::is_same_v<Px, Rgb8>)
+        c = image(x, y);
+      else
+        c = to_rgb8(image(x, y));
+      const std::ptrdiff_t k = y * p.stride + x;
+      out[0][k] = unit[c.r];
+      out[1][k] = unit[c.g];
+      out[2][k] = unit[c.b];
+      if (keep_codes)
+        p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
+    }
+}
+
+/// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
+/// are not page-faulted in again for every camera): about 130 bytes per pixel with four
+/// neighbours (planar float images 60, costs of 8 planes 32, argmin state 24, feedback 8).
+struct SweepWorkspace {
+  SweepPlanes rt;
+  std::vector<SweepPlanes> nt;
+  std::vector<float> ax, ay, costs, best_cost, sum, left, right, previous;
+  std::vector<int> best_plane;
+};
+
+/// The `config.neighbours` cameras nearest to `camera` by centre distance (ties by index).
+/// Throws `argument_error` ("frames") when one of them or the camera has lens distortion.
 template <std::floating_point T, class Px>
-[[nodiscard]] DepthEstimate estimate_depth(const CameraFrameSet<T, Px>& frames, std::size_t camera,
-                                           const PlaneSweepConfig& config) {
-  validate(config);
-  if (camera >= frames.size()) throw argument_error("camera", "index out of range");
-  if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
-  // The nearest cameras by centre distance.
+[[nodiscard]] std::vector<std::size_t> sweep_neighbours(const CameraFrameSet<T, Px>& frames, std::size_t camera,
+                                                        const PlaneSweepConfig& config) {
   const PinholeCamera<T>& ref = frames.camera(camera);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < frames.size(); ++i)
@@ -105,31 +152,26 @@ template <std::floating_point T, class Px>
   for (const std::size_t i : order)
     if (frames.camera(i).has_distortion() || ref.has_distortion())
       throw argument_error("frames", frames.name(i) + ": lens distortion is not supported by the plane sweep");
+  return order;
+}
+
+/// The plane sweep of `estimate_depth` for a checked config and neighbour list, on `threads`
+/// workers (rows of a plane, then column strips).
+template <std::floating_point T, class Px>
+[[nodiscard]] DepthEstimate plane_sweep(const CameraFrameSet<T, Px>& frames, std::size_t camera,
+                                        const std::vector<std::size_t>& order, const PlaneSweepConfig& config,
+                                        int threads, SweepWorkspace& ws) {
+  const PinholeCamera<T>& ref = frames.camera(camera);
   const int width = ref.width(), height = ref.height();
   const int m = static_cast<int>(order.size());
   const int best = std::min(config.best, m);
   // Colours are compared as sRGB codes / 255 (perceptually even: dark texture counts as much as
-  // bright), three floats per pixel, for the camera and its neighbours.
-  const auto codes = [&](std::size_t i) {
-    const Image<Px>& image = frames.image(i);
-    std::vector<float> v(3 * static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
-    std::size_t k = 0;
-    for (int y = 0; y < image.height(); ++y)
-      for (int x = 0; x < image.width(); ++x) {
-        Rgb8 p;
-        if constexpr (std::is_same_v<Px, Rgb8>)
-          p = image(x, y);
-        else
-          p = to_rgb8(image(x, y));
-        v[k++] = p.r / 255.0f;
-        v[k++] = p.g / 255.0f;
-        v[k++] = p.b / 255.0f;
-      }
-    return v;
-  };
-  const std::vector<float> rt = codes(camera);
-  std::vector<std::vector<float>> nt;
-  for (const std::size_t i : order) nt.push_back(codes(i));
+  // bright), as planar float channels, for the camera and its neighbours.
+  const SweepPlanes& rt = ws.rt;
+  sweep_planes(frames.image(camera), true, ws.rt);
+  ws.nt.resize(order.size());
+  for (std::size_t j = 0; j < order.size(); ++j) sweep_planes(frames.image(order[j]), false, ws.nt[j]);
+  const std::vector<SweepPlanes>& nt = ws.nt;
 
   // Pixel p of the reference at depth d is X = C + d R^T K^-1 p; neighbour j sees it at
   // h = A_j + d M_j p (homogeneous), A_j = K_j (R_j C + t_j), M_j = K_j R_j R^T K^-1.
@@ -144,100 +186,210 @@ template <std::floating_point T, class Px>
     A[static_cast<std::size_t>(j)] = (K * (R * centre + c.t().template cast<double>())).template cast<float>();
   }
 
-  // Domain-transform feedback per link, from the reference image's colour differences.
+  // Domain-transform feedback per link, from the reference image's colour differences (the sum
+  // over channels of |code difference|, 0..765, through a table).
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  std::vector<float> ax(n, 0.0f), ay(n, 0.0f);
-  const double sigma = std::max(config.spatial, 1e-6);
-  const double base = std::exp(-std::sqrt(2.0) / sigma);
-  const auto diff = [&](std::size_t a, std::size_t b) {
-    float s = 0;
-    for (std::size_t k = 0; k < 3; ++k) s += std::abs(rt[3 * a + k] - rt[3 * b + k]);
-    return s;
-  };
-  const double ratio = sigma / config.range;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-      if (x > 0) ax[k] = static_cast<float>(std::pow(base, 1 + ratio * diff(k, k - 1)));
-      if (y > 0) ay[k] = static_cast<float>(std::pow(base, 1 + ratio * diff(k, k - static_cast<std::size_t>(width))));
-    }
+  std::vector<float>&ax = ws.ax, &ay = ws.ay;
+  ax.assign(n, 0.0f);
+  ay.assign(n, 0.0f);
+  {
+    const double sigma = std::max(config.spatial, 1e-6);
+    const double base = std::exp(-std::sqrt(2.0) / sigma), ratio = sigma / config.range;
+    float table[766];
+    for (int k = 0; k < 766; ++k) table[k] = static_cast<float>(std::pow(base, 1 + ratio * (k / 255.0)));
+    const auto diff = [&](std::size_t a, std::size_t b) {
+      const Rgb8 p = rt.codes[a], q = rt.codes[b];
+      return std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
+    };
+    for (std::size_t k = 0, y = 0; y < static_cast<std::size_t>(height); ++y)
+      for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x, ++k) {
+        if (x > 0) ax[k] = table[diff(k, k - 1)];
+        if (y > 0) ay[k] = table[diff(k, k - static_cast<std::size_t>(width))];
+      }
+  }
 
-  std::vector<float> cost(n), best_cost(n, std::numeric_limits<float>::infinity()), sum(n, 0.0f), left(n, 0.0f),
-      right(n, 0.0f), previous(n, 0.0f);
-  std::vector<int> best_plane(n, 0);
+  // The planes go in batches of kSweepTrackPlanes: one cost image each, so that the argmin
+  // state (six arrays) is read and written once per batch.
+  constexpr int batch = kSweepTrackPlanes;
+  std::vector<float>&costs = ws.costs, &best_cost = ws.best_cost, &sum = ws.sum, &left = ws.left, &right = ws.right,
+  &previous = ws.previous;
+  costs.resize(static_cast<std::size_t>(batch) * n);
+  best_cost.assign(n, std::numeric_limits<float>::infinity());
+  for (std::vector<float>* v : {&sum, &left, &right, &previous}) v->assign(n, 0.0f);
+  std::vector<int>& best_plane = ws.best_plane;
+  best_plane.assign(n, 0);
   const double inv_near = 1 / config.near, inv_far = 1 / config.far;
   const auto depth_of = [&](double index) {
     return 1 / (inv_near + (inv_far - inv_near) * index / static_cast<double>(config.planes - 1));
   };
   const float tau = static_cast<float>(config.truncation);
-  for (int plane = 0; plane < config.planes; ++plane) {
-    const float d = static_cast<float>(depth_of(plane));
-    detail::parallel_rows(0, height, config.threads, [&](int y) noexcept {
-      float costs[32];
-      for (int x = 0; x < width; ++x) {
-        const std::size_t k =
-            static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-        const Vec3<float> p(static_cast<float>(x), static_cast<float>(y), 1.0f);
-        int seen = 0;
-        for (int j = 0; j < m; ++j) {
-          const Vec3<float> h = A[static_cast<std::size_t>(j)] + d * (M[static_cast<std::size_t>(j)] * p);
-          const PinholeCamera<T>& c = frames.camera(order[static_cast<std::size_t>(j)]);
-          if (!(h.z() > 0)) continue;
-          const float u = h.x() / h.z(), v = h.y() / h.z();
-          if (!(u >= 0 && v >= 0 && u <= static_cast<float>(c.width() - 1) && v <= static_cast<float>(c.height() - 1)))
-            continue;
-          const int u0 = std::min(static_cast<int>(u), c.width() - 2 < 0 ? 0 : c.width() - 2);
-          const int v0 = std::min(static_cast<int>(v), c.height() - 2 < 0 ? 0 : c.height() - 2);
-          const int u1 = std::min(u0 + 1, c.width() - 1), v1 = std::min(v0 + 1, c.height() - 1);
-          const float fu = u - static_cast<float>(u0), fv = v - static_cast<float>(v0);
-          const float* t = nt[static_cast<std::size_t>(j)].data();
-          const std::ptrdiff_t w = c.width();
-          const float* t00 = t + 3 * (v0 * w + u0);
-          const float* t10 = t + 3 * (v0 * w + u1);
-          const float* t01 = t + 3 * (v1 * w + u0);
-          const float* t11 = t + 3 * (v1 * w + u1);
-          float s = 0;
-          for (std::size_t ch = 0; ch < 3; ++ch) {
-            const float a = t00[ch] * (1 - fu) + t10[ch] * fu, b = t01[ch] * (1 - fu) + t11[ch] * fu;
-            s += std::abs((a * (1 - fv) + b * fv) - rt[3 * k + ch]);
-          }
-          costs[seen++] = std::min(s, tau);
+  const SimdLevel level = simd_level();
+  constexpr int rows_per_block = kSweepLockstepRows;
+  const int blocks = (height + rows_per_block - 1) / rows_per_block;
+  const std::size_t w = static_cast<std::size_t>(width);
+  // Row y's cost at depth d into `out`: per neighbour a cost row (`value`), the best few kept
+  // sorted in keep[0..best).
+  const auto cost_row = [&](int y, float d, float* out, float* const* keep, float* value) noexcept {
+    const float* ref_row[3];
+    for (int c = 0; c < 3; ++c) ref_row[c] = rt.channel(c) + static_cast<std::ptrdiff_t>(y) * rt.stride;
+    for (int i = 0; i < best; ++i) std::fill(keep[i], keep[i] + width, tau);
+    for (int j = 0; j < m; ++j) {
+      const SweepPlanes& nb = nt[static_cast<std::size_t>(j)];
+      const Mat3<float>& Mj = M[static_cast<std::size_t>(j)];
+      const Vec3<float>& Aj = A[static_cast<std::size_t>(j)];
+      const auto project = [&](int x) -> Vec3<float> {
+        return Aj + d * (Mj * Vec3<float>(static_cast<float>(x), static_cast<float>(y), 1.0f));
+      };
+      // A translation when three points of the row (ends and middle) are shifted alike.
+      const Vec3<float> h0 = project(0), hm = project(width / 2), h1 = project(width - 1);
+      bool shift = h0.z() > 0 && hm.z() > 0 && h1.z() > 0;
+      const float off = h0.x() / h0.z(), v = h0.y() / h0.z();
+      if (shift) {
+        constexpr float eps = 1e-3f;
+        shift = std::abs(hm.x() / hm.z() - (off + static_cast<float>(width / 2))) <= eps &&
+                std::abs(h1.x() / h1.z() - (off + static_cast<float>(width - 1))) <= eps &&
+                std::abs(hm.y() / hm.z() - v) <= eps && std::abs(h1.y() / h1.z() - v) <= eps;
+      }
+      if (!shift) {
+        const SweepProjectiveRow row{{Aj.x(), Aj.y(), Aj.z()},
+                                     {Mj(0, 1) * static_cast<float>(y) + Mj(0, 2),
+                                      Mj(1, 1) * static_cast<float>(y) + Mj(1, 2),
+                                      Mj(2, 1) * static_cast<float>(y) + Mj(2, 2)},
+                                     {Mj(0, 0), Mj(1, 0), Mj(2, 0)},
+                                     d};
+        sweep_projective_cost(ref_row, nb.view(), row, 0, tau, value, w, level);
+        sweep_keep_best(keep, best, value, w, level);
+        continue;
+      }
+      // Reference pixel x sees the neighbour at (x + off, v): seen for x in [xb, xe).
+      if (!(v >= 0 && v <= static_cast<float>(nb.height - 1))) continue;
+      const double lo = std::ceil(-static_cast<double>(off));
+      const double hi = std::floor(static_cast<double>(nb.width - 1) - static_cast<double>(off)) + 1;
+      int xb = static_cast<int>(std::clamp(lo, 0.0, static_cast<double>(width)));
+      int xe = static_cast<int>(std::clamp(hi, 0.0, static_cast<double>(width)));
+      // The ends as the per-pixel projection decides them (it rounds differently from x + off
+      // by a few ulp, which decides pixels on the image's border).
+      const float max_u = static_cast<float>(nb.width - 1), max_v = static_cast<float>(nb.height - 1);
+      const auto seen = [&](int x) {
+        const Vec3<float> h = project(x);
+        const float u = h.x() / h.z(), hv = h.y() / h.z();
+        return h.z() > 0 && u >= 0 && hv >= 0 && u <= max_u && hv <= max_v;
+      };
+      while (xb < xe && !seen(xb)) ++xb;
+      while (xe > xb && !seen(xe - 1)) --xe;
+      while (xb > 0 && xb < xe && xb - 1 + off > -0.5f && seen(xb - 1)) --xb;
+      while (xe < width && xb < xe && xe + off < max_u + 0.5f && seen(xe)) ++xe;
+      if (xb >= xe) continue;
+      const int v0 = std::min(static_cast<int>(v), std::max(nb.height - 2, 0));
+      const int v1 = std::min(v0 + 1, nb.height - 1);
+      const int s = static_cast<int>(std::floor(off));
+      SweepShiftRow row{};
+      row.fu = off - static_cast<float>(s);
+      row.fv = v - static_cast<float>(v0);
+      const float* seg_ref[3];
+      for (int c = 0; c < 3; ++c) {
+        row.top[c] = nb.channel(c) + static_cast<std::ptrdiff_t>(v0) * nb.stride + s + xb;
+        row.bottom[c] = nb.channel(c) + static_cast<std::ptrdiff_t>(v1) * nb.stride + s + xb;
+        seg_ref[c] = ref_row[c] + xb;
+      }
+      const std::size_t count = static_cast<std::size_t>(xe - xb);
+      if (best <= kSweepShiftKeepBest) {
+        sweep_shift_keep(seg_ref, row, tau, keep[0] + xb, static_cast<std::ptrdiff_t>(w), best, count, level);
+        continue;
+      }
+      sweep_shift_cost(seg_ref, row, tau, value + xb, count, level);
+      float* seg_keep[32];
+      for (int i = 0; i < best; ++i) seg_keep[i] = keep[i] + xb;
+      sweep_keep_best(seg_keep, best, value + xb, count, level);
+    }
+    // A neighbour that does not see the point counts as the truncation (the worst cost),
+    // so a plane is not preferred because few neighbours see it; the best few are averaged.
+    sweep_mean_best(keep, best, out, w, level);
+  };
+  // One worker: the blocks in order, each row pulled towards the one above (the forward
+  // vertical pass) while in cache; more: blocks in parallel, the forward pass down strips.
+  const bool in_order = resolve_thread_count(threads, blocks) == 1;
+  for (int first = 0; first < config.planes; first += batch) {
+    const int count = std::min(batch, config.planes - first);
+    const auto row_of = [&](int i, int y) {
+      return costs.data() + static_cast<std::size_t>(i) * n + static_cast<std::size_t>(y) * w;
+    };
+    const auto ay_row = [&](int y) { return ay.data() + static_cast<std::size_t>(y) * w; };
+    const auto block_costs = [&](int block) noexcept {
+      std::vector<float> scratch(static_cast<std::size_t>(best + 1) * w);
+      float* keep[32];
+      for (int i = 0; i < best; ++i) keep[i] = scratch.data() + static_cast<std::size_t>(i) * w;
+      float* value = scratch.data() + static_cast<std::size_t>(best) * w;
+      const int y0 = block * rows_per_block, y1 = std::min(height, y0 + rows_per_block);
+      for (int i = 0; i < count; ++i) {
+        const float d = static_cast<float>(depth_of(first + i));
+        for (int y = y0; y < y1; ++y) cost_row(y, d, row_of(i, y), keep, value);
+        if (!(config.spatial > 0)) continue;
+        // The horizontal aggregation pass, the block's rows side by side.
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y0) * width;
+        if (y1 - y0 == rows_per_block)
+          sweep_dt_rows(row_of(i, y0), ax.data() + at, width, width, level);
+        else
+          for (int y = y0; y < y1; ++y)
+            sweep_dt_row(row_of(i, y), ax.data() + static_cast<std::ptrdiff_t>(y) * width, width, level);
+        if (in_order)
+          for (int y = std::max(y0, 1); y < y1; ++y) sweep_dt_link(row_of(i, y), row_of(i, y - 1), ay_row(y), w, level);
+      }
+    };
+    if (in_order)
+      for (int block = 0; block < blocks; ++block) block_costs(block);
+    else
+      parallel_rows(0, blocks, threads, block_costs);
+    // Column strips (the whole width for one worker): the forward vertical pass where not done,
+    // then the backward one from the bottom, each row final once reached (kept in `carry`, the
+    // costs left in place), and the argmin bookkeeping of that row.
+    const int strip = in_order ? width : 64, strips = (width + strip - 1) / strip;
+    parallel_rows(0, strips, in_order ? 1 : threads, [&](int s) noexcept {
+      const std::size_t x0 = static_cast<std::size_t>(s) * static_cast<std::size_t>(strip);
+      const std::size_t len = std::min<std::size_t>(static_cast<std::size_t>(strip), w - x0);
+      std::vector<float> carry(static_cast<std::size_t>(count) * len);
+      const float* rows = nullptr; // plane 0's costs of the row tracked, the others `stride` apart
+      std::ptrdiff_t stride = 0;
+      const auto track = [&](int y) {
+        const std::size_t k = static_cast<std::size_t>(y) * w + x0;
+        sweep_track(rows, stride, count,
+                    SweepTrackRow{best_cost.data() + k, best_plane.data() + k, left.data() + k, right.data() + k,
+                                  previous.data() + k, sum.data() + k},
+                    first, len, level);
+      };
+      if (!(config.spatial > 0)) {
+        stride = static_cast<std::ptrdiff_t>(n);
+        for (int y = 0; y < height; ++y) {
+          rows = row_of(0, y) + x0;
+          track(y);
         }
-        // A neighbour that does not see the point counts as the truncation (the worst cost),
-        // so a plane is not preferred because few neighbours see it; the best few are averaged.
-        for (int j = seen; j < m; ++j) costs[j] = tau;
-        std::partial_sort(costs, costs + best, costs + m);
-        float c = 0;
-        for (int j = 0; j < best; ++j) c += costs[j];
-        cost[k] = c / static_cast<float>(best);
+        return;
+      }
+      if (!in_order)
+        for (int y = 1; y < height; ++y)
+          for (int i = 0; i < count; ++i)
+            sweep_dt_link(row_of(i, y) + x0, row_of(i, y - 1) + x0, ay_row(y) + x0, len, level);
+      rows = carry.data();
+      stride = static_cast<std::ptrdiff_t>(len);
+      for (int i = 0; i < count; ++i) {
+        std::copy_n(row_of(i, height - 1) + x0, len, carry.data() + static_cast<std::size_t>(i) * len);
+      }
+      track(height - 1);
+      for (int y = height - 2; y >= 0; --y) {
+        // The rows come from memory, bottom up: fetch the next ones ahead.
+        if (y > 0)
+          for (int i = 0; i < count; ++i) sweep_prefetch(row_of(i, y - 1) + x0, len);
+        for (int i = 0; i < count; ++i)
+          sweep_dt_carry(carry.data() + static_cast<std::size_t>(i) * len, row_of(i, y) + x0, ay_row(y + 1) + x0, len,
+                         level);
+        track(y);
       }
     });
-    if (config.spatial > 0) {
-      detail::parallel_rows(0, height, config.threads, [&](int y) noexcept {
-        detail::domain_transform_line(cost.data() + static_cast<std::ptrdiff_t>(y) * width,
-                                      ax.data() + static_cast<std::ptrdiff_t>(y) * width, width, 1);
-      });
-      detail::parallel_rows(0, width, config.threads, [&](int x) noexcept {
-        detail::domain_transform_line(cost.data() + x, ay.data() + x, height, width);
-      });
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      const float c = cost[k];
-      sum[k] += c;
-      if (best_plane[k] == plane - 1) right[k] = c;
-      if (c < best_cost[k]) {
-        best_cost[k] = c;
-        best_plane[k] = plane;
-        left[k] = plane > 0 ? previous[k] : c;
-        right[k] = c;
-      }
-      previous[k] = c;
-    }
   }
   DepthEstimate out{Image<float>(width, height), Image<float>(width, height)};
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      const std::size_t k = static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
       const int b = best_plane[k];
       double offset = 0;
       if (b > 0 && b < config.planes - 1) {
@@ -251,14 +403,55 @@ template <std::floating_point T, class Px>
   return out;
 }
 
+} // namespace detail
+
+/// The depth map of camera `camera` of `frames` by the plane sweep of the file comment, compared
+/// with its `config.neighbours` nearest cameras, on `config.threads` workers (the rows of each
+/// plane). Throws `argument_error` for a bad config, a camera index out of range ("camera"), a
+/// set of fewer than two cameras or a camera with lens distortion ("frames", naming it).
+template <std::floating_point T, class Px>
+[[nodiscard]] DepthEstimate estimate_depth(const CameraFrameSet<T, Px>& frames, std::size_t camera,
+                                           const PlaneSweepConfig& config) {
+  validate(config);
+  if (camera >= frames.size()) throw argument_error("camera", "index out of range");
+  if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
+  detail::SweepWorkspace workspace;
+  return detail::plane_sweep(frames, camera, detail::sweep_neighbours(frames, camera, config), config, config.threads,
+                             workspace);
+}
+
 /// The estimated depth maps of every camera of `frames` (see `estimate_depth`), in camera order,
-/// for `CameraFrameSet::with_depth`.
+/// for `CameraFrameSet::with_depth`. The cameras are shared among the `config.threads` workers
+/// (each worker's buffers take about 130 bytes per pixel of a camera, 140 MB for Chess); with
+/// fewer cameras than workers, each camera's rows are shared too. Throws as `estimate_depth`,
+/// before any work.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::vector<Image<float>> estimate_depth_maps(const CameraFrameSet<T, Px>& frames,
                                                             const PlaneSweepConfig& config) {
-  std::vector<Image<float>> maps;
-  maps.reserve(frames.size());
-  for (std::size_t i = 0; i < frames.size(); ++i) maps.push_back(estimate_depth(frames, i, config).depth);
+  validate(config);
+  if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
+  std::vector<std::vector<std::size_t>> neighbours;
+  for (std::size_t i = 0; i < frames.size(); ++i) neighbours.push_back(detail::sweep_neighbours(frames, i, config));
+  const int cameras = static_cast<int>(frames.size());
+  const int total = detail::resolve_thread_count(config.threads, std::numeric_limits<int>::max());
+  const int workers = std::min(total, cameras), inner = std::max(1, total / workers);
+  std::vector<Image<float>> maps(frames.size());
+  std::exception_ptr failure;
+  std::mutex guard;
+  std::atomic<int> next{0};
+  detail::parallel_rows(0, workers, workers, [&](int) noexcept {
+    try {
+      detail::SweepWorkspace workspace;
+      for (int i = next.fetch_add(1); i < cameras; i = next.fetch_add(1)) {
+        const auto k = static_cast<std::size_t>(i);
+        maps[k] = detail::plane_sweep(frames, k, neighbours[k], config, inner, workspace).depth;
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(guard);
+      if (!failure) failure = std::current_exception();
+    }
+  });
+  if (failure) std::rethrow_exception(failure);
   return maps;
 }
 

@@ -1,0 +1,196 @@
+// Plane-sweep depth estimation (mpr::estimate_depth, lightfield/depth_estimation.hpp): run time
+// on Stanford Chess (all 49 views, 1 and 2 threads) and accuracy against exact depth on a
+// rasterized virtual array of the classroom.
+//
+//   build/bench/benchmarks/depth_estimation [DATA_DIR] [--quick] [--planes=N] [--views=N]
+//
+// DATA_DIR (default: $MPR_DATA_DIR) holds stanford/chess; without it the Chess part is skipped.
+// --quick (ctest's smoke run) sweeps a small classroom array only. --planes=, --neighbours=,
+// --best=, --truncation=, --spatial=, --range= change the classroom's settings (default: the
+// PlaneSweepConfig defaults, 64 planes); --views limits the Chess views timed (default all, else one by one
+// with estimate_depth); --threads=N times only N threads; --no-classroom skips the accuracy part.
+
+#include "bench_common.hpp"
+
+#include <mpr/io/stanford_light_field.hpp>
+#include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/scene/classroom.hpp>
+#include <mpr/scene/rasterized_sampler.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <sys/resource.h>
+#include <vector>
+
+namespace {
+
+std::string load_average() {
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  char text[64] = "unknown";
+  if (f != nullptr) {
+    if (std::fgets(text, sizeof text, f) == nullptr) std::snprintf(text, sizeof text, "unknown");
+    std::fclose(f);
+  }
+  std::string s = text;
+  while (!s.empty() && s.back() == '\n') s.pop_back();
+  return s;
+}
+
+template <class Fn>
+double seconds(Fn&& fn) {
+  const auto start = std::chrono::steady_clock::now();
+  fn();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// CPU seconds of the process so far (user + system, all threads).
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// The classroom as an 8 x 6 array of rasterized cameras (as examples/lightfield_glc_gallery.cpp
+// makes it), camera 28's depth estimated from the colours against its exact z-buffer.
+void classroom_accuracy(bool quick, mpr::PlaneSweepConfig sweep) {
+  using T = float;
+  const auto scene = mpr::scene::classroom<T>();
+  const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
+  const mpr::Vec3<T> forward = (target - eye).normalized();
+  const mpr::Vec3<T> right = forward.cross(mpr::Vec3<T>::UnitY()).normalized();
+  const mpr::Vec3<T> down = forward.cross(right);
+  const auto room = mpr::PlanarSurface<T>::centred(eye, T(8) * right, T(6) * down);
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 8;
+  config.rows = 6;
+  config.width = quick ? 80 : 320;
+  config.height = quick ? 60 : 240;
+  config.depth_maps = true;
+  const auto array = mpr::scene::rasterize_virtual_array(scene, room, config);
+  const std::size_t camera = 28;
+  sweep.near = 1.5;
+  sweep.far = 30;
+  if (quick) sweep.planes = 16;
+  sweep.threads = 2;
+  mpr::DepthEstimate e;
+  const double s = seconds([&] { e = mpr::estimate_depth(array.frames, camera, sweep); });
+  const mpr::Image<float>& truth = array.frames.depth(camera);
+  const mpr::Image<mpr::Rgb8>& image = array.frames.image(camera);
+  const int w = image.width(), h = image.height();
+  const auto luma = [&](int x, int y) {
+    const mpr::Rgb8 p = image(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1));
+    return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b;
+  };
+  std::vector<double> all, textured, signed_textured;
+  int within1 = 0, within5 = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double z = truth(x, y);
+      if (!std::isfinite(z)) continue;
+      const double error = std::abs(static_cast<double>(e.depth(x, y)) - z) / z;
+      all.push_back(error);
+      within1 += error <= 0.01;
+      within5 += error <= 0.05;
+      const double gx = luma(x + 1, y) - luma(x - 1, y), gy = luma(x, y + 1) - luma(x, y - 1);
+      if (std::hypot(gx, gy) > 60) {
+        textured.push_back(error);
+        signed_textured.push_back((static_cast<double>(e.depth(x, y)) - z) / z);
+      }
+    }
+  const double count = static_cast<double>(all.size());
+  std::printf("\nclassroom, 8x6 rasterized cameras of %dx%d, camera %zu from colours, %d planes %.1f..%.0f m, "
+              "neighbours %d best %d truncation %.2f spatial %.0f range %.2f, 2 threads\n\n",
+              w, h, camera, sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation,
+              sweep.spatial, sweep.range);
+  std::printf("| time s | median rel. error, textured (%zu px, luma gradient > 60) | median rel. error, all (%zu px) "
+              "| within 1%% | within 5%% | median signed error, textured |\n|---|---|---|---|---|---|\n",
+              textured.size(), all.size());
+  std::printf("| %.3f | %.2f%% | %.2f%% | %.1f%% | %.1f%% | %+.2f%% |\n", s, 100 * median(textured), 100 * median(all),
+              100 * within1 / count, 100 * within5 / count, 100 * median(signed_textured));
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = mpr_bench::quick_mode(argc, argv);
+  std::string data;
+  int views = 0, only_threads = 0;
+  mpr::PlaneSweepConfig classroom_config; // the settings of the classroom run (defaults, 64 planes)
+  bool classroom = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--planes=", 0) == 0)
+      classroom_config.planes = std::atoi(a.c_str() + 9);
+    else if (a.rfind("--neighbours=", 0) == 0)
+      classroom_config.neighbours = std::atoi(a.c_str() + 13);
+    else if (a.rfind("--best=", 0) == 0)
+      classroom_config.best = std::atoi(a.c_str() + 7);
+    else if (a.rfind("--truncation=", 0) == 0)
+      classroom_config.truncation = std::atof(a.c_str() + 13);
+    else if (a.rfind("--spatial=", 0) == 0)
+      classroom_config.spatial = std::atof(a.c_str() + 10);
+    else if (a.rfind("--range=", 0) == 0)
+      classroom_config.range = std::atof(a.c_str() + 8);
+    else if (a.rfind("--views=", 0) == 0)
+      views = std::atoi(a.c_str() + 8);
+    else if (a.rfind("--threads=", 0) == 0)
+      only_threads = std::atoi(a.c_str() + 10);
+    else if (a == "--no-classroom")
+      classroom = false;
+    else if (a != "--quick")
+      data = a;
+  }
+  if (data.empty()) {
+    const char* env = std::getenv("MPR_DATA_DIR");
+    data = env != nullptr ? env : "";
+  }
+  std::printf("%s\n", mpr_bench::machine_description().c_str());
+  std::printf("plane-sweep kernels: %s; load average at start: %s\n", mpr::detail::simd_level_name(),
+              load_average().c_str());
+  if (classroom) classroom_accuracy(quick, classroom_config);
+
+  const std::filesystem::path chess = std::filesystem::path(data) / "stanford" / "chess";
+  if (quick || data.empty() || !std::filesystem::is_directory(chess)) {
+    std::printf("\nChess: skipped (%s)\n", quick ? "--quick" : "no data; pass DATA_DIR or set MPR_DATA_DIR");
+    return 0;
+  }
+  const auto lf = mpr::read_stanford_light_field<float>(chess);
+  mpr::PlaneSweepConfig sweep;
+  sweep.near = 600;
+  sweep.far = 1400;
+  sweep.planes = 64;
+  const std::size_t n = views > 0 ? std::min<std::size_t>(static_cast<std::size_t>(views), lf.size()) : lf.size();
+  std::printf("\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against its %d nearest), %d planes "
+              "%.0f..%.0f, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
+              lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes, sweep.near,
+              sweep.far, sweep.best, sweep.truncation, sweep.spatial, sweep.range);
+  std::printf("| threads | total s (wall) | ms per view (wall) | CPU s (all threads) | load average after |\n"
+              "|---|---|---|---|---|\n");
+  for (const int threads : {2, 1}) {
+    if (only_threads > 0 && threads != only_threads) continue;
+    sweep.threads = threads;
+    double s = 0;
+    const double cpu = cpu_seconds();
+    if (n == lf.size()) {
+      s = seconds([&] { (void)mpr::estimate_depth_maps(lf, sweep); });
+    } else {
+      for (std::size_t i = 0; i < n; ++i) s += seconds([&] { (void)mpr::estimate_depth(lf, i, sweep); });
+    }
+    std::printf("| %d | %.2f | %.0f | %.2f | %s |\n", threads, s, 1000 * s / static_cast<double>(n),
+                cpu_seconds() - cpu, load_average().c_str());
+    std::fflush(stdout);
+  }
+  return 0;
+}
