@@ -5,17 +5,28 @@
 //
 // - Stanford Chess (7x7 views of 1400x800): held-out views (06,06), (08,08), (10,10) (indices 8,
 //   24, 40); focal plane z = 820, the middle of the board's depth range (about 700-950 with the
-//   default planar-array options); cylinder radius 10 (about 12 of the 48 cameras).
+//   default planar-array options); cylinder radius 10 (about 12 of the 48 cameras). Depth proxy:
+//   the 48 other views' depth estimated by a plane sweep of 64 planes from 600 to 1400, cameras
+//   within 10 (twice the spacing) of a ray.
 // - Middlebury templeSparseRing (16 views of 640x480): held-out views 3, 7, 13 (0-based); focal
 //   plane through the centre of the data set's bounding box, facing the held-out camera;
-//   cylinder radius 0.3 (the ring's neighbours are about 0.22 apart).
+//   cylinder radius 0.3 (the ring's neighbours are about 0.22 apart). Depth proxy: the 15 other
+//   views' depth estimated by a plane sweep over the depths the bounding box spans in front of
+//   the cameras and constrained to the visual hull of the silhouettes against the black backdrop
+//   (brightest channel >= 20), cameras within 0.5 of a ray.
 
 #include <mpr/lightfield.hpp>
+#include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/visual_hull.hpp>
 #include <mpr/mpr.hpp>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,11 +40,53 @@ struct LooSetup {
   double cylinder_radius = 1;
   /// The focal depth (in front of the held-out camera) of the perspective GLC that renders it.
   std::function<T(const mpr::PinholeCamera<T>&)> depth_of;
+  /// The plane sweep that estimates the other views' depth for the depth proxy; with `bounds`
+  /// set, its near and far are replaced by `sweep_range` of the frames.
+  mpr::PlaneSweepConfig sweep;
+  /// The scene's bounding box (lower and upper corner), when the data set gives one.
+  std::optional<std::array<mpr::Vec3<T>, 2>> bounds;
+  /// `DepthProxy::radius`: cameras within this distance of a ray are walked and blended.
+  double depth_radius = 1;
+  /// For objects on a black backdrop: the `BrightnessSilhouette` threshold whose visual hull
+  /// constrains the estimated depth (`constrain_to_visual_hull`); unset: no hull.
+  std::optional<int> silhouette;
 };
+
+/// The plane sweep of `setup` for `frames`: with `setup.bounds`, near and far are the nearest
+/// and farthest depth of the box's corners along any camera's axis, widened by 10%.
+template <std::floating_point T, class Px>
+mpr::PlaneSweepConfig sweep_config(const LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>& frames) {
+  mpr::PlaneSweepConfig c = setup.sweep;
+  if (!setup.bounds) return c;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto& b = *setup.bounds;
+      const mpr::Vec3<T> p((corner & 1) ? b[1].x() : b[0].x(), (corner & 2) ? b[1].y() : b[0].y(),
+                           (corner & 4) ? b[1].z() : b[0].z());
+      const double z = static_cast<double>(frames.camera(i).forward().dot(p - frames.camera(i).centre()));
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  c.near = 0.9 * lo;
+  c.far = 1.1 * hi;
+  return c;
+}
 
 template <std::floating_point T>
 LooSetup<T> chess_setup() {
-  return {"chess", {8, 24, 40}, 10.0, [](const mpr::PinholeCamera<T>&) { return T(820); }};
+  mpr::PlaneSweepConfig sweep;
+  sweep.near = 600;
+  sweep.far = 1400;
+  sweep.planes = 64;
+  LooSetup<T> setup;
+  setup.name = "chess";
+  setup.held_out = {8, 24, 40};
+  setup.cylinder_radius = 10.0;
+  setup.depth_of = [](const mpr::PinholeCamera<T>&) { return T(820); };
+  setup.sweep = sweep;
+  setup.depth_radius = 10.0;
+  return setup;
 }
 
 template <std::floating_point T>
@@ -44,11 +97,20 @@ std::filesystem::path temple_par_file(const std::filesystem::path& data) {
 template <std::floating_point T>
 LooSetup<T> temple_setup() {
   // The centre of the bounding box in the data set's README.
-  const mpr::Vec3<T> target(T(0.5 * (-0.073568 + 0.028855)), T(0.5 * (0.021728 + 0.181892)),
-                            T(0.5 * (-0.012445 + 0.062736)));
-  return {"temple", {3, 7, 13}, 0.3, [target](const mpr::PinholeCamera<T>& c) {
-            return c.forward().dot(target - c.centre());
-          }};
+  const mpr::Vec3<T> lo(T(-0.073568), T(0.021728), T(-0.012445)), hi(T(0.028855), T(0.181892), T(0.062736));
+  const mpr::Vec3<T> target = T(0.5) * (lo + hi);
+  mpr::PlaneSweepConfig sweep;
+  sweep.planes = 64;
+  LooSetup<T> setup;
+  setup.name = "temple";
+  setup.held_out = {3, 7, 13};
+  setup.cylinder_radius = 0.3;
+  setup.depth_of = [target](const mpr::PinholeCamera<T>& c) { return c.forward().dot(target - c.centre()); };
+  setup.sweep = sweep;
+  setup.bounds = std::array<mpr::Vec3<T>, 2>{lo, hi};
+  setup.depth_radius = 0.5;
+  setup.silhouette = 20;
+  return setup;
 }
 
 /// The renderer of a held-out view: the perspective GLC of `held` on its image plane at `depth`,

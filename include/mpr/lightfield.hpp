@@ -16,6 +16,7 @@
 #include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/camera_index.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>
+#include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/frame_set.hpp>
@@ -24,3 +25,4 @@
 #include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/lightfield/synthetic_aperture.hpp>
 #include <mpr/lightfield/view_depth.hpp>
+#include <mpr/lightfield/visual_hull.hpp>

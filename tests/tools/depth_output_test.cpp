@@ -194,3 +194,54 @@ TEST_CASE("mpr-render --all-in-focus is the depth interpolation", "[tools]") {
              Catch::Contains("--depth-maps") && Catch::Contains("give one of them"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("mpr-render --depth-maps estimate: the depth of a textured plane estimated from the images", "[tools]") {
+  const std::filesystem::path dir = mpr_tools_test::textured_plane_light_field("estimate", 2.3);
+  const std::filesystem::path saved = temp_folder("estimate_saved");
+  const std::vector<std::string> args{"--par",
+                                      (dir / "tiny_par.txt").string(),
+                                      "--depth-maps",
+                                      "estimate:1:4:96",
+                                      "--save-depth-maps",
+                                      saved.string(),
+                                      "--focal-depth",
+                                      "1.5",
+                                      "--focus-at",
+                                      "24,18"};
+  const mpr_cli::Job job = job_of(args);
+  REQUIRE(job.depth_estimate.has_value());
+  CHECK(job.depth_estimate->near == 1);
+  CHECK(job.depth_estimate->far == 4);
+  CHECK(job.depth_estimate->planes == 96);
+  CHECK_FALSE(job.depth_maps.has_value());
+  std::ostringstream info;
+  (void)mpr_cli::render_frames(job, &info);
+  INFO(info.str());
+  CHECK_THAT(info.str(), Catch::Contains("estimated the depth maps of 3 cameras in") &&
+                             Catch::Contains("96 planes from 1 to 4") && Catch::Contains("wrote 3 depth maps to"));
+  // The focus found from the estimated maps lies on the plane (within 3%), and the saved maps
+  // read back as --depth-maps FOLDER give the same focus.
+  const auto focus_of = [](const std::string& text) {
+    const std::size_t at = text.find("depth ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + 6));
+  };
+  const double estimated = focus_of(info.str().substr(info.str().find("focus at pixel")));
+  CHECK(estimated == Approx(2.3).epsilon(0.03));
+  std::vector<std::string> again = args;
+  again[3] = saved.string();
+  again.erase(again.begin() + 4, again.begin() + 6); // no --save-depth-maps
+  std::ostringstream info2;
+  (void)mpr_cli::render_frames(job_of(again), &info2);
+  CHECK(focus_of(info2.str().substr(info2.str().find("focus at pixel"))) == Approx(estimated).epsilon(1e-6));
+
+  // Bad forms name --depth-maps (or --save-depth-maps) and say what is expected.
+  const std::string par = (dir / "tiny_par.txt").string();
+  for (const char* bad : {"estimate", "estimate:1", "estimate:3:1", "estimate:0:2", "estimate:1:2:1", "estimate:1:x",
+                          "estimate:1:2:64:9"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", bad, "--all-in-focus"}), Catch::Contains("--depth-maps"));
+  }
+  CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", dir.string(), "--all-in-focus", "--save-depth-maps", "x"}),
+                    Catch::Contains("--save-depth-maps") && Catch::Contains("estimate"));
+}

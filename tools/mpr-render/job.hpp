@@ -12,6 +12,7 @@
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/depth_estimation.hpp>
 
 #include <array>
 #include <cmath>
@@ -53,17 +54,20 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  bool interpolation_given = false;                 ///< else: synthetic for refocusing, cylinder for other views
-  Track radius{10};                                 ///< cylinder aperture radius (depth proxy: candidate radius)
-  bool radius_given = false;                        ///< else: the array's camera spacing (light fields, --raster)
-  std::optional<Track> focal_depth;                 ///< light fields: depth of the focal (image) plane
-  std::optional<std::filesystem::path> depth_maps;  ///< light fields: folder of one PFM per camera
-  bool all_in_focus = false;                        ///< --all-in-focus: the same as --interp depth
-  std::optional<std::pair<int, int>> focus_at;      ///< --focus-at X,Y: output pixel whose depth sets the focus
-  std::optional<std::filesystem::path> write_depth; ///< --write-depth FILE.pfm: the depth of the view(s)
-  double reference_depth = 1000;                    ///< Stanford / LFCA: depth of the rectified reference plane
-  double position_scale = 1;                        ///< Stanford / LFCA: world units per stored position unit
-  std::optional<int> camera;                        ///< light fields: the reference camera (index)
+  bool interpolation_given = false;                     ///< else: synthetic for refocusing, cylinder for other views
+  Track radius{10};                                     ///< cylinder aperture radius (depth proxy: candidate radius)
+  bool radius_given = false;                            ///< else: the array's camera spacing (light fields, --raster)
+  std::optional<Track> focal_depth;                     ///< light fields: depth of the focal (image) plane
+  std::optional<std::filesystem::path> depth_maps;      ///< light fields: folder of one PFM per camera
+  std::optional<mpr::PlaneSweepConfig> depth_estimate;  ///< light fields: --depth-maps estimate:NEAR:FAR[:PLANES]
+  std::string depth_maps_arg;                           ///< --depth-maps as given (the viewer's command line)
+  std::optional<std::filesystem::path> save_depth_maps; ///< --save-depth-maps FOLDER: the estimated maps
+  bool all_in_focus = false;                            ///< --all-in-focus: the same as --interp depth
+  std::optional<std::pair<int, int>> focus_at;          ///< --focus-at X,Y: output pixel whose depth sets the focus
+  std::optional<std::filesystem::path> write_depth;     ///< --write-depth FILE.pfm: the depth of the view(s)
+  double reference_depth = 1000;                        ///< Stanford / LFCA: depth of the rectified reference plane
+  double position_scale = 1;                            ///< Stanford / LFCA: world units per stored position unit
+  std::optional<int> camera;                            ///< light fields: the reference camera (index)
   /// Light fields: called after each image is loaded with (loaded, total); not set from the
   /// command line (main.cpp draws a progress line on a terminal with it).
   std::function<void(std::size_t loaded, std::size_t total)> load_progress;
@@ -80,6 +84,9 @@ struct Job {
   std::optional<double> scene_scale;
   std::optional<std::string> morph_to;          ///< second view spec of a morph
   Track morph = Track::parse("0:1", "--morph"); ///< morph weight (0: the view, 1: morph_to)
+
+  /// Light fields: depth maps come from a folder or from estimation (--depth-maps).
+  [[nodiscard]] bool has_depth_maps() const noexcept { return depth_maps.has_value() || depth_estimate.has_value(); }
 };
 
 /// True when the track takes more than one value over the animation.
@@ -111,6 +118,24 @@ inline void check_animation(const Job& job) {
     throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
                                           "--tilt-y, --radius, --focal-depth, --aperture's size or --morph, or "
                                           "--morph-to VIEW)");
+}
+
+/// `--depth-maps estimate:NEAR:FAR[:PLANES]`: the plane sweep of `mpr::estimate_depth_maps` over
+/// depths NEAR to FAR along each camera's axis (world units), PLANES planes (default 64), the
+/// other settings at their defaults. Throws argument_error naming --depth-maps.
+[[nodiscard]] inline mpr::PlaneSweepConfig parse_depth_estimate(const std::string& text) {
+  const std::vector<std::string> f = split(text, ':');
+  if (f[0] != "estimate" || f.size() < 3 || f.size() > 4)
+    throw mpr::argument_error("--depth-maps", "'" + text +
+                                                  "': give a FOLDER of PFMs or estimate:NEAR:FAR[:PLANES] (the depth "
+                                                  "range to sweep along the cameras' axes, e.g. estimate:600:1400)");
+  mpr::PlaneSweepConfig c;
+  c.near = parse_number(f[1], "--depth-maps");
+  c.far = parse_number(f[2], "--depth-maps");
+  if (!(c.near > 0) || !(c.far > c.near))
+    throw mpr::argument_error("--depth-maps", "'" + text + "': needs 0 < NEAR < FAR");
+  if (f.size() == 4) c.planes = parse_int(f[3], "--depth-maps", 2, 1024);
+  return c;
 }
 
 /// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.
@@ -249,9 +274,19 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     job.interpolation_given = true;
   }
   if (const auto v = args.get("depth-maps")) {
-    job.depth_maps = *v;
-    std::error_code ec;
-    if (!std::filesystem::is_directory(job.depth_maps.value(), ec)) throw mpr::io_error(*v, "no such folder");
+    job.depth_maps_arg = *v;
+    if (v->rfind("estimate", 0) == 0) {
+      job.depth_estimate = parse_depth_estimate(*v);
+    } else {
+      job.depth_maps = *v;
+      std::error_code ec;
+      if (!std::filesystem::is_directory(job.depth_maps.value(), ec)) throw mpr::io_error(*v, "no such folder");
+    }
+  }
+  if (const auto v = args.get("save-depth-maps")) {
+    if (!job.depth_estimate)
+      throw mpr::argument_error("--save-depth-maps", "saves estimated maps: needs --depth-maps estimate:NEAR:FAR");
+    job.save_depth_maps = *v;
   }
   if (const auto v = args.get("focus-at")) {
     const std::vector<std::string> xy = split(*v, ',');
@@ -264,7 +299,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     if (!light_field && !job.raster && !job.aperture)
       throw mpr::argument_error("--focus-at", "applies to light fields, --raster and --aperture (a pinhole view of a "
                                               "ray-cast scene is sharp at every depth)");
-    if (light_field && !job.depth_maps)
+    if (light_field && !job.has_depth_maps())
       throw mpr::argument_error("--focus-at", "needs --depth-maps FOLDER (the depth under the pixel comes from the "
                                               "cameras' depth maps)");
   }
@@ -274,7 +309,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       throw mpr::argument_error("--write-depth", "'" + *v + "': writes a .pfm file (and a PNG preview beside it)");
     if (job.frames > 0)
       throw mpr::argument_error("--write-depth", "writes the depth of one image, not of an animation (--frames)");
-    if (light_field && !job.depth_maps)
+    if (light_field && !job.has_depth_maps())
       throw mpr::argument_error("--write-depth",
                                 "needs --depth-maps FOLDER for a light field (its depth comes from the "
                                 "cameras' depth maps)");
@@ -282,11 +317,11 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       throw mpr::argument_error("--write-depth", "its preview " + depth_preview_path(*job.write_depth).string() +
                                                      " would overwrite --output");
   }
-  if (job.depth_maps && !context.reads_depth_maps && job.interpolation != Interpolation::depth && !job.focus_at &&
+  if (job.has_depth_maps() && !context.reads_depth_maps && job.interpolation != Interpolation::depth && !job.focus_at &&
       !job.write_depth)
     throw mpr::argument_error(
         "--depth-maps", "is read by --interp depth, --all-in-focus, --focus-at and --write-depth; give one of them");
-  if (job.interpolation == Interpolation::depth && light_field && !job.depth_maps)
+  if (job.interpolation == Interpolation::depth && light_field && !job.has_depth_maps())
     throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",
                               "needs --depth-maps FOLDER (one PFM per camera) for a light field");
   if (const auto v = args.get("radius")) {

@@ -7,6 +7,7 @@
 #include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/lightfield.hpp>
 #include <mpr/lightfield/array_view.hpp>
+#include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/scene.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
@@ -14,11 +15,15 @@
 #endif
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace mpr_cli {
 
@@ -34,6 +39,8 @@ struct Loaded {
   // Scene defaults (world units).
   mpr::Vec3<double> plane_centre{0, 3.1, 3}, look_at{0, 1.6, -8}, scene_centre{0, 1.6, -8};
   double plane_width = 8, scene_scale = 14;
+  /// Lines for the user about what loading did (e.g. depth estimation and its time).
+  std::vector<std::string> notes;
 };
 
 namespace detail {
@@ -68,6 +75,24 @@ Loaded<T> load(const Job& job) {
     if (job.depth_maps) {
       std::vector<mpr::Image<float>> maps = mpr::read_depth_maps(*job.depth_maps, set, limits);
       set = std::move(set).with_depth(std::move(maps));
+    } else if (job.depth_estimate) {
+      mpr::PlaneSweepConfig sweep = *job.depth_estimate;
+      sweep.threads = job.threads;
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<mpr::Image<float>> maps = mpr::estimate_depth_maps(set, sweep);
+      char note[160];
+      std::snprintf(note, sizeof note, "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g)",
+                    set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    sweep.planes, sweep.near, sweep.far);
+      l.notes.emplace_back(note);
+      set = std::move(set).with_depth(std::move(maps));
+      if (job.save_depth_maps) {
+        std::error_code ec;
+        std::filesystem::create_directories(*job.save_depth_maps, ec);
+        if (ec) throw mpr::io_error(job.save_depth_maps->string(), "cannot create the folder: " + ec.message());
+        mpr::write_depth_maps(*job.save_depth_maps, set);
+        l.notes.push_back("wrote " + std::to_string(set.size()) + " depth maps to " + job.save_depth_maps->string());
+      }
     }
     return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));
   };

@@ -80,11 +80,16 @@ inline const std::vector<OptionSpec>& options() {
        "rasterizer's depth, light fields need --depth-maps; --radius: the cameras considered, default twice the "
        "spacing) (default synthetic).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3"},
-      {"depth-maps", "FOLDER",
+      {"depth-maps", "FOLDER|estimate:NEAR:FAR[:PLANES]",
        "Light fields: one PFM depth map per camera (depth along its optical axis, +inf where nothing was seen), named "
-       "after its image (cam.png -> cam.pfm); read by --interp depth, --all-in-focus, --focus-at and --write-depth. "
-       "Write them with mpr::estimate_depth and mpr::write_depth_maps (docs/lightfield.md).",
-       "--stanford $MPR_DATA_DIR/stanford/chess --interp depth --depth-maps $MPR_DATA_DIR/stanford/chess-depth"},
+       "after its image (cam.png -> cam.pfm), or estimated from the images by a plane sweep over depths NEAR to FAR "
+       "along the cameras' axes (PLANES planes, default 64; mpr::estimate_depth_maps, docs/lightfield.md); read by "
+       "--interp depth, --all-in-focus, --focus-at and --write-depth.",
+       "--stanford $MPR_DATA_DIR/stanford/chess --all-in-focus --depth-maps estimate:600:1400"},
+      {"save-depth-maps", "FOLDER",
+       "With --depth-maps estimate: write the estimated maps there as PFMs (read them back with --depth-maps FOLDER).",
+       "--stanford $MPR_DATA_DIR/stanford/chess --all-in-focus --depth-maps estimate:600:1400 --save-depth-maps "
+       "chess-depth"},
       {"all-in-focus", "",
        "Light fields and --raster: every ray focused at its own depth, the first surface the depth maps show along it "
        "(the same as --interp depth: the cameras within --radius that see that point, the 4 best by angle blended); "

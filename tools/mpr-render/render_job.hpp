@@ -68,6 +68,8 @@ using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr:
 template <std::floating_point T>
 void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings) {
   const Loaded<T> l = load<T>(given);
+  if (info != nullptr)
+    for (const std::string& note : l.notes) *info << note << '\n';
   const Job job = with_focus_at(with_array_defaults(given, l), l, info); // --focus-at: the focal depth set
 
   preflight(job, l); // every frame checked before the first is rendered

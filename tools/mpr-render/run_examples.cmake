@@ -9,6 +9,7 @@
 # Each command runs in SOURCE_DIR with $MPR_DATA_DIR replaced by DATA_DIR, small: `--size 32x24`
 # appended (the last value wins), `--frames N` above 3 lowered to 3, and `--output` appended as
 # OUT/<n>.png (.jpg when the example writes JPEG); a --write-depth file goes to OUT/<n>_depth.pfm,
+# --save-depth-maps to the folder OUT/<n>_depth_maps,
 # and a command with --focus-at keeps its size (its pixel must lie inside the image). It must exit
 # 0 and write its image (or its first frame). A command whose --stanford/--par/--lfca input (real data, never in the
 # repository) is missing is skipped with a line saying so. Prints one line per command: seconds, output, command.
@@ -100,11 +101,14 @@ foreach(_cmd IN LISTS _commands)
     if(_prev MATCHES "^--(stanford|par|lfca)$" AND NOT IS_ABSOLUTE "${_a}")
       set(_a "${SOURCE_DIR}/${_a}")
     endif()
-    if(_prev MATCHES "^--(stanford|par|lfca|depth-maps)$" AND NOT EXISTS "${_a}")
+    if(_prev MATCHES "^--(stanford|par|lfca|depth-maps)$" AND NOT EXISTS "${_a}" AND NOT _a MATCHES "^estimate")
       set(_skip "${_a}")
     endif()
     if(_prev STREQUAL "--write-depth")
       set(_a "${OUT}/${_n}_depth.pfm")
+    endif()
+    if(_prev STREQUAL "--save-depth-maps")
+      set(_a "${OUT}/${_n}_depth_maps")
     endif()
     if(_prev STREQUAL "--focus-at")
       set(_keep_size TRUE)

@@ -82,7 +82,7 @@ inline std::string shell_word(const std::string& s) {
                                                                     : "cylinder");
     if (job.interpolation == Interpolation::cylinder || job.interpolation == Interpolation::depth)
       add("--radius", detail::number(job.radius.at(time)));
-    if (job.depth_maps) add("--depth-maps", job.depth_maps->string());
+    if (job.has_depth_maps()) add("--depth-maps", job.depth_maps_arg);
     if (job.focal_depth) add("--focal-depth", detail::number(job.focal_depth->at(time)));
   }
   if (light_field) {
