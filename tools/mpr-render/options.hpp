@@ -85,11 +85,12 @@ inline const std::vector<OptionSpec>& options() {
        "after its image (cam.png -> cam.pfm), or estimated from the images by a plane sweep over depths NEAR to FAR "
        "along the cameras' axes (PLANES planes, default 64; mpr::estimate_depth_maps, docs/lightfield.md); read by "
        "--interp depth, --all-in-focus, --focus-at and --write-depth.",
-       "--stanford $MPR_DATA_DIR/stanford/chess --all-in-focus --depth-maps estimate:600:1400"},
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
+       "estimate:0.44:0.72"},
       {"save-depth-maps", "FOLDER",
        "With --depth-maps estimate: write the estimated maps there as PFMs (read them back with --depth-maps FOLDER).",
-       "--stanford $MPR_DATA_DIR/stanford/chess --all-in-focus --depth-maps estimate:600:1400 --save-depth-maps "
-       "chess-depth"},
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
+       "estimate:0.44:0.72:32 --save-depth-maps temple-depth"},
       {"all-in-focus", "",
        "Light fields and --raster: every ray focused at its own depth, the first surface the depth maps show along it "
        "(the same as --interp depth: the cameras within --radius that see that point, the 4 best by angle blended); "
