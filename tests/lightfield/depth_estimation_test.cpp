@@ -223,8 +223,12 @@ TEST_CASE("plane sweep settings are checked, naming the field", "[depth_estimati
   mpr::PlaneSweepConfig c;
   c.near = 0;
   refuse(c, "near");
+  c.near = 1e-310; // 1 / near overflows: every plane would be at depth 0
+  refuse(c, "near");
   c = {};
   c.far = c.near;
+  refuse(c, "far");
+  c.far = 1e40; // beyond float: the maps would hold +inf, "nothing seen"
   refuse(c, "far");
   c = {};
   c.planes = 1;

@@ -275,7 +275,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
   }
   if (const auto v = args.get("depth-maps")) {
     job.depth_maps_arg = *v;
-    if (v->rfind("estimate", 0) == 0) {
+    if (*v == "estimate" || v->starts_with("estimate:")) {
       job.depth_estimate = parse_depth_estimate(*v);
     } else {
       job.depth_maps = *v;
@@ -300,8 +300,9 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       throw mpr::argument_error("--focus-at", "applies to light fields, --raster and --aperture (a pinhole view of a "
                                               "ray-cast scene is sharp at every depth)");
     if (light_field && !job.has_depth_maps())
-      throw mpr::argument_error("--focus-at", "needs --depth-maps FOLDER (the depth under the pixel comes from the "
-                                              "cameras' depth maps)");
+      throw mpr::argument_error(
+          "--focus-at", "needs --depth-maps FOLDER or estimate:NEAR:FAR (the depth under the pixel comes from the "
+                        "cameras' depth maps)");
   }
   if (const auto v = args.get("write-depth")) {
     job.write_depth = *v;
@@ -310,9 +311,9 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     if (job.frames > 0)
       throw mpr::argument_error("--write-depth", "writes the depth of one image, not of an animation (--frames)");
     if (light_field && !job.has_depth_maps())
-      throw mpr::argument_error("--write-depth",
-                                "needs --depth-maps FOLDER for a light field (its depth comes from the "
-                                "cameras' depth maps)");
+      throw mpr::argument_error(
+          "--write-depth", "needs --depth-maps FOLDER or estimate:NEAR:FAR for a light field (its depth comes from the "
+                           "cameras' depth maps)");
     if (depth_preview_path(*job.write_depth) == job.output)
       throw mpr::argument_error("--write-depth", "its preview " + depth_preview_path(*job.write_depth).string() +
                                                      " would overwrite --output");
@@ -323,7 +324,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
         "--depth-maps", "is read by --interp depth, --all-in-focus, --focus-at and --write-depth; give one of them");
   if (job.interpolation == Interpolation::depth && light_field && !job.has_depth_maps())
     throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",
-                              "needs --depth-maps FOLDER (one PFM per camera) for a light field");
+                              "needs --depth-maps FOLDER (one PFM per camera) or estimate:NEAR:FAR for a light field");
   if (const auto v = args.get("radius")) {
     if (job.interpolation_given && job.interpolation != Interpolation::cylinder &&
         job.interpolation != Interpolation::depth)

@@ -20,6 +20,7 @@ int run_typed(const mpr_cli::Job& given, const mpr_view::ViewerSettings& setting
               const std::vector<mpr_view::ScriptCommand>& script) {
   // Data and every camera are checked before any window opens (mpr-render's preflight).
   const mpr_cli::Loaded<T> loaded = mpr_cli::load<T>(given);
+  for (const std::string& note : loaded.notes) std::cout << note << '\n'; // e.g. --depth-maps estimate's time
   // An array's defaults as in mpr-render (light_field_views.hpp): a cylinder of the camera
   // spacing for views other than the reference, and its warnings on stderr.
   // --focus-at and --write-depth as in mpr-render (render_job.hpp): the focus set before the

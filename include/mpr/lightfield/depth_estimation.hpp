@@ -64,8 +64,8 @@ struct DepthEstimate {
 /// Checks `config`; throws `argument_error` naming the field ("near", "far", "planes",
 /// "neighbours", "best", "truncation", "spatial", "range").
 inline void validate(const PlaneSweepConfig& c) {
-  if (!(c.near > 0) || !std::isfinite(c.near)) throw argument_error("near", "must be positive and finite");
-  if (!(c.far > c.near) || !std::isfinite(c.far)) throw argument_error("far", "must be finite and beyond near");
+  if (!(c.near >= 1e-30 && c.near <= 1e30)) throw argument_error("near", "must lie in [1e-30, 1e30]");
+  if (!(c.far > c.near && c.far <= 1e30)) throw argument_error("far", "must lie beyond near, at most 1e30");
   if (c.planes < 2 || c.planes > 1024) throw argument_error("planes", "must be in 2..1024");
   if (c.neighbours < 1 || c.neighbours > 32) throw argument_error("neighbours", "must be in 1..32");
   if (c.best < 1 || c.best > c.neighbours) throw argument_error("best", "must be in 1..neighbours");

@@ -53,8 +53,10 @@ template <std::floating_point T>
 /// Surface: the cameras within `radius` of the ray line are tried nearest first (at most
 /// `march_cameras` of them). In camera c the ray projects to a segment of its image, which is
 /// walked about one pixel at a time from where the ray line enters c's view (`whole_line`) or
-/// from the ray's origin; the first step where the
-/// ray's depth along c's axis reaches the map's depth brackets the crossing, refined by bisection.
+/// from the ray's origin, but never from nearer than the nearest depth of c's map
+/// (`CameraFrameSet::depth_near`: nothing c sees lies nearer); the first step where the ray's
+/// depth along c's axis reaches the map's depth brackets the crossing, narrowed to 1/256 of the
+/// step by regula falsi (Illinois) and interpolated.
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
 /// camera continues the walk from that point; likewise when the ray leaves c's image. A ray

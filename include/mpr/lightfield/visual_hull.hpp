@@ -46,7 +46,9 @@ struct VisualHullConfig {
   double near = 1;
   double far = 100;
   /// Depths tried between near and far, uniform in inverse depth, 2..4096: the hull's front is
-  /// answered by the last depth before the first one inside it (a lower bound within one step).
+  /// answered by the last depth before the first one inside it, a lower bound within one step
+  /// where the hull is thicker along the ray than a step (a thinner part between two depths is
+  /// missed): choose steps of about one pixel of parallax between neighbouring cameras.
   int planes = 256;
   /// Worker threads (the caller included); 0 or less: all hardware threads.
   int threads = 0;
@@ -54,8 +56,8 @@ struct VisualHullConfig {
 
 /// Throws `argument_error` naming "near", "far" or "planes".
 inline void validate(const VisualHullConfig& c) {
-  if (!(c.near > 0) || !std::isfinite(c.near)) throw argument_error("near", "must be positive and finite");
-  if (!(c.far > c.near) || !std::isfinite(c.far)) throw argument_error("far", "must be finite and beyond near");
+  if (!(c.near >= 1e-30 && c.near <= 1e30)) throw argument_error("near", "must lie in [1e-30, 1e30]");
+  if (!(c.far > c.near && c.far <= 1e30)) throw argument_error("far", "must lie beyond near, at most 1e30");
   if (c.planes < 2 || c.planes > 4096) throw argument_error("planes", "must be in 2..4096");
 }
 
