@@ -15,6 +15,7 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/depth_homography.hpp>
 #include <mpr/lightfield/detail/sweep_kernels.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
@@ -173,17 +174,13 @@ template <std::floating_point T, class Px>
   for (std::size_t j = 0; j < order.size(); ++j) sweep_planes(frames.image(order[j]), false, ws.nt[j]);
   const std::vector<SweepPlanes>& nt = ws.nt;
 
-  // Pixel p of the reference at depth d is X = C + d R^T K^-1 p; neighbour j sees it at
-  // h = A_j + d M_j p (homogeneous), A_j = K_j (R_j C + t_j), M_j = K_j R_j R^T K^-1.
-  const Mat3<double> back = ref.R().template cast<double>().transpose() * ref.K().template cast<double>().inverse();
-  const Vec3<double> centre = ref.centre().template cast<double>();
+  // Neighbour j sees pixel p of the reference at depth d at h = A_j + d M_j p (homogeneous).
   std::vector<Mat3<float>> M(static_cast<std::size_t>(m));
   std::vector<Vec3<float>> A(static_cast<std::size_t>(m));
   for (int j = 0; j < m; ++j) {
-    const PinholeCamera<T>& c = frames.camera(order[static_cast<std::size_t>(j)]);
-    const Mat3<double> K = c.K().template cast<double>(), R = c.R().template cast<double>();
-    M[static_cast<std::size_t>(j)] = (K * R * back).template cast<float>();
-    A[static_cast<std::size_t>(j)] = (K * (R * centre + c.t().template cast<double>())).template cast<float>();
+    const DepthHomography h = depth_homography(ref, frames.camera(order[static_cast<std::size_t>(j)]));
+    M[static_cast<std::size_t>(j)] = h.M.template cast<float>();
+    A[static_cast<std::size_t>(j)] = h.A.template cast<float>();
   }
 
   // Domain-transform feedback per link, from the reference image's colour differences (the sum

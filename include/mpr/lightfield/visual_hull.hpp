@@ -13,6 +13,7 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/depth_homography.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
@@ -102,25 +103,18 @@ template <std::floating_point T, class Px, Silhouette S = BrightnessSilhouette>
         support[i][at(x, y)] = masks[i][at(x, y)] | masks[i][at(x1, y)] | masks[i][at(x, y1)] | masks[i][at(x1, y1)];
       }
   }
-  // Pixel p of the reference at depth d is X = C + d R^T K^-1 p; camera j sees it at
-  // h = A_j + d M_j p (homogeneous), A_j = K_j (R_j C + t_j), M_j = K_j R_j R^T K^-1.
+  // Camera j sees pixel p of the reference at depth d at h = A_j + d M_j p (homogeneous).
   const PinholeCamera<T>& ref = frames.camera(camera);
-  const Mat3<double> back = ref.R().template cast<double>().transpose() * ref.K().template cast<double>().inverse();
-  const Vec3<double> centre = ref.centre().template cast<double>();
   struct Other {
-    Mat3<double> M;
-    Vec3<double> A;
+    detail::DepthHomography h;
     int width, height;
     const std::uint8_t* mask;
   };
   std::vector<Other> others;
-  for (std::size_t j = 0; j < frames.size(); ++j) {
-    if (j == camera) continue;
-    const PinholeCamera<T>& c = frames.camera(j);
-    const Mat3<double> K = c.K().template cast<double>(), R = c.R().template cast<double>();
-    others.push_back(
-        {K * R * back, K * (R * centre + c.t().template cast<double>()), c.width(), c.height(), support[j].data()});
-  }
+  for (std::size_t j = 0; j < frames.size(); ++j)
+    if (j != camera)
+      others.push_back({detail::depth_homography(ref, frames.camera(j)), frames.camera(j).width(),
+                        frames.camera(j).height(), support[j].data()});
   const double inv_near = 1 / config.near, inv_far = 1 / config.far;
   std::vector<double> depths(static_cast<std::size_t>(config.planes));
   for (int k = 0; k < config.planes; ++k)
@@ -142,7 +136,7 @@ template <std::floating_point T, class Px, Silhouette S = BrightnessSilhouette>
         for (std::size_t n = 0; n < others.size() && inside; ++n) {
           const std::size_t j = (first + n) % others.size();
           const Other& o = others[j];
-          const Vec3<double> h = o.A + d * (o.M * p);
+          const Vec3<double> h = o.h.A + d * (o.h.M * p);
           if (!(h.z() > 0)) continue;
           const double u = h.x() / h.z(), v = h.y() / h.z();
           if (!(u >= -0.5 && v >= -0.5 && u < o.width - 0.5 && v < o.height - 0.5)) continue; // unseen: no constraint
