@@ -248,6 +248,71 @@ TEST_CASE("plane sweep settings are checked, naming the field", "[depth_estimati
   c = {};
   c.range = std::nan("");
   refuse(c, "range");
+  c = {};
+  c.memory_limit = 0;
+  refuse(c, "memory_limit");
+  c.memory_limit = std::nan("");
+  refuse(c, "memory_limit");
+}
+
+TEST_CASE("a plane sweep's working memory is counted, and bounded by memory_limit", "[depth_estimation]") {
+  using T = float;
+  // 3 x 2 cameras of 50 x 30 (rows not a multiple of the 16-float stride or of the lockstep
+  // block), the middle one 70 x 30: neighbours of other sizes are counted at their own size.
+  std::vector<mpr::PinholeCamera<T>> cams = mpr_test::grid_cameras<T>(3, 2, 0.3, 50, 30, 40.0);
+  cams[1] = mpr::PinholeCamera<T>(cams[1].K(), cams[1].R(), cams[1].t(), 70, 30);
+  const mpr::CameraFrameSet<T> frames(cams, smooth_images(cams, 5.0));
+  mpr::PlaneSweepConfig config;
+  config.near = 2;
+  config.far = 20;
+  config.planes = 12;
+  config.threads = 2;
+  // The count against what a sweep really holds: every buffer of the workspace (its size after
+  // the sweep; capacities may exceed it by the allocator's rounding only) plus the two maps.
+  for (const std::size_t camera : {std::size_t(0), std::size_t(1), std::size_t(4)}) {
+    const std::vector<std::size_t> order = mpr::detail::sweep_neighbours(frames, camera, config);
+    mpr::detail::SweepWorkspace ws;
+    const mpr::DepthEstimate e = mpr::detail::plane_sweep(frames, camera, order, config, 2, ws);
+    double held = 0;
+    const auto add = [&](const auto& v) { held += static_cast<double>(v.size() * sizeof(v[0])); };
+    add(ws.rt.data);
+    add(ws.rt.codes);
+    for (const auto& p : ws.nt) add(p.data);
+    for (const auto* v :
+         {&ws.ax, &ws.ay, &ws.costs, &ws.best_cost, &ws.sum, &ws.left, &ws.right, &ws.previous, &ws.keep, &ws.carry})
+      add(*v);
+    add(ws.best_plane);
+    held += 4.0 * (e.depth.width() * e.depth.height() + e.confidence.width() * e.confidence.height());
+    INFO("camera " << camera);
+    CHECK(mpr::plane_sweep_bytes(frames, camera, config) == Approx(held).epsilon(1e-9));
+  }
+  // A limit below one camera's sweep names the field, the camera and the MiB needed; a limit
+  // that holds one worker only gives the same maps as two workers.
+  const double one = mpr::plane_sweep_bytes(frames, 1, config);
+  config.memory_limit = one - 1;
+  try {
+    (void)mpr::estimate_depth_maps(frames, config);
+    FAIL("no exception for a limit below one camera's sweep");
+  } catch (const mpr::argument_error& e) {
+    CHECK(e.parameter() == "memory_limit");
+    CHECK_THAT(e.what(), Catch::Contains("frame 1 (70x30)") && Catch::Contains("MiB"));
+  }
+  CHECK_THROWS_AS(mpr::estimate_depth(frames, 1, config), mpr::argument_error);
+  CHECK_NOTHROW((void)mpr::estimate_depth(frames, 0, config)); // the 50 x 30 cameras fit
+  config.memory_limit = one;
+  const std::vector<mpr::Image<float>> capped = mpr::estimate_depth_maps(frames, config);
+  config.memory_limit = 1e12;
+  const std::vector<mpr::Image<float>> free = mpr::estimate_depth_maps(frames, config);
+  REQUIRE(capped.size() == free.size());
+  // One worker sweeps each camera's rows on both threads, two sweep a camera each in row order:
+  // the same maps up to the aggregation's float rounding (as in the test below).
+  for (std::size_t i = 0; i < capped.size(); ++i) {
+    int same = 0;
+    for (int y = 0; y < capped[i].height(); ++y)
+      for (int x = 0; x < capped[i].width(); ++x)
+        same += std::abs(capped[i](x, y) - free[i](x, y)) <= 1e-4f * free[i](x, y);
+    CHECK(same >= 0.99 * capped[i].width() * capped[i].height());
+  }
 }
 
 TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a textured plane", "[depth_estimation]", float, double) {

@@ -245,3 +245,23 @@ TEST_CASE("mpr-render --depth-maps estimate: the depth of a textured plane estim
   CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", dir.string(), "--all-in-focus", "--save-depth-maps", "x"}),
                     Catch::Contains("--save-depth-maps") && Catch::Contains("estimate"));
 }
+
+TEST_CASE("mpr-render --depth-maps estimate refuses cameras whose sweep exceeds its working memory", "[tools]") {
+  // Two flat 6000 x 4000 views (24 Mpixels each, under the loader's limits): the sweep of either
+  // needs about 2.3 GiB (`mpr::plane_sweep_bytes`), above PlaneSweepConfig::memory_limit's
+  // 2 GiB. Refused before any sweep, in one line naming the option, the camera and the MiB.
+  const std::filesystem::path dir = temp_folder("estimate_memory");
+  std::ofstream par(dir / "big_par.txt");
+  par << "2\n";
+  const Image flat(6000, 4000, mpr::Rgb8{90, 120, 150});
+  for (int i = 0; i < 2; ++i) {
+    mpr::write_png(dir / ("big" + std::to_string(i) + ".png"), flat);
+    par << "big" << i << ".png 4000 0 2999.5 0 4000 1999.5 0 0 1  1 0 0 0 1 0 0 0 1  " << -0.1 * i << " 0 0\n";
+  }
+  par.close();
+  const std::string error =
+      error_of({"--par", (dir / "big_par.txt").string(), "--depth-maps", "estimate:1:4", "--all-in-focus"});
+  CHECK_THAT(error, Catch::Contains("invalid --depth-maps: estimate: the plane sweep of camera big0.png (6000x4000)") &&
+                        Catch::Contains("MiB of working memory, more than the 2048 MiB limit"));
+  CHECK(error.find('\n') == std::string::npos);
+}

@@ -79,7 +79,16 @@ Loaded<T> load(const Job& job) {
       mpr::PlaneSweepConfig sweep = *job.depth_estimate;
       sweep.threads = job.threads;
       const auto start = std::chrono::steady_clock::now();
-      std::vector<mpr::Image<float>> maps = mpr::estimate_depth_maps(set, sweep);
+      std::vector<mpr::Image<float>> maps;
+      try {
+        maps = mpr::estimate_depth_maps(set, sweep);
+      } catch (const mpr::argument_error& e) {
+        // The sweep's working memory (PlaneSweepConfig::memory_limit, 2 GiB): name the option.
+        if (e.parameter() != "memory_limit") throw;
+        std::string why = e.what();
+        why.erase(0, why.find(": ", why.find("memory_limit")) + 2);
+        throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
+      }
       char note[160];
       std::snprintf(note, sizeof note, "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g)",
                     set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

@@ -17,6 +17,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/detail/depth_homography.hpp>
 #include <mpr/lightfield/detail/sweep_kernels.hpp>
+#include <mpr/lightfield/detail/sweep_workspace.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include <mutex>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mpr {
@@ -53,6 +55,11 @@ struct PlaneSweepConfig {
   double range = 0.2;
   /// Worker threads (the caller included); 0 or less: all hardware threads.
   int threads = 0;
+  /// Working memory of the sweep, bytes, > 0: each worker holds about 130 bytes per pixel of the
+  /// camera it sweeps (`plane_sweep_bytes`; 145 MB for a Chess view of 1400x800), so
+  /// `estimate_depth_maps` runs no more workers at once than fit (at least one), and a camera
+  /// that alone needs more is refused. Default 2 GiB.
+  double memory_limit = 2.0 * (1 << 30);
 };
 
 /// A camera's estimated depth and, per pixel, a confidence in [0, 1]: 1 - (the best plane's
@@ -63,7 +70,7 @@ struct DepthEstimate {
 };
 
 /// Checks `config`; throws `argument_error` naming the field ("near", "far", "planes",
-/// "neighbours", "best", "truncation", "spatial", "range").
+/// "neighbours", "best", "truncation", "spatial", "range", "memory_limit").
 inline void validate(const PlaneSweepConfig& c) {
   if (!(c.near >= 1e-30 && c.near <= 1e30)) throw argument_error("near", "must lie in [1e-30, 1e30]");
   if (!(c.far > c.near && c.far <= 1e30)) throw argument_error("far", "must lie beyond near, at most 1e30");
@@ -73,67 +80,10 @@ inline void validate(const PlaneSweepConfig& c) {
   if (!(c.truncation > 0) || !std::isfinite(c.truncation)) throw argument_error("truncation", "must be positive");
   if (!(c.spatial >= 0) || !std::isfinite(c.spatial)) throw argument_error("spatial", "must be finite and >= 0");
   if (!(c.range > 0) || !std::isfinite(c.range)) throw argument_error("range", "must be positive");
+  if (!(c.memory_limit > 0)) throw argument_error("memory_limit", "must be positive");
 }
 
 namespace detail {
-
-/// Zeros before an image's first row (`SweepPlanes`).
-inline constexpr std::ptrdiff_t kSweepPad = 16;
-
-/// An image as planar float channels (sRGB codes / 255), rows `stride` floats apart with at
-/// least one zero past each row's end and `kSweepPad` before the first (read by the sweep
-/// kernels with weight 0, or a rounding error of weight, at the image's border), and, for the
-/// reference camera, its 8-bit codes (for the aggregation's colour edges).
-struct SweepPlanes {
-  std::vector<float> data;
-  std::vector<Rgb8> codes;
-  std::ptrdiff_t stride = 0;
-  int width = 0, height = 0;
-  [[nodiscard]] const float* channel(int c) const noexcept {
-    return data.data() + kSweepPad + static_cast<std::ptrdiff_t>(c) * stride * height;
-  }
-  [[nodiscard]] SweepImage view() const noexcept {
-    return {{channel(0), channel(1), channel(2)}, stride, width, height};
-  }
-};
-
-/// `image` into `p` (its buffers reused).
-template <class Px>
-void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
-  float unit[256]; // code / 255
-  for (int c = 0; c < 256; ++c) unit[c] = static_cast<float>(c) / 255.0f;
-  p.width = image.width();
-  p.height = image.height();
-  p.stride = (static_cast<std::ptrdiff_t>(p.width) + 16) / 16 * 16;
-  p.data.assign(3 * static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height) + kSweepPad, 0.0f);
-  if (keep_codes) p.codes.resize(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height));
-  float* out[3] = {p.data.data() + kSweepPad, p.data.data() + kSweepPad + p.stride * p.height,
-                   p.data.data() + kSweepPad + 2 * p.stride * p.height};
-  for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) {
-      Rgb8 c;
-      if constexpr (std::is_same_v<Px, Rgb8>)
-        c = image(x, y);
-      else
-        c = to_rgb8(image(x, y));
-      const std::ptrdiff_t k = y * p.stride + x;
-      out[0][k] = unit[c.r];
-      out[1][k] = unit[c.g];
-      out[2][k] = unit[c.b];
-      if (keep_codes)
-        p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
-    }
-}
-
-/// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
-/// are not page-faulted in again for every camera): about 130 bytes per pixel with four
-/// neighbours (planar float images 60, costs of 8 planes 32, argmin state 24, feedback 8).
-struct SweepWorkspace {
-  SweepPlanes rt;
-  std::vector<SweepPlanes> nt;
-  std::vector<float> ax, ay, costs, best_cost, sum, left, right, previous;
-  std::vector<int> best_plane;
-};
 
 /// The `config.neighbours` cameras nearest to `camera` by centre distance (ties by index).
 /// Throws `argument_error` ("frames") when one of them or the camera has lens distortion.
@@ -215,6 +165,11 @@ template <std::floating_point T, class Px>
   for (std::vector<float>* v : {&sum, &left, &right, &previous}) v->assign(n, 0.0f);
   std::vector<int>& best_plane = ws.best_plane;
   best_plane.assign(n, 0);
+  // The workers' scratch, sized here (nothing is allocated inside the noexcept workers).
+  const int blocks_total = (height + kSweepLockstepRows - 1) / kSweepLockstepRows;
+  ws.keep.resize(static_cast<std::size_t>(blocks_total) * static_cast<std::size_t>(best + 1) *
+                 static_cast<std::size_t>(width));
+  ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const double inv_near = 1 / config.near, inv_far = 1 / config.far;
   const auto depth_of = [&](double index) {
     return 1 / (inv_near + (inv_far - inv_near) * index / static_cast<double>(config.planes - 1));
@@ -313,10 +268,10 @@ template <std::floating_point T, class Px>
     };
     const auto ay_row = [&](int y) { return ay.data() + static_cast<std::size_t>(y) * w; };
     const auto block_costs = [&](int block) noexcept {
-      std::vector<float> scratch(static_cast<std::size_t>(best + 1) * w);
+      float* scratch = ws.keep.data() + static_cast<std::size_t>(block) * static_cast<std::size_t>(best + 1) * w;
       float* keep[32];
-      for (int i = 0; i < best; ++i) keep[i] = scratch.data() + static_cast<std::size_t>(i) * w;
-      float* value = scratch.data() + static_cast<std::size_t>(best) * w;
+      for (int i = 0; i < best; ++i) keep[i] = scratch + static_cast<std::size_t>(i) * w;
+      float* value = scratch + static_cast<std::size_t>(best) * w;
       const int y0 = block * rows_per_block, y1 = std::min(height, y0 + rows_per_block);
       for (int i = 0; i < count; ++i) {
         const float d = static_cast<float>(depth_of(first + i));
@@ -344,7 +299,7 @@ template <std::floating_point T, class Px>
     parallel_rows(0, strips, in_order ? 1 : threads, [&](int s) noexcept {
       const std::size_t x0 = static_cast<std::size_t>(s) * static_cast<std::size_t>(strip);
       const std::size_t len = std::min<std::size_t>(static_cast<std::size_t>(strip), w - x0);
-      std::vector<float> carry(static_cast<std::size_t>(count) * len);
+      float* const carry = ws.carry.data() + static_cast<std::size_t>(count) * x0; // count * len floats
       const float* rows = nullptr; // plane 0's costs of the row tracked, the others `stride` apart
       std::ptrdiff_t stride = 0;
       const auto track = [&](int y) {
@@ -366,10 +321,10 @@ template <std::floating_point T, class Px>
         for (int y = 1; y < height; ++y)
           for (int i = 0; i < count; ++i)
             sweep_dt_link(row_of(i, y) + x0, row_of(i, y - 1) + x0, ay_row(y) + x0, len, level);
-      rows = carry.data();
+      rows = carry;
       stride = static_cast<std::ptrdiff_t>(len);
       for (int i = 0; i < count; ++i) {
-        std::copy_n(row_of(i, height - 1) + x0, len, carry.data() + static_cast<std::size_t>(i) * len);
+        std::copy_n(row_of(i, height - 1) + x0, len, carry + static_cast<std::size_t>(i) * len);
       }
       track(height - 1);
       for (int y = height - 2; y >= 0; --y) {
@@ -377,8 +332,7 @@ template <std::floating_point T, class Px>
         if (y > 0)
           for (int i = 0; i < count; ++i) sweep_prefetch(row_of(i, y - 1) + x0, len);
         for (int i = 0; i < count; ++i)
-          sweep_dt_carry(carry.data() + static_cast<std::size_t>(i) * len, row_of(i, y) + x0, ay_row(y + 1) + x0, len,
-                         level);
+          sweep_dt_carry(carry + static_cast<std::size_t>(i) * len, row_of(i, y) + x0, ay_row(y + 1) + x0, len, level);
         track(y);
       }
     });
@@ -402,26 +356,43 @@ template <std::floating_point T, class Px>
 
 } // namespace detail
 
+/// The working memory, in bytes, of sweeping camera `camera` of `frames` with `config`: its
+/// buffers and its neighbours' images as planar floats (`detail::SweepWorkspace`) plus the
+/// returned depth and confidence maps. Bounded by `config.memory_limit`. Throws as
+/// `estimate_depth`.
+template <std::floating_point T, class Px>
+[[nodiscard]] double plane_sweep_bytes(const CameraFrameSet<T, Px>& frames, std::size_t camera,
+                                       const PlaneSweepConfig& config) {
+  validate(config);
+  if (camera >= frames.size()) throw argument_error("camera", "index out of range");
+  if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
+  return detail::sweep_bytes(frames, camera, detail::sweep_neighbours(frames, camera, config), config.best);
+}
+
 /// The depth map of camera `camera` of `frames` by the plane sweep of the file comment, compared
 /// with its `config.neighbours` nearest cameras, on `config.threads` workers (the rows of each
 /// plane). Throws `argument_error` for a bad config, a camera index out of range ("camera"), a
-/// set of fewer than two cameras or a camera with lens distortion ("frames", naming it).
+/// set of fewer than two cameras or a camera with lens distortion ("frames", naming it), and a
+/// camera whose sweep needs more than `config.memory_limit` bytes ("memory_limit", naming it and
+/// the MiB needed; `plane_sweep_bytes`).
 template <std::floating_point T, class Px>
 [[nodiscard]] DepthEstimate estimate_depth(const CameraFrameSet<T, Px>& frames, std::size_t camera,
                                            const PlaneSweepConfig& config) {
   validate(config);
   if (camera >= frames.size()) throw argument_error("camera", "index out of range");
   if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
+  const std::vector<std::size_t> order = detail::sweep_neighbours(frames, camera, config);
+  detail::check_sweep_memory(frames, camera, detail::sweep_bytes(frames, camera, order, config.best),
+                             config.memory_limit);
   detail::SweepWorkspace workspace;
-  return detail::plane_sweep(frames, camera, detail::sweep_neighbours(frames, camera, config), config, config.threads,
-                             workspace);
+  return detail::plane_sweep(frames, camera, order, config, config.threads, workspace);
 }
 
 /// The estimated depth maps of every camera of `frames` (see `estimate_depth`), in camera order,
 /// for `CameraFrameSet::with_depth`. The cameras are shared among the `config.threads` workers
-/// (each worker's buffers take about 130 bytes per pixel of a camera, 140 MB for Chess); with
-/// fewer cameras than workers, each camera's rows are shared too. Throws as `estimate_depth`,
-/// before any work.
+/// (each worker's buffers take about 130 bytes per pixel of a camera, 145 MB for Chess, and no
+/// more workers run at once than `config.memory_limit` holds); with fewer cameras than workers,
+/// each camera's rows are shared too. Throws as `estimate_depth`, before any work.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::vector<Image<float>> estimate_depth_maps(const CameraFrameSet<T, Px>& frames,
                                                             const PlaneSweepConfig& config) {
@@ -430,8 +401,16 @@ template <std::floating_point T, class Px>
   std::vector<std::vector<std::size_t>> neighbours;
   for (std::size_t i = 0; i < frames.size(); ++i) neighbours.push_back(detail::sweep_neighbours(frames, i, config));
   const int cameras = static_cast<int>(frames.size());
+  // The most working memory any camera's sweep takes: as many workers as fit the limit.
+  double most = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const double bytes = detail::sweep_bytes(frames, i, neighbours[i], config.best);
+    detail::check_sweep_memory(frames, i, bytes, config.memory_limit);
+    most = std::max(most, bytes);
+  }
+  const int fit = static_cast<int>(std::min(config.memory_limit / most, static_cast<double>(cameras)));
   const int total = detail::resolve_thread_count(config.threads, std::numeric_limits<int>::max());
-  const int workers = std::min(total, cameras), inner = std::max(1, total / workers);
+  const int workers = std::max(1, std::min({total, cameras, fit})), inner = std::max(1, total / workers);
   std::vector<Image<float>> maps(frames.size());
   std::exception_ptr failure;
   std::mutex guard;

@@ -1,0 +1,138 @@
+#pragma once
+/// \file
+/// The working memory of the plane sweep of `estimate_depth` (lightfield/depth_estimation.hpp):
+/// images as planar float channels, the buffers one worker reuses from camera to camera, and
+/// their size in bytes (which `PlaneSweepConfig::memory_limit` bounds).
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/error.hpp>
+#include <mpr/core/image.hpp>
+#include <mpr/lightfield/detail/sweep_kernels.hpp>
+#include <mpr/lightfield/frame_set.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace mpr::detail {
+
+/// Zeros before an image's first row (`SweepPlanes`).
+inline constexpr std::ptrdiff_t kSweepPad = 16;
+
+/// Row stride of `SweepPlanes` for images `width` pixels wide: room for one zero past the row's
+/// end, rounded up to 16 floats.
+[[nodiscard]] constexpr std::ptrdiff_t sweep_stride(int width) noexcept {
+  return (static_cast<std::ptrdiff_t>(width) + 16) / 16 * 16;
+}
+
+/// An image as planar float channels (sRGB codes / 255), rows `stride` floats apart with at
+/// least one zero past each row's end and `kSweepPad` before the first (read by the sweep
+/// kernels with weight 0, or a rounding error of weight, at the image's border), and, for the
+/// reference camera, its 8-bit codes (for the aggregation's colour edges).
+struct SweepPlanes {
+  std::vector<float> data;
+  std::vector<Rgb8> codes;
+  std::ptrdiff_t stride = 0;
+  int width = 0, height = 0;
+  [[nodiscard]] const float* channel(int c) const noexcept {
+    return data.data() + kSweepPad + static_cast<std::ptrdiff_t>(c) * stride * height;
+  }
+  [[nodiscard]] SweepImage view() const noexcept {
+    return {{channel(0), channel(1), channel(2)}, stride, width, height};
+  }
+};
+
+/// `image` into `p` (its buffers reused).
+template <class Px>
+void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
+  float unit[256]; // code / 255
+  for (int c = 0; c < 256; ++c) unit[c] = static_cast<float>(c) / 255.0f;
+  p.width = image.width();
+  p.height = image.height();
+  p.stride = sweep_stride(p.width);
+  p.data.assign(3 * static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height) + kSweepPad, 0.0f);
+  if (keep_codes) p.codes.resize(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height));
+  float* out[3] = {p.data.data() + kSweepPad, p.data.data() + kSweepPad + p.stride * p.height,
+                   p.data.data() + kSweepPad + 2 * p.stride * p.height};
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      Rgb8 c;
+      if constexpr (std::is_same_v<Px, Rgb8>)
+        c = image(x, y);
+      else
+        c = to_rgb8(image(x, y));
+      const std::ptrdiff_t k = y * p.stride + x;
+      out[0][k] = unit[c.r];
+      out[1][k] = unit[c.g];
+      out[2][k] = unit[c.b];
+      if (keep_codes)
+        p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
+    }
+}
+
+/// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
+/// are not page-faulted in again for every camera), all sized before the parallel parts start
+/// (nothing is allocated inside a worker): about 130 bytes per pixel with four neighbours
+/// (planar float images 60, costs of 8 planes 32, argmin state 24, feedback 8); see
+/// `sweep_workspace_bytes`.
+struct SweepWorkspace {
+  SweepPlanes rt;
+  std::vector<SweepPlanes> nt;
+  std::vector<float> ax, ay, costs, best_cost, sum, left, right, previous;
+  std::vector<int> best_plane;
+  std::vector<float> keep;  // per block of rows: best + 1 cost rows (`plane_sweep`)
+  std::vector<float> carry; // the backward vertical pass's rows, kSweepTrackPlanes per column
+};
+
+/// The bytes of a `SweepWorkspace` after sweeping a `width` x `height` camera against
+/// neighbours of `neighbour_pixels` (width, height) with `best` kept costs, plus the two maps
+/// the sweep returns (depth and confidence): what one worker of the plane sweep holds at most.
+[[nodiscard]] inline double sweep_workspace_bytes(int width, int height,
+                                                  const std::vector<std::pair<int, int>>& neighbour_pixels,
+                                                  int best) noexcept {
+  const auto planes = [](int w, int h) {
+    return 4.0 * (3.0 * static_cast<double>(sweep_stride(w)) * h + static_cast<double>(kSweepPad));
+  };
+  const double n = static_cast<double>(width) * height, w = width;
+  const int blocks = (height + kSweepLockstepRows - 1) / kSweepLockstepRows;
+  double bytes = planes(width, height) + 3.0 * n; // the camera's planes and codes
+  for (const auto& [nw, nh] : neighbour_pixels) bytes += planes(nw, nh);
+  bytes += 4.0 * n * (2 + kSweepTrackPlanes + 6); // ax, ay; costs; best_cost, sum, left, right, previous, best_plane
+  bytes += 4.0 * blocks * (best + 1) * w + 4.0 * kSweepTrackPlanes * w; // keep, carry
+  return bytes + 8.0 * n;                                               // depth, confidence
+}
+
+/// `plane_sweep_bytes` (lightfield/depth_estimation.hpp) for camera `camera` compared with the
+/// cameras `order`, `best` kept costs.
+template <std::floating_point T, class Px>
+[[nodiscard]] double sweep_bytes(const CameraFrameSet<T, Px>& frames, std::size_t camera,
+                                 const std::vector<std::size_t>& order, int best) {
+  std::vector<std::pair<int, int>> sizes;
+  for (const std::size_t j : order) sizes.emplace_back(frames.camera(j).width(), frames.camera(j).height());
+  const PinholeCamera<T>& ref = frames.camera(camera);
+  return sweep_workspace_bytes(ref.width(), ref.height(), sizes, std::min(best, static_cast<int>(order.size())));
+}
+
+/// Throws `argument_error` ("memory_limit") when the sweep of camera `camera`, `bytes` of
+/// working memory, needs more than `memory_limit` bytes (`PlaneSweepConfig::memory_limit`).
+template <std::floating_point T, class Px>
+void check_sweep_memory(const CameraFrameSet<T, Px>& frames, std::size_t camera, double bytes, double memory_limit) {
+  if (bytes <= memory_limit) return;
+  const PinholeCamera<T>& c = frames.camera(camera);
+  const auto mib = [](double b) {
+    char text[32];
+    const double m = b / (1 << 20);
+    std::snprintf(text, sizeof text, m >= 10 ? "%.0f" : "%.2g", m);
+    return std::string(text);
+  };
+  throw argument_error("memory_limit", "the plane sweep of camera " + frames.name(camera) + " (" +
+                                           std::to_string(c.width()) + "x" + std::to_string(c.height()) +
+                                           ") needs about " + mib(bytes) + " MiB of working memory, more than the " +
+                                           mib(memory_limit) + " MiB limit");
+}
+
+} // namespace mpr::detail
