@@ -161,6 +161,33 @@ TEMPLATE_TEST_CASE("DepthProxy: a ray that runs to its vanishing point where the
             .maxCoeff() < 2e-3f);
 }
 
+TEMPLATE_TEST_CASE("DepthProxy finds a surface near a vanishing point at a tight tolerance", "[depth_proxy]", float,
+                   double) {
+  using T = TestType;
+  // A ray 0.15 beside the middle camera's axis and parallel to it: in that camera it moves 4.5
+  // pixels per unit of 1 / depth, so a one-pixel step from z = 5 reaches z = 10.6 and 1/256 of
+  // it still spans 0.4% of the depth. At a tolerance of 0.1% the crossing is narrowed further
+  // (to ray depths within half the tolerance) and found; only that camera lies within the
+  // radius.
+  const auto frames = plane_set<T>();
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(3); // the fallback point, off the surface
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  for (const double tolerance : {0.001, 0.0002, 0.01}) {
+    mpr::DepthProxy policy;
+    policy.radius = 0.5;
+    policy.tolerance = tolerance;
+    const auto proxy = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, policy);
+    for (const T x : {T(0.15), T(-0.3), T(0.1)}) {
+      INFO("tolerance " << tolerance << ", ray at x = " << x);
+      const mpr::Ray<T> ray{mpr::Vec3<T>(x, T(0.05), 0), mpr::Vec3<T>(0, 0, 1)};
+      const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
+      REQUIRE(t.has_value());
+      CHECK(static_cast<double>(*t) == Approx(5.0).epsilon(tolerance));
+    }
+  }
+}
+
 TEST_CASE("DepthProxy on a rasterized classroom array is far closer to the ray cast than a focal plane",
           "[depth_proxy]") {
   using T = float;

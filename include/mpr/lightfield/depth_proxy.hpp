@@ -56,7 +56,8 @@ template <std::floating_point T>
 /// from the ray's origin, but never from nearer than the nearest depth of c's map
 /// (`CameraFrameSet::depth_near`: nothing c sees lies nearer); the first step where the ray's
 /// depth along c's axis reaches the map's depth brackets the crossing, narrowed to 1/256 of the
-/// step by regula falsi (Illinois) and interpolated.
+/// step and to ray depths within half the `tolerance` by regula falsi (Illinois) and
+/// interpolated.
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
 /// camera continues the walk from that point; likewise when the ray leaves c's image. A ray
@@ -143,8 +144,11 @@ private:
   static constexpr int kMaxCandidates = 64;
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
-  /// Most regula-falsi steps that narrow a one-pixel bracket of the surface crossing.
+  /// Regula-falsi steps that narrow a one-pixel bracket of the surface crossing to 1/256 of it
+  /// (at most), and the most steps when the bracket's ray depths still differ by more than half
+  /// the tolerance (near a vanishing point).
   static constexpr int kRefineSteps = 12;
+  static constexpr int kRefineLimit = 48;
 
   template <std::floating_point T>
   struct Candidates {
@@ -312,21 +316,26 @@ private:
       T zn = 0;
       const T fn = f(next, zn);
       if (fn >= 0) {
-        // Bracketed in [s, next], at most one pixel of c: narrowed to 1/256 of it by the
-        // Illinois variant of regula falsi (a crossing of the maps' bilinear surface is found in
-        // a few lookups; at a step between pixels, a depth edge, the halved end weights still
-        // shrink the bracket), then f interpolated linearly.
-        T s0 = s, s1 = next, f0 = fs, f1 = fn, z1 = zn;
+        // Bracketed in [s, next], at most one pixel of c: narrowed by the Illinois variant of
+        // regula falsi (a crossing of the maps' bilinear surface is found in a few lookups; at
+        // a step between pixels, a depth edge, the halved end weights still shrink the
+        // bracket) to 1/256 of the step and to ray depths within half the tolerance (near the
+        // vanishing point a pixel spans a long stretch of the ray), then f interpolated
+        // linearly.
+        T s0 = s, s1 = next, f0 = fs, f1 = fn, z0 = zs, z1 = zn;
         T g0 = f0, g1 = f1; // the end values regula falsi weighs (halved when an end is kept)
         const T resolution = (next - s) * T(1.0 / 256);
         int kept = 0; // +1: the last step moved s0, -1: it moved s1
-        for (int it = 0; it < kRefineSteps && s1 - s0 > resolution; ++it) {
+        for (int it = 0; it < kRefineLimit && (it < kRefineSteps || z1 - z0 > T(0.5) * tol * z1) &&
+                         (s1 - s0 > resolution || z1 - z0 > T(0.5) * tol * z1);
+             ++it) {
           T mid = g1 - g0 > 0 ? s0 + (s1 - s0) * (-g0 / (g1 - g0)) : T(0.5) * (s0 + s1);
           if (!(mid > s0 && mid < s1)) mid = T(0.5) * (s0 + s1);
           T zm = 0;
           const T fm = f(mid, zm);
           if (fm < 0) {
             s0 = mid;
+            z0 = zm;
             f0 = g0 = fm;
             if (kept == 1) g1 *= T(0.5);
             kept = 1;
