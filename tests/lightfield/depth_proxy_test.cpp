@@ -161,6 +161,35 @@ TEMPLATE_TEST_CASE("DepthProxy: a ray that runs to its vanishing point where the
             .maxCoeff() < 2e-3f);
 }
 
+TEMPLATE_TEST_CASE("DepthProxy searches what the nearest camera does not see with the next camera", "[depth_proxy]",
+                   float, double) {
+  using T = TestType;
+  // Camera A (40 x 30, focal 30: it sees |y / z| <= 0.5) lies nearest to the ray, camera B (200
+  // x 200, 2.5 below it) farther; both show the plane z = 5. The ray meets the plane at
+  // y = -2.75, outside A's image but inside B's, and enters A's view only at z = 10, behind the
+  // plane. A's walk knows nothing of the ray before z = 10, so B must search from the ray's
+  // start: the surface is at t = 5 (it was lost when B went on from where A stopped).
+  const std::vector<mpr::PinholeCamera<T>> cams{mpr_test::camera_at<T>(mpr::Vec3<T>(0, 0, 0), 40, 30, 30.0),
+                                                mpr_test::camera_at<T>(mpr::Vec3<T>(0, T(-2.5), 0), 200, 200, 30.0)};
+  std::vector<mpr::Image<float>> maps{mpr::Image<float>(40, 30, 5.0f), mpr::Image<float>(200, 200, 5.0f)};
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(2); // the fallback point, off the surface
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  for (const bool whole_line : {true, false}) {
+    mpr::DepthProxy policy{2.0};
+    policy.whole_line = whole_line;
+    const auto sampler = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, policy);
+    const mpr::Ray<T> ray{mpr::Vec3<T>(0, T(-0.5), 0), mpr::Vec3<T>(0, T(-0.45), 1)};
+    const std::optional<T> t = sampler.interpolation().surface(sampler.table(), ray);
+    INFO("whole_line " << whole_line);
+    REQUIRE(t.has_value());
+    CHECK(static_cast<double>(*t) == Approx(5.0).epsilon(1e-3));
+    CHECK((sampler.sample(ray) - mpr_test::plane_texture(0.0, -2.75)).abs().maxCoeff() < 2e-3f);
+  }
+}
+
 TEMPLATE_TEST_CASE("DepthProxy finds a surface near a vanishing point at a tight tolerance", "[depth_proxy]", float,
                    double) {
   using T = TestType;

@@ -60,7 +60,10 @@ template <std::floating_point T>
 /// interpolated.
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
-/// camera continues the walk from that point; likewise when the ray leaves c's image. A ray
+/// camera continues the walk from that point; likewise when the ray leaves c's image. When the
+/// ray enters c's view only after that point, c knows nothing of the stretch before, and the
+/// next camera searches it too (else a surface seen by the next camera but outside c's image,
+/// e.g. a floor near the view's corner, would be skipped). A ray
 /// whose walk reaches its vanishing point inside c's image with c's map +inf there runs to
 /// infinity unseen (sky): it gets `FrameSamplerConfig::background`. A ray that no tried camera
 /// finds a surface for otherwise uses the table's point (`FrameTable::point_of`: the focal depth
@@ -226,7 +229,9 @@ private:
   // surface, escaped when the ray reaches its vanishing point inside c's image in front of
   // everything c sees and c's map is +inf there (the ray runs to infinity: background), or passed
   // with t where the walk stopped (c occluded there, or the ray left c's image or field of
-  // view): the next camera continues from there.
+  // view): the next camera continues from there. When c sees the ray only from beyond t (it
+  // enters c's view later), what lies before that is unknown to c: a walk that passes then
+  // leaves t as it was, so the next camera searches that stretch too.
   template <std::floating_point T, class Px>
   [[nodiscard]] Walk walk(const typename FrameTable<T, Px>::Camera& c, const float* d, float near, const Ray<T>& ray,
                           T& t) const noexcept {
@@ -263,12 +268,17 @@ private:
     if (empty || !(lo < hi) || !std::isfinite(lo)) return Walk::passed;
     const T tol = static_cast<T>(tolerance);
     const T leave = hi; // where the ray leaves c's view
+    // The walk passes on from `at`, or from where it began when c does not see the ray at t.
+    const bool gap = lo > t;
+    const T from = t;
+    const auto pass = [&](T at) {
+      t = gap ? from : at;
+      return Walk::passed;
+    };
     if (std::isfinite(near)) {
       clip(a[2] - static_cast<T>(near) * (1 - tol), b[2]);
-      if (empty || !(lo < hi) || !std::isfinite(lo)) { // in front of all c sees wherever c sees the ray
-        if (std::isfinite(leave)) t = leave;
-        return Walk::passed;
-      }
+      if (empty || !(lo < hi) || !std::isfinite(lo)) // in front of all c sees wherever c sees the ray
+        return pass(std::isfinite(leave) ? leave : t);
     }
     // f(s) = ray depth - map depth at the ray's pixel (< 0: the ray is in front of the surface).
     const auto f = [&](T s, T& z) {
@@ -288,8 +298,7 @@ private:
         t = s;
         return Walk::hit;
       }
-      t = s;
-      return Walk::passed;
+      return pass(s);
     }
     for (int step = 0; step < 1 << 16; ++step) {
       if (s >= hi) break;
@@ -352,14 +361,12 @@ private:
           t = denom > 0 ? s0 + (s1 - s0) * (-f0 / denom) : s1;
           return Walk::hit;
         }
-        t = s0; // c is occluded from here on
-        return Walk::passed;
+        return pass(s0); // c is occluded from here on
       }
       s = next;
       fs = fn;
     }
-    t = std::isfinite(hi) ? leave : s;
-    return Walk::passed;
+    return pass(std::isfinite(hi) ? leave : s);
   }
 
   template <std::floating_point T, class Px>
