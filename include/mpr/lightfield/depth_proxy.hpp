@@ -12,6 +12,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/depth_walk.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 
@@ -23,30 +24,6 @@
 #include <string>
 
 namespace mpr {
-
-namespace detail {
-
-/// Depth of map `d` (row-major `width * height`) at continuous pixel (x, y) inside the image:
-/// bilinear between the four nearest pixel centres when they agree within the relative
-/// `tolerance` x 4 (a smooth surface), else the nearest pixel (a depth edge is not blurred).
-template <std::floating_point T>
-[[nodiscard]] inline T depth_lookup(const float* d, int width, int height, T x, T y, T tolerance) noexcept {
-  const T fx = std::floor(x), fy = std::floor(y);
-  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-  const int xa = std::clamp(x0, 0, width - 1), xb = std::clamp(x0 + 1, 0, width - 1);
-  const int ya = std::clamp(y0, 0, height - 1), yb = std::clamp(y0 + 1, 0, height - 1);
-  const float* ra = d + static_cast<std::ptrdiff_t>(ya) * width;
-  const float* rb = d + static_cast<std::ptrdiff_t>(yb) * width;
-  const T d00 = ra[xa], d10 = ra[xb], d01 = rb[xa], d11 = rb[xb];
-  const T lo = std::min({d00, d10, d01, d11}), hi = std::max({d00, d10, d01, d11});
-  const T ax = x - fx, ay = y - fy;
-  if (std::isfinite(hi) && hi <= lo * (1 + 4 * tolerance)) // all finite and close: one smooth surface
-    return (d00 * (1 - ax) + d10 * ax) * (1 - ay) + (d01 * (1 - ax) + d11 * ax) * ay;
-  if (ay < T(0.5)) return ax < T(0.5) ? d00 : d10;
-  return ax < T(0.5) ? d01 : d11;
-}
-
-} // namespace detail
 
 /// Answers a ray from the surface point the depth maps give it (see the file comment).
 ///
@@ -63,7 +40,8 @@ template <std::floating_point T>
 /// camera continues the walk from that point; likewise when the ray leaves c's image. When the
 /// ray enters c's view only after that point, c knows nothing of the stretch before, and the
 /// next camera searches it too (else a surface seen by the next camera but outside c's image,
-/// e.g. a floor near the view's corner, would be skipped). A ray
+/// e.g. a floor near the view's corner, would be skipped), stepping over the stretch c saw free
+/// (one such stretch is kept; walks repeat no lookups there). A ray
 /// whose walk reaches its vanishing point inside c's image with c's map +inf there runs to
 /// infinity unseen (sky): it gets `FrameSamplerConfig::background`. A ray that no tried camera
 /// finds a surface for otherwise uses the table's point (`FrameTable::point_of`: the focal depth
@@ -147,11 +125,6 @@ private:
   static constexpr int kMaxCandidates = 64;
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
-  /// Regula-falsi steps that narrow a one-pixel bracket of the surface crossing to 1/256 of it
-  /// (at most), and the most steps when the bracket's ray depths still differ by more than half
-  /// the tolerance (near a vanishing point).
-  static constexpr int kRefineSteps = 12;
-  static constexpr int kRefineLimit = 48;
 
   template <std::floating_point T>
   struct Candidates {
@@ -159,8 +132,6 @@ private:
     T distance[kMaxCandidates];
     int count = 0;
   };
-
-  enum class Walk { hit, passed, escaped };
 
   // The cameras within the radius of the ray line, nearest first (the nearest kMaxCandidates);
   // the single nearest camera when none is that close.
@@ -209,164 +180,23 @@ private:
   template <std::floating_point T, class Px>
   [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray, const Candidates<T>& c,
                                          bool& escaped) const noexcept {
-    T t = whole_line ? -std::numeric_limits<T>::infinity() : T(0);
+    const T inf = std::numeric_limits<T>::infinity();
+    detail::DepthSearch<T> search{whole_line ? -inf : T(0), inf, inf};
+    T& t = search.t;
     int walked = 0;
     for (int j = 0; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
       if (table.camera(i).distorted) continue;
       ++walked;
-      const Walk w = walk<T, Px>(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), ray, t);
-      if (w == Walk::hit) return t;
-      if (w == Walk::escaped) {
+      const detail::DepthWalk w = detail::depth_walk<T, Px>(table.camera(i), table.frames().depth(i).data(),
+                                                            table.frames().depth_near(i), ray, tolerance, search);
+      if (w == detail::DepthWalk::hit) return t;
+      if (w == detail::DepthWalk::escaped) {
         escaped = true;
         return std::nullopt;
       }
     }
     return std::nullopt;
-  }
-
-  // Walks `ray` from parameter `t` through camera c's depth map `d`. Returns hit with t at the
-  // surface, escaped when the ray reaches its vanishing point inside c's image in front of
-  // everything c sees and c's map is +inf there (the ray runs to infinity: background), or passed
-  // with t where the walk stopped (c occluded there, or the ray left c's image or field of
-  // view): the next camera continues from there. When c sees the ray only from beyond t (it
-  // enters c's view later), what lies before that is unknown to c: a walk that passes then
-  // leaves t as it was, so the next camera searches that stretch too.
-  template <std::floating_point T, class Px>
-  [[nodiscard]] Walk walk(const typename FrameTable<T, Px>::Camera& c, const float* d, float near, const Ray<T>& ray,
-                          T& t) const noexcept {
-    const T* P = c.P;
-    const Vec3<T>& o = ray.origin;
-    const Vec3<T>& v = ray.direction;
-    // Homogeneous pixel h(t) = a + t b; the third coordinate is the depth along c's axis.
-    T a[3], b[3];
-    for (int r = 0; r < 3; ++r) {
-      a[r] = P[4 * r] * o.x() + P[4 * r + 1] * o.y() + P[4 * r + 2] * o.z() + P[4 * r + 3];
-      b[r] = P[4 * r] * v.x() + P[4 * r + 1] * v.y() + P[4 * r + 2] * v.z();
-    }
-    // The interval where h projects inside the image (shrunk by 1e-3 pixel) in front of c.
-    T lo = t, hi = std::numeric_limits<T>::infinity();
-    bool empty = false;
-    const auto clip = [&](T u, T w) { // keep u + t w >= 0
-      if (w > 0)
-        lo = std::max(lo, -u / w);
-      else if (w < 0)
-        hi = std::min(hi, -u / w);
-      else if (u < 0)
-        empty = true;
-    };
-    const T e = T(0.499), W = static_cast<T>(c.width) - T(0.5) - T(1e-3),
-            H = static_cast<T>(c.height) - T(0.5) - T(1e-3);
-    // In front of c, by a margin that keeps the first pixel step (z^2 / m in t) positive.
-    clip(a[2] - T(1e-6) * (std::abs(a[2]) + std::abs(b[2])), b[2]);
-    clip(a[0] + e * a[2], b[0] + e * b[2]);
-    clip(W * a[2] - a[0], W * b[2] - b[0]);
-    clip(a[1] + e * a[2], b[1] + e * b[2]);
-    clip(H * a[2] - a[1], H * b[2] - b[1]);
-    // Nearer than the nearest depth in c's map the ray is in front of everything c sees (the
-    // map's depth and its interpolation are >= near): the walk starts where z reaches near.
-    if (empty || !(lo < hi) || !std::isfinite(lo)) return Walk::passed;
-    const T tol = static_cast<T>(tolerance);
-    const T leave = hi; // where the ray leaves c's view
-    // The walk passes on from `at`, or from where it began when c does not see the ray at t.
-    const bool gap = lo > t;
-    const T from = t;
-    const auto pass = [&](T at) {
-      t = gap ? from : at;
-      return Walk::passed;
-    };
-    if (std::isfinite(near)) {
-      clip(a[2] - static_cast<T>(near) * (1 - tol), b[2]);
-      if (empty || !(lo < hi) || !std::isfinite(lo)) // in front of all c sees wherever c sees the ray
-        return pass(std::isfinite(leave) ? leave : t);
-    }
-    // f(s) = ray depth - map depth at the ray's pixel (< 0: the ray is in front of the surface).
-    const auto f = [&](T s, T& z) {
-      z = a[2] + s * b[2];
-      if (!(z > 0)) return -std::numeric_limits<T>::infinity();
-      const T inv = T(1) / z;
-      return z - detail::depth_lookup(d, c.width, c.height, (a[0] + s * b[0]) * inv, (a[1] + s * b[1]) * inv, tol);
-    };
-    // Pixels moved per unit t: m / z^2.
-    const T mx = b[0] * a[2] - a[0] * b[2], my = b[1] * a[2] - a[1] * b[2];
-    const T m = std::sqrt(mx * mx + my * my);
-    T z = 0;
-    T s = lo;
-    T fs = f(s, z);
-    if (!(fs < 0)) { // the walk starts at or behind the surface c sees
-      if (fs <= tol * z) {
-        t = s;
-        return Walk::hit;
-      }
-      return pass(s);
-    }
-    for (int step = 0; step < 1 << 16; ++step) {
-      if (s >= hi) break;
-      const T zs = a[2] + s * b[2];
-      T next;
-      if (!std::isfinite(hi)) {
-        // Toward the vanishing point (b[2] > 0): within half a pixel of it, the rest of the ray
-        // stays on one pixel; the surface there (if any) is hit where the depths agree.
-        if (!(m > 0) || m < T(0.5) * b[2] * zs) {
-          T zv = 0;
-          const T fv = f(s, zv);
-          const T dv = zv - fv;
-          if (std::isfinite(dv) && dv > zs && b[2] > 0) {
-            t = (dv - a[2]) / b[2];
-            return Walk::hit;
-          }
-          if (zv > 0 && std::isinf(dv)) return Walk::escaped;
-          break;
-        }
-        next = s + zs * zs / m;
-      } else {
-        next = m > 0 ? std::min(hi, s + zs * zs / m) : hi;
-      }
-      T zn = 0;
-      const T fn = f(next, zn);
-      if (fn >= 0) {
-        // Bracketed in [s, next], at most one pixel of c: narrowed by the Illinois variant of
-        // regula falsi (a crossing of the maps' bilinear surface is found in a few lookups; at
-        // a step between pixels, a depth edge, the halved end weights still shrink the
-        // bracket) to 1/256 of the step and to ray depths within half the tolerance (near the
-        // vanishing point a pixel spans a long stretch of the ray), then f interpolated
-        // linearly.
-        T s0 = s, s1 = next, f0 = fs, f1 = fn, z0 = zs, z1 = zn;
-        T g0 = f0, g1 = f1; // the end values regula falsi weighs (halved when an end is kept)
-        const T resolution = (next - s) * T(1.0 / 256);
-        int kept = 0; // +1: the last step moved s0, -1: it moved s1
-        for (int it = 0; it < kRefineLimit && (it < kRefineSteps || z1 - z0 > T(0.5) * tol * z1) &&
-                         (s1 - s0 > resolution || z1 - z0 > T(0.5) * tol * z1);
-             ++it) {
-          T mid = g1 - g0 > 0 ? s0 + (s1 - s0) * (-g0 / (g1 - g0)) : T(0.5) * (s0 + s1);
-          if (!(mid > s0 && mid < s1)) mid = T(0.5) * (s0 + s1);
-          T zm = 0;
-          const T fm = f(mid, zm);
-          if (fm < 0) {
-            s0 = mid;
-            z0 = zm;
-            f0 = g0 = fm;
-            if (kept == 1) g1 *= T(0.5);
-            kept = 1;
-          } else {
-            s1 = mid;
-            f1 = g1 = fm;
-            z1 = zm;
-            if (kept == -1) g0 *= T(0.5);
-            kept = -1;
-          }
-        }
-        if (f1 <= tol * z1 && -f0 <= tol * z1) {
-          const T denom = f1 - f0;
-          t = denom > 0 ? s0 + (s1 - s0) * (-f0 / denom) : s1;
-          return Walk::hit;
-        }
-        return pass(s0); // c is occluded from here on
-      }
-      s = next;
-      fs = fn;
-    }
-    return pass(std::isfinite(hi) ? leave : s);
   }
 
   template <std::floating_point T, class Px>
