@@ -25,6 +25,7 @@
 #include "bench_common.hpp"
 #include "leave_one_out_setup.hpp"
 
+#include <mpr/core/image_metrics.hpp>
 #include <mpr/io/depth_maps.hpp>
 #include <mpr/io/image_io.hpp>
 #include <mpr/io/par_file.hpp>
@@ -68,17 +69,6 @@ double thread_cpu_ms(Fn&& fn) {
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
-}
-
-double psnr(const mpr::Image<mpr::Rgb8>& a, const mpr::Image<mpr::Rgb8>& b) {
-  double se = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      const mpr::Rgb8 p = a(x, y), q = b(x, y);
-      se += (p.r - q.r) * (p.r - q.r) + (p.g - q.g) * (p.g - q.g) + (p.b - q.b) * (p.b - q.b);
-    }
-  const double mse = se / (3.0 * a.width() * a.height());
-  return mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
 }
 
 struct Options {
@@ -138,7 +128,7 @@ void run(const std::string& label, const std::shared_ptr<const mpr::CameraFrameS
     check = text;
   }
   std::printf("| %s | %dx%d | %.1f | %.1f | %.2f | %s |\n", label.c_str(), w, h, median(one), median(two),
-              psnr(image, truth), check.c_str());
+              mpr::compare_images(image.view(), truth.view()).psnr, check.c_str());
 }
 
 void classroom(const Options& o) {
