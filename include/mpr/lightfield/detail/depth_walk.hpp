@@ -97,8 +97,8 @@ template <std::floating_point T, class Px>
   if (empty || !(lo < hi) || !std::isfinite(lo)) return DepthWalk::passed;
   const T tol = static_cast<T>(tolerance);
   const T leave = hi; // where the ray leaves c's view
-  // The walk passes on from `at`; when c does not see the ray at t, [view, at) becomes the
-  // skip (merged with the one there when they overlap) and t stays.
+  // The walk passes on from `at`; when c does not see the ray at t, [view, at) (when not empty)
+  // becomes the skip (merged with the one there when they overlap) and t stays.
   const bool gap = lo > t;
   const T view = lo;
   T& sb = search.skip_begin;
@@ -107,7 +107,7 @@ template <std::floating_point T, class Px>
     if (!gap) {
       t = at >= sb ? std::max(at, se) : at;
       if (t >= sb) sb = se = std::numeric_limits<T>::infinity();
-    } else if (!(sb < se) || (view <= se && at >= sb)) {
+    } else if (view < at && (!(sb < se) || (view <= se && at >= sb))) {
       const bool none = !(sb < se);
       sb = none ? view : std::min(sb, view);
       se = none ? at : std::max(se, at);
