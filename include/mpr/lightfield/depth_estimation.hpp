@@ -165,11 +165,6 @@ template <std::floating_point T, class Px>
   for (std::vector<float>* v : {&sum, &left, &right, &previous}) v->assign(n, 0.0f);
   std::vector<int>& best_plane = ws.best_plane;
   best_plane.assign(n, 0);
-  // The workers' scratch, sized here (nothing is allocated inside the noexcept workers).
-  const int blocks_total = (height + kSweepLockstepRows - 1) / kSweepLockstepRows;
-  ws.keep.resize(static_cast<std::size_t>(blocks_total) * static_cast<std::size_t>(best + 1) *
-                 static_cast<std::size_t>(width));
-  ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const double inv_near = 1 / config.near, inv_far = 1 / config.far;
   const auto depth_of = [&](double index) {
     return 1 / (inv_near + (inv_far - inv_near) * index / static_cast<double>(config.planes - 1));
@@ -178,6 +173,10 @@ template <std::floating_point T, class Px>
   const SimdLevel level = simd_level();
   constexpr int rows_per_block = kSweepLockstepRows;
   const int blocks = (height + rows_per_block - 1) / rows_per_block;
+  // The workers' scratch, sized here (nothing is allocated inside the noexcept workers).
+  ws.keep.resize(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(best + 1) *
+                 static_cast<std::size_t>(width));
+  ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const std::size_t w = static_cast<std::size_t>(width);
   // Row y's cost at depth d into `out`: per neighbour a cost row (`value`), the best few kept
   // sorted in keep[0..best).

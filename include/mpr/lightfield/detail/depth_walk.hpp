@@ -133,16 +133,19 @@ template <std::floating_point T, class Px>
     if (!(se < hi)) return pass(std::isfinite(leave) ? leave : se);
     lo = se;
   }
+  // Where a walk starts (or resumes after the stretch seen free) at or behind the surface c
+  // sees (fs >= 0): the surface itself within the tolerance, else c is occluded from there.
+  const auto start_behind = [&](T at, T fat, T zat) {
+    if (fat <= tol * zat) {
+      t = at;
+      return DepthWalk::hit;
+    }
+    return pass(at);
+  };
   T z = 0;
   T s = lo;
   T fs = f(s, z);
-  if (!(fs < 0)) { // the walk starts at or behind the surface c sees
-    if (fs <= tol * z) {
-      t = s;
-      return DepthWalk::hit;
-    }
-    return pass(s);
-  }
+  if (!(fs < 0)) return start_behind(s, fs, z);
   for (int step = 0; step < 1 << 16; ++step) {
     if (s >= hi) break;
     const T zs = a[2] + s * b[2];
@@ -213,13 +216,7 @@ template <std::floating_point T, class Px>
       if (!(se < hi)) break;
       s = se;
       fs = f(s, z);
-      if (!(fs < 0)) { // at or behind the surface c sees where the stretch ends
-        if (fs <= tol * z) {
-          t = s;
-          return DepthWalk::hit;
-        }
-        return pass(s);
-      }
+      if (!(fs < 0)) return start_behind(s, fs, z);
     }
   }
   return pass(std::isfinite(hi) ? leave : s);
