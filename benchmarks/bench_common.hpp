@@ -1,6 +1,9 @@
 #pragma once
 // Shared helpers for mpr's benchmark programs: the machine description every report starts
-// with, and repeated timing with median and min-max spread.
+// with, repeated timing with median and min-max spread, and a sampler wrapper that forces the
+// per-ray path.
+
+#include <mpr/core/ray.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -65,5 +68,15 @@ inline bool quick_mode(int argc, char** argv) {
     if (std::strcmp(argv[i], "--quick") == 0) return true;
   return false;
 }
+
+/// Hides a sampler's batch and tile interfaces, so the renderer calls `sample(ray)` per pixel
+/// (the reference a batch or tile path is checked against).
+template <class S>
+struct PerRay {
+  using scalar_type = typename S::scalar_type;
+  using color_type = typename S::color_type;
+  S inner;
+  [[nodiscard]] color_type sample(const mpr::Ray<scalar_type>& ray) const noexcept { return inner.sample(ray); }
+};
 
 } // namespace mpr_bench

@@ -48,15 +48,6 @@ namespace {
 
 using T = float;
 
-/// Hides a sampler's batch and tile interfaces, so the renderer calls `sample(ray)` per pixel.
-template <class S>
-struct PerRay {
-  using scalar_type = typename S::scalar_type;
-  using color_type = typename S::color_type;
-  S inner;
-  [[nodiscard]] color_type sample(const mpr::Ray<scalar_type>& ray) const noexcept { return inner.sample(ray); }
-};
-
 template <class Fn>
 double thread_cpu_ms(Fn&& fn) {
   timespec a{}, b{};
@@ -110,7 +101,7 @@ void run(const std::string& label, const std::shared_ptr<const mpr::CameraFrameS
     check = "none: DepthProxy answers per ray only";
   else if (o.per_ray) {
     const mpr::Renderer slow(held.image_plane(depth), mpr::pinhole_glc(held, held.image_plane(depth)),
-                             PerRay<decltype(sampler)>{sampler});
+                             mpr_bench::PerRay<decltype(sampler)>{sampler});
     mpr::Image<mpr::Rgb8> reference(w, h);
     double ms = thread_cpu_ms([&] { slow.render(reference.view(), region, {1}); });
     int worst = 0;

@@ -28,15 +28,6 @@ namespace {
 
 using T = float;
 
-/// Hides a sampler's batch interface, so the renderer calls `sample(ray)` per pixel.
-template <class S>
-struct PerPixel {
-  using scalar_type = typename S::scalar_type;
-  using color_type = typename S::color_type;
-  S inner;
-  [[nodiscard]] color_type sample(const mpr::Ray<scalar_type>& ray) const noexcept { return inner.sample(ray); }
-};
-
 // nx x ny cameras, `spacing` apart on z = 0, looking along +z, images of a textured plane at
 // z = depth (a checkerboard modulated by smooth colour ramps).
 std::shared_ptr<const mpr::CameraFrameSet<T>> synthetic_array(int nx, int ny, T spacing, int w, int h, T focal,
@@ -114,7 +105,7 @@ Result measure(const char* label, const mpr::PlanarSurface<T>& plane, const mpr:
   const double cpu = threads == 1 ? thread_cpu_ms(repeats, [&] { batch.render(a.view(), region, {1}); }) : 0.0;
   double pp = 0;
   if (per_pixel && g_per_pixel) {
-    const mpr::Renderer slow(plane, glc, PerPixel<Sampler>{sampler});
+    const mpr::Renderer slow(plane, glc, mpr_bench::PerRay<Sampler>{sampler});
     const mpr_bench::Timing tp =
         mpr_bench::time_repeated(std::max(1, repeats / 4), [&] { slow.render(b.view(), region, {threads}); });
     pp = tp.median * 1e3;
