@@ -3,6 +3,7 @@
 // camera, stand still or step several pixels at a time, with and without per-point weights, for
 // 8-bit codes and float channels and float and double coordinates. Nothing past a row's end is
 // written.
+#include "lightfield/projective_reference.hpp"
 #include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
@@ -23,52 +24,12 @@ namespace {
 using LD = long double;
 using mpr::detail::ProjectiveRow;
 using mpr::detail::SimdLevel;
+using mpr_test::Expected;
+using mpr_test::expected;
 
 constexpr std::size_t kLengths[] = {0, 1, 5, 15, 16, 17, 31, 32, 33, 64, 100, 257};
 constexpr std::size_t kGuard = 21;
 constexpr float kSentinel = -12345.0f;
-
-// The reference of one point: whether the camera sees it, whether that decision is too close to
-// call in the kernel's precision (within `margin` pixels of an image border, or w near 0), and
-// the bilinear value per channel.
-struct Expected {
-  bool seen = false, ambiguous = false;
-  LD value[3] = {0, 0, 0}, size = 0;
-};
-
-template <class T, class C>
-Expected expected(const ProjectiveRow<T, C>& r, std::size_t i, LD weight, LD margin) {
-  Expected e;
-  const LD t = static_cast<LD>(i);
-  const LD w = LD(r.h0[2]) + t * LD(r.hs[2]);
-  const LD scale_w = std::abs(LD(r.h0[2])) + t * std::abs(LD(r.hs[2]));
-  if (std::abs(w) <= 1e-4L * scale_w) e.ambiguous = true;
-  if (!(w > 0)) return e;
-  const LD x = (LD(r.h0[0]) + t * LD(r.hs[0])) / w, y = (LD(r.h0[1]) + t * LD(r.hs[1])) / w;
-  const LD xmax = LD(r.width) - 0.5L, ymax = LD(r.height) - 0.5L;
-  for (const LD d : {x + 0.5L, xmax - x, y + 0.5L, ymax - y})
-    if (std::abs(d) <= margin) e.ambiguous = true;
-  if (!(x >= -0.5L && x < xmax && y >= -0.5L && y < ymax)) return e;
-  if (!(weight > 0)) return e;
-  e.seen = true;
-  // Near an integer coordinate the kernel may pick either cell: bilinear is continuous there.
-  const LD fx = std::floor(x), fy = std::floor(y);
-  const LD ax = x - fx, ay = y - fy;
-  const long x0 = static_cast<long>(fx), y0 = static_cast<long>(fy);
-  const long xa = std::max(x0, 0L), xb = std::min(x0 + 1, static_cast<long>(r.width) - 1);
-  const long ya = std::max(y0, 0L), yb = std::min(y0 + 1, static_cast<long>(r.height) - 1);
-  const auto at = [&](long xx, long yy, int k) {
-    return LD(mpr::detail::channel_value(r.texels[3 * (yy * r.width + xx) + k], r.lut)) * LD(r.scale);
-  };
-  for (int k = 0; k < 3; ++k) {
-    const LD v[4] = {(1 - ax) * (1 - ay) * at(xa, ya, k), ax * (1 - ay) * at(xb, ya, k), (1 - ax) * ay * at(xa, yb, k),
-                     ax * ay * at(xb, yb, k)};
-    e.value[k] = weight * (v[0] + v[1] + v[2] + v[3]);
-    for (const LD p : {at(xa, ya, k), at(xb, ya, k), at(xa, yb, k), at(xb, yb, k)})
-      e.size = std::max(e.size, weight * std::abs(p));
-  }
-  return e;
-}
 
 template <class T, class C>
 void check_kernel() {

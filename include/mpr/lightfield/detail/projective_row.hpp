@@ -129,97 +129,131 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void gather_tap_avx512(const C* texels, cons
 inline constexpr int kAhead = 64;
 inline constexpr int kPrefetchLanes = 2;
 
-// The AVX-512 step: 16 points at a time, float coordinates. Lanes the camera does not see get
-// zero weights and clamped in-range texel indices, so every gather reads inside the image.
+// The 16 points from i on: their pixel coordinates, their weights (1, or rw) and the lanes the
+// camera sees with a positive weight (`m`; none past n).
+struct ProjectiveLanes {
+  __m512 x, y, wt;
+  __mmask16 m;
+};
+
 template <class C>
-MPR_TARGET_AVX512 inline std::size_t projective_row_avx512(const ProjectiveRow<float, C>& r, std::size_t n,
-                                                           const float* rw, float* acc, float* seen) noexcept {
-  const __m512 h0x = _mm512_set1_ps(r.h0[0]), h0y = _mm512_set1_ps(r.h0[1]), h0w = _mm512_set1_ps(r.h0[2]);
-  const __m512 hsx = _mm512_set1_ps(r.hs[0]), hsy = _mm512_set1_ps(r.hs[1]), hsw = _mm512_set1_ps(r.hs[2]);
-  const __m512 lo = _mm512_set1_ps(-0.5f), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-  const __m512 xmax = _mm512_set1_ps(static_cast<float>(r.width) - 0.5f);
-  const __m512 ymax = _mm512_set1_ps(static_cast<float>(r.height) - 0.5f);
-  const __m512i wlast = _mm512_set1_epi32(r.width - 1), hlast = _mm512_set1_epi32(r.height - 1);
-  const __m512i izero = _mm512_setzero_si512(), ione = _mm512_set1_epi32(1), stride = _mm512_set1_epi32(3 * r.width);
-  const __m512i three = _mm512_set1_epi32(3);
-  const __m512 scale = _mm512_set1_ps(r.scale);
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE ProjectiveLanes projective_lanes(const ProjectiveRow<float, C>& r, std::size_t i,
+                                                                     std::size_t n, const float* rw) noexcept {
+  const __m512 zero = _mm512_setzero_ps(), lo = _mm512_set1_ps(-0.5f);
   const __m512 iota = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __mmask16 live = n - i >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (n - i)) - 1);
+  const __m512 t = _mm512_add_ps(_mm512_set1_ps(static_cast<float>(i)), iota);
+  const __m512 w = _mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[2]), _mm512_set1_ps(r.h0[2]));
+  ProjectiveLanes p;
+  // 1 / w by the 14-bit estimate and one Newton step (within 2 ulp; two divisions cost more
+  // than the rest of a window step's set-up).
+  const __m512 e = _mm512_maskz_rcp14_ps(kAll, w);
+  const __m512 inv = _mm512_fmadd_ps(e, _mm512_fnmadd_ps(w, e, _mm512_set1_ps(1.0f)), e);
+  p.x = _mm512_mul_ps(_mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[0]), _mm512_set1_ps(r.h0[0])), inv);
+  p.y = _mm512_mul_ps(_mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[1]), _mm512_set1_ps(r.h0[1])), inv);
+  p.m = live & _mm512_cmp_ps_mask(w, zero, _CMP_GT_OQ);
+  p.m &= _mm512_cmp_ps_mask(p.x, lo, _CMP_GE_OQ) &
+         _mm512_cmp_ps_mask(p.x, _mm512_set1_ps(static_cast<float>(r.width) - 0.5f), _CMP_LT_OQ);
+  p.m &= _mm512_cmp_ps_mask(p.y, lo, _CMP_GE_OQ) &
+         _mm512_cmp_ps_mask(p.y, _mm512_set1_ps(static_cast<float>(r.height) - 0.5f), _CMP_LT_OQ);
+  p.wt = _mm512_set1_ps(1.0f);
+  if (rw != nullptr) {
+    p.wt = _mm512_maskz_loadu_ps(live, rw + i);
+    p.m &= _mm512_cmp_ps_mask(p.wt, zero, _CMP_GT_OQ);
+  }
+  return p;
+}
+
+// Asks for the texel rows of the points kAhead on from i: a tilted or scaled row walks across
+// camera rows, which the hardware prefetcher does not follow.
+template <class C>
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void projective_prefetch(const ProjectiveRow<float, C>& r, std::size_t i) noexcept {
+  const __m512 iota = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512 zero = _mm512_setzero_ps();
+  const __m512 t = _mm512_add_ps(_mm512_set1_ps(static_cast<float>(i + kAhead)), iota);
+  const __m512 w = _mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[2]), _mm512_set1_ps(r.h0[2]));
+  const __m512 inv = _mm512_maskz_rcp14_ps(kAll, w);
+  __m512 x = _mm512_mul_ps(_mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[0]), _mm512_set1_ps(r.h0[0])), inv);
+  __m512 y = _mm512_mul_ps(_mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[1]), _mm512_set1_ps(r.h0[1])), inv);
+  x = _mm512_maskz_min_ps(kAll, _mm512_maskz_max_ps(kAll, x, zero), _mm512_set1_ps(static_cast<float>(r.width - 1)));
+  y = _mm512_maskz_min_ps(kAll, _mm512_maskz_max_ps(kAll, y, zero), _mm512_set1_ps(static_cast<float>(r.height - 1)));
+  const __m512i off =
+      _mm512_add_epi32(_mm512_mullo_epi32(_mm512_maskz_cvttps_epi32(kAll, y), _mm512_set1_epi32(3 * r.width)),
+                       _mm512_mullo_epi32(_mm512_maskz_cvttps_epi32(kAll, x), _mm512_set1_epi32(3)));
+  alignas(64) int o[16];
+  _mm512_store_si512(o, off);
+  for (int l = 0; l < 16; l += kPrefetchLanes) {
+    __builtin_prefetch(r.texels + o[l]);
+    __builtin_prefetch(r.texels + o[l] + 3 * r.width);
+  }
+}
+
+// acc[3 i ...] += the 16 points' channel sums, r g b interleaved in three vectors (slot s of
+// vector q: channel (16 q + s) % 3 of point (16 q + s) / 3); `count` points of the 16 are stored.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void add_interleaved(const __m512 (&v)[3], std::size_t count, float* acc) noexcept {
+  const std::size_t slots = 3 * count;
+  for (int q = 0; q < 3; ++q) {
+    const std::size_t first = 16 * static_cast<std::size_t>(q);
+    if (first >= slots) break;
+    const __mmask16 keep =
+        slots - first >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (slots - first)) - 1);
+    _mm512_mask_storeu_ps(acc + first, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, acc + first), v[q]));
+  }
+}
+
+// The gather step of 16 points (`projective_lanes`): lanes the camera does not see get zero
+// weights and clamped in-range texel indices, so every gather reads inside the image.
+template <class C>
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void projective_gather(const ProjectiveRow<float, C>& r, const Decode16x512* decode,
+                                                           const ProjectiveLanes& p, std::size_t count,
+                                                           float* acc) noexcept {
+  const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+  const __m512i izero = _mm512_setzero_si512(), ione = _mm512_set1_epi32(1), three = _mm512_set1_epi32(3);
+  const __m512i stride = _mm512_set1_epi32(3 * r.width);
+  const __m512 xs = _mm512_mask_mov_ps(zero, p.m, p.x), ys = _mm512_mask_mov_ps(zero, p.m, p.y);
+  const __m512 fx = _mm512_maskz_roundscale_ps(kAll, xs, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+  const __m512 fy = _mm512_maskz_roundscale_ps(kAll, ys, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+  const __m512 ax = _mm512_sub_ps(xs, fx), ay = _mm512_sub_ps(ys, fy);
+  const __m512i x0 = _mm512_maskz_cvttps_epi32(kAll, fx), y0 = _mm512_maskz_cvttps_epi32(kAll, fy);
+  const __m512i xa = _mm512_mullo_epi32(_mm512_maskz_max_epi32(kAll, x0, izero), three);
+  const __m512i xb = _mm512_mullo_epi32(
+      _mm512_maskz_min_epi32(kAll, _mm512_add_epi32(x0, ione), _mm512_set1_epi32(r.width - 1)), three);
+  const __m512i ya = _mm512_mullo_epi32(_mm512_maskz_max_epi32(kAll, y0, izero), stride);
+  const __m512i yb = _mm512_mullo_epi32(
+      _mm512_maskz_min_epi32(kAll, _mm512_add_epi32(y0, ione), _mm512_set1_epi32(r.height - 1)), stride);
+  const __m512 s = _mm512_maskz_mul_ps(p.m, p.wt, _mm512_set1_ps(r.scale));
+  const __m512 bx = _mm512_sub_ps(one, ax), by = _mm512_sub_ps(one, ay);
+  const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), s), w10 = _mm512_mul_ps(_mm512_mul_ps(ax, by), s);
+  const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ay), s), w11 = _mm512_mul_ps(_mm512_mul_ps(ax, ay), s);
+  __m512 sum[3] = {zero, zero, zero};
+  gather_tap_avx512(r.texels, decode, _mm512_add_epi32(ya, xa), w00, sum);
+  gather_tap_avx512(r.texels, decode, _mm512_add_epi32(ya, xb), w10, sum);
+  gather_tap_avx512(r.texels, decode, _mm512_add_epi32(yb, xa), w01, sum);
+  gather_tap_avx512(r.texels, decode, _mm512_add_epi32(yb, xb), w11, sum);
   static constexpr InterleaveRgb16 order{};
+  __m512 v[3];
+  for (int q = 0; q < 3; ++q) {
+    const __m512 rg = _mm512_permutex2var_ps(sum[0], _mm512_load_si512(order.rg[q]), sum[1]);
+    v[q] = _mm512_permutex2var_ps(rg, _mm512_load_si512(order.b[q]), sum[2]);
+  }
+  add_interleaved(v, count, acc);
+}
+
+// The AVX-512 kernel: 16 points at a time, float coordinates, four gathered taps each.
+template <class C>
+MPR_TARGET_AVX512 inline void projective_row_avx512(const ProjectiveRow<float, C>& r, std::size_t n, const float* rw,
+                                                    float* acc, float* seen) noexcept {
   Decode16x512 decode{};
   if constexpr (std::is_same_v<C, std::uint8_t>) decode = load_decode16(r.lut);
-  const __m512 ahead = _mm512_set1_ps(static_cast<float>(kAhead));
-  std::size_t i = 0;
-  for (; i < n; i += 16) {
-    {
-      // Ask for the texel rows kAhead points on: a tilted or scaled row walks across camera rows,
-      // which the hardware prefetcher does not follow.
-      const __m512 t = _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(static_cast<float>(i)), iota), ahead);
-      const __m512 w = _mm512_fmadd_ps(t, hsw, h0w);
-      const __m512 inv = _mm512_maskz_rcp14_ps(kAll, w);
-      __m512 x = _mm512_mul_ps(_mm512_fmadd_ps(t, hsx, h0x), inv);
-      __m512 y = _mm512_mul_ps(_mm512_fmadd_ps(t, hsy, h0y), inv);
-      x = _mm512_maskz_min_ps(kAll, _mm512_maskz_max_ps(kAll, x, zero),
-                              _mm512_set1_ps(static_cast<float>(r.width - 1)));
-      y = _mm512_maskz_min_ps(kAll, _mm512_maskz_max_ps(kAll, y, zero),
-                              _mm512_set1_ps(static_cast<float>(r.height - 1)));
-      const __m512i off = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_maskz_cvttps_epi32(kAll, y), stride),
-                                           _mm512_mullo_epi32(_mm512_maskz_cvttps_epi32(kAll, x), three));
-      alignas(64) int o[16];
-      _mm512_store_si512(o, off);
-      const C* texels = r.texels;
-      for (int l = 0; l < 16; l += kPrefetchLanes) {
-        __builtin_prefetch(texels + o[l]);
-        __builtin_prefetch(texels + o[l] + 3 * r.width);
-      }
-    }
-    const __mmask16 live = n - i >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (n - i)) - 1);
-    const __m512 t = _mm512_add_ps(_mm512_set1_ps(static_cast<float>(i)), iota);
-    const __m512 w = _mm512_fmadd_ps(t, hsw, h0w);
-    const __m512 x = _mm512_div_ps(_mm512_fmadd_ps(t, hsx, h0x), w);
-    const __m512 y = _mm512_div_ps(_mm512_fmadd_ps(t, hsy, h0y), w);
-    __mmask16 m = live & _mm512_cmp_ps_mask(w, zero, _CMP_GT_OQ);
-    m &= _mm512_cmp_ps_mask(x, lo, _CMP_GE_OQ) & _mm512_cmp_ps_mask(x, xmax, _CMP_LT_OQ);
-    m &= _mm512_cmp_ps_mask(y, lo, _CMP_GE_OQ) & _mm512_cmp_ps_mask(y, ymax, _CMP_LT_OQ);
-    __m512 wt = one;
-    if (rw != nullptr) {
-      wt = _mm512_maskz_loadu_ps(live, rw + i);
-      m &= _mm512_cmp_ps_mask(wt, zero, _CMP_GT_OQ);
-    }
-    if (m == 0) continue;
-    const __m512 xs = _mm512_mask_mov_ps(zero, m, x), ys = _mm512_mask_mov_ps(zero, m, y);
-    const __m512 fx = _mm512_maskz_roundscale_ps(kAll, xs, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m512 fy = _mm512_maskz_roundscale_ps(kAll, ys, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m512 ax = _mm512_sub_ps(xs, fx), ay = _mm512_sub_ps(ys, fy);
-    const __m512i x0 = _mm512_maskz_cvttps_epi32(kAll, fx), y0 = _mm512_maskz_cvttps_epi32(kAll, fy);
-    const __m512i xa = _mm512_mullo_epi32(_mm512_maskz_max_epi32(kAll, x0, izero), three);
-    const __m512i xb = _mm512_mullo_epi32(_mm512_maskz_min_epi32(kAll, _mm512_add_epi32(x0, ione), wlast), three);
-    const __m512i ya = _mm512_mullo_epi32(_mm512_maskz_max_epi32(kAll, y0, izero), stride);
-    const __m512i yb = _mm512_mullo_epi32(_mm512_maskz_min_epi32(kAll, _mm512_add_epi32(y0, ione), hlast), stride);
-    const __m512 s = _mm512_maskz_mul_ps(m, wt, scale);
-    const __m512 bx = _mm512_sub_ps(one, ax), by = _mm512_sub_ps(one, ay);
-    const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), s), w10 = _mm512_mul_ps(_mm512_mul_ps(ax, by), s);
-    const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ay), s), w11 = _mm512_mul_ps(_mm512_mul_ps(ax, ay), s);
-    __m512 sum[3] = {zero, zero, zero};
-    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(ya, xa), w00, sum);
-    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(ya, xb), w10, sum);
-    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(yb, xa), w01, sum);
-    gather_tap_avx512(r.texels, &decode, _mm512_add_epi32(yb, xb), w11, sum);
-    // acc[3 i ...] += the 48 interleaved channel sums; slots of dead points add zero.
-    const std::size_t slots = 3 * std::min<std::size_t>(16, n - i);
-    for (int q = 0; q < 3; ++q) {
-      const std::size_t first = 16 * static_cast<std::size_t>(q);
-      if (first >= slots) break;
-      const __mmask16 keep =
-          slots - first >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (slots - first)) - 1);
-      const __m512 rg = _mm512_permutex2var_ps(sum[0], _mm512_load_si512(order.rg[q]), sum[1]);
-      const __m512 v = _mm512_permutex2var_ps(rg, _mm512_load_si512(order.b[q]), sum[2]);
-      float* out = acc + 3 * i + first;
-      _mm512_mask_storeu_ps(out, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, out), v));
-    }
-    _mm512_mask_storeu_ps(seen + i, m, _mm512_add_ps(_mm512_maskz_loadu_ps(m, seen + i), wt));
+  for (std::size_t i = 0; i < n; i += 16) {
+    projective_prefetch(r, i);
+    const ProjectiveLanes p = projective_lanes(r, i, n, rw);
+    if (p.m == 0) continue;
+    projective_gather(r, &decode, p, std::min<std::size_t>(16, n - i), acc + 3 * i);
+    _mm512_mask_storeu_ps(seen + i, p.m, _mm512_add_ps(_mm512_maskz_loadu_ps(p.m, seen + i), p.wt));
   }
-  return n;
 }
+
 #endif
 
 /// `projective_row_portable` over [0, n), with the hand-written step of `level` where there is
@@ -231,8 +265,7 @@ inline void projective_row(const ProjectiveRow<T, C>& r, std::size_t n, const fl
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float> && (std::is_same_v<C, float> || std::is_same_v<C, std::uint8_t>)) {
     if (level == SimdLevel::avx512 && gather_indexable(r.width, r.height)) {
-      projective_row_avx512(r, n, rw, acc, seen);
-      return;
+      return projective_row_avx512(r, n, rw, acc, seen);
     }
   }
 #endif

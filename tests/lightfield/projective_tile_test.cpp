@@ -1,0 +1,138 @@
+// The projective-tile kernel (lightfield/detail/projective_tile.hpp): every SIMD level against the
+// long-double reference of each row's points, on tiles of a tilted plane (rows nearly level in
+// the camera, a few crossing camera rows), steep and sheared tiles (groups too spread for the
+// box windows), tiles that leave the image or pass behind the camera, and images narrower and
+// wider than one chunk's box. Nothing past a tile's end is written.
+#include "lightfield/projective_reference.hpp"
+#include "simd_levels.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/lightfield/detail/projective_tile.hpp>
+#include <mpr/lightfield/frame_set.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+namespace {
+
+using mpr::detail::ProjectiveRow;
+using mpr::detail::SimdLevel;
+using mpr_test::LD;
+
+constexpr std::size_t kGuard = 21;
+constexpr float kSentinel = -12345.0f;
+
+// One tile's rows: point (i, r) at the homogeneous pixel (x, y, 1) depth + i step_i + r step_r,
+// with the depth itself affine in i and r (a tilted plane).
+struct TileShape {
+  double x0, y0, depth, sx, sy, rx, ry, dwi, dwr;
+};
+
+template <class T, class C>
+std::vector<ProjectiveRow<T, C>> tile_rows(const TileShape& s, std::size_t rows, int width, int height, const C* texels,
+                                           float scale, const std::uint16_t* lut) {
+  std::vector<ProjectiveRow<T, C>> out;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double rr = static_cast<double>(r);
+    const double x = s.x0 + rr * s.rx, y = s.y0 + rr * s.ry, w = s.depth + rr * s.dwr;
+    // Point i: pixel (x + i sx, y + i sy) at depth w + i dwi.
+    out.push_back({{static_cast<T>(x * w), static_cast<T>(y * w), static_cast<T>(w)},
+                   {static_cast<T>((x + s.sx) * (w + s.dwi) - x * w), static_cast<T>((y + s.sy) * (w + s.dwi) - y * w),
+                    static_cast<T>(s.dwi)},
+                   width,
+                   height,
+                   texels,
+                   scale,
+                   lut});
+  }
+  return out;
+}
+
+template <class T, class C>
+void check_tiles(int width, int height) {
+  std::mt19937_64 rng(4004 + sizeof(T) * 10 + sizeof(C) + static_cast<unsigned>(width));
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<C, mpr::detail::HugePageAllocator<C>> texels(3 * static_cast<std::size_t>(width) * height);
+  for (C& c : texels) {
+    if constexpr (std::is_same_v<C, float>)
+      c = static_cast<float>(4 * unit(rng) - 1);
+    else
+      c = static_cast<C>(rng() % 256);
+  }
+  const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
+  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? mpr::Srgb8Texel::linear16() : nullptr;
+  const LD margin = std::is_same_v<T, float> ? 2e-3L : 1e-9L;
+  int failures = 0, compared = 0, seen_points = 0;
+  for (const std::size_t rows : {1u, 3u, 8u, 13u})
+    for (const std::size_t n : {0u, 1u, 15u, 16u, 17u, 64u, 65u, 100u, 257u})
+      for (int trial = 0; trial < 10; ++trial) {
+        // Trials 0-4: a tilted plane's tile (rows nearly level, about one camera row apart);
+        // 5-6: steep or spread rows (the gather step); 7: rows that leave the image; 8: rows
+        // that pass behind the camera; 9: a tile standing still.
+        const double depth = 200 + 800 * unit(rng);
+        TileShape s{};
+        s.depth = depth;
+        s.x0 = -4 + (width / 2.0) * unit(rng);
+        s.y0 = -2 + (height - rows * 1.2) * unit(rng);
+        s.sx = (0.3 + 1.9 * unit(rng)) * (unit(rng) < 0.2 ? -1 : 1);
+        s.sy = 0.08 * (2 * unit(rng) - 1);
+        s.rx = 0.3 * (2 * unit(rng) - 1);
+        s.ry = 0.6 + 0.8 * unit(rng);
+        s.dwi = n > 1 ? depth * (0.2 * unit(rng) - 0.1) / static_cast<double>(n) : 0;
+        s.dwr = depth * (0.02 * unit(rng) - 0.01);
+        if (trial == 5) s.sy = 1.5 * (2 * unit(rng) - 1);
+        if (trial == 6) s.sx = 3 + 3 * unit(rng), s.ry = 4 + 10 * unit(rng);
+        if (trial == 7) s.x0 = width - 20 * unit(rng), s.y0 = height - 5 * unit(rng);
+        if (trial == 8) s.dwi = -2 * depth / std::max<double>(1, static_cast<double>(n));
+        if (trial == 9) s.sx = s.sy = s.dwi = 0;
+        const std::vector<ProjectiveRow<T, C>> tile =
+            tile_rows<T, C>(s, rows, width, height, texels.data(), scale, lut);
+        std::vector<float> acc0(3 * n * rows + kGuard, kSentinel), seen0(n * rows + kGuard, kSentinel);
+        for (std::size_t j = 0; j < 3 * n * rows; ++j) acc0[j] = static_cast<float>(unit(rng));
+        for (std::size_t j = 0; j < n * rows; ++j) seen0[j] = static_cast<float>(unit(rng));
+        mpr_test::for_each_simd_level([&](SimdLevel level) {
+          std::vector<float> acc = acc0, seen = seen0;
+          mpr::detail::projective_tile(std::span<const ProjectiveRow<T, C>>(tile), n, acc.data(), seen.data(), level);
+          for (std::size_t j = 3 * n * rows; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
+          for (std::size_t j = n * rows; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
+          for (std::size_t r = 0; r < rows; ++r)
+            for (std::size_t i = 0; i < n; ++i) {
+              const mpr_test::Expected e = mpr_test::expected(tile[r], i, 1.0L, margin);
+              if (e.ambiguous) continue;
+              ++compared;
+              seen_points += e.seen ? 1 : 0;
+              const std::size_t at = n * r + i;
+              const LD want_seen = LD(seen0[at]) + (e.seen ? 1 : 0);
+              bool good = std::abs(LD(seen[at]) - want_seen) <= 1e-6L;
+              for (int k = 0; k < 3; ++k) {
+                const LD want = LD(acc0[3 * at + k]) + e.value[k];
+                const LD tolerance = (std::is_same_v<T, float> ? 2e-3L : 1e-5L) * (e.size + 1) + 1e-6L;
+                good = good && std::abs(LD(acc[3 * at + k]) - want) <= tolerance;
+              }
+              if (!good && ++failures <= 5)
+                FAIL_CHECK(mpr::detail::simd_level_name(level)
+                           << " " << width << "x" << height << " rows=" << rows << " n=" << n << " trial=" << trial
+                           << " row " << r << " i=" << i << ": seen " << seen[at] << " (want "
+                           << static_cast<double>(want_seen) << "), acc " << acc[3 * at] << " (want "
+                           << static_cast<double>(LD(acc0[3 * at]) + e.value[0]) << ")");
+            }
+        });
+      }
+  CHECK(failures == 0);
+  CHECK(compared > 20000);
+  CHECK(seen_points > 10000); // the tiles do cross the image
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("projective_tile: every level adds each row's bilinear pixels, nothing else", "[projective_tile]",
+                   float, double) {
+  SECTION("8-bit sRGB codes, an image narrower than a chunk's box") { check_tiles<TestType, std::uint8_t>(61, 40); }
+  SECTION("8-bit sRGB codes, an image wider than a chunk's box") { check_tiles<TestType, std::uint8_t>(400, 60); }
+  SECTION("float channels") { check_tiles<TestType, float>(200, 50); }
+}
