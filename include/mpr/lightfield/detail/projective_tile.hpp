@@ -60,7 +60,7 @@ MPR_TARGET_AVX512_VBMI inline void decode_box(const ProjectiveRow<float, std::ui
     float* out[3] = {box.c[0][by], box.c[1][by], box.c[2][by]};
     for (int x = in0; x < in1; x += 16) {
       const int m = std::min(16, in1 - x);
-      const __m512i raw = _mm512_maskz_loadu_epi8((__mmask64(1) << (3 * m)) - 1, codes + 3 * x);
+      const __m512i raw = _mm512_loadu_si512(codes + 3 * x); // bytes past the 3 m used are not
       __m512i first, second;
       decode16x64(d, _mm512_maskz_permutexvar_epi8(~__mmask64(0), planar, raw), first, second);
       const __mmask16 keep = static_cast<__mmask16>((1u << m) - 1);
@@ -101,13 +101,13 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE bool box_step(const TileBox& box, int x
   // x and y are monotonic along the row: the seen lanes' extremes are at the first and last of
   // them (float rounding may break that by an ulp at an integer; such a lane is clamped onto
   // the extremes below, its fraction taken from there: again an error of the rounding only).
-  alignas(64) int ex[16], ey[16];
-  _mm512_store_si512(ex, jx);
-  _mm512_store_si512(ey, jy);
-  const unsigned first = static_cast<unsigned>(__builtin_ctz(p.m));
-  const unsigned last = 31u - static_cast<unsigned>(__builtin_clz(p.m));
-  const int jx0 = std::min(ex[first], ex[last]), jx1 = std::max(ex[first], ex[last]);
-  const int jy0 = std::min(ey[first], ey[last]), jy1 = std::max(ey[first], ey[last]);
+  const int first = __builtin_ctz(p.m), last = 31 - __builtin_clz(p.m);
+  const __m512i pick = _mm512_setr_epi32(first, last, 16 + first, 16 + last, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+  const __m128i ends = _mm512_maskz_extracti32x4_epi32(0xF, _mm512_permutex2var_epi32(jx, pick, jy), 0);
+  const __m128i least = _mm_min_epi32(ends, _mm_shuffle_epi32(ends, 0xB1)),
+                most = _mm_max_epi32(ends, _mm_shuffle_epi32(ends, 0xB1));
+  const int jx0 = _mm_cvtsi128_si32(least), jy0 = _mm_cvtsi128_si32(_mm_srli_si128(least, 8));
+  const int jx1 = _mm_cvtsi128_si32(most), jy1 = _mm_cvtsi128_si32(_mm_srli_si128(most, 8));
   if (jx1 - jx0 > 30 || jy1 - jy0 > kWindowRows - 2) return false;
   jx = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jx, _mm512_set1_epi32(jx0)), _mm512_set1_epi32(jx1));
   jy = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jy, _mm512_set1_epi32(jy0)), _mm512_set1_epi32(jy1));
@@ -198,10 +198,12 @@ inline ChunkBox chunk_box(std::span<const ProjectiveRow<float, std::uint8_t>> ro
   return b;
 }
 
-// Asks for the cache lines of the box's texels.
-inline void prefetch_box(const ProjectiveRow<float, std::uint8_t>& image, const ChunkBox& b) noexcept {
+// Asks for the cache lines of box rows [from, to). Always inlined: GCC finds an out-of-line
+// function of prefetches free of side effects and drops the calls.
+MPR_ALWAYS_INLINE void prefetch_box(const ProjectiveRow<float, std::uint8_t>& image, const ChunkBox& b, int from,
+                                    int to) noexcept {
   const int in0 = std::max(b.x0, 0), in1 = std::min(b.x0 + b.texels, image.width);
-  for (int by = 0; by < b.rows; ++by) {
+  for (int by = from; by < std::min(to, b.rows); ++by) {
     const int y = std::clamp(b.y0 + by, 0, image.height - 1);
     const std::uint8_t* row = image.texels + 3 * static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width);
     for (int x = 3 * in0; x < 3 * in1; x += 64) __builtin_prefetch(row + x);
@@ -220,14 +222,16 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
   // The box of the chunk from point i0 (see `chunk_box`), and the next chunk's, whose texel
   // rows are prefetched while this one is sampled: each box row is a short stretch of its own
   // image row, which the hardware prefetcher does not pick up.
+  // Each chunk's texels are prefetched while the chunk before it is sampled, a share per row:
+  // a box row is a short stretch of its own image row, which the hardware prefetcher does not
+  // pick up, and the software prefetches are spread out so as not to hold up the loads.
   ChunkBox next = chunk_box(rows, 0, n, image);
   for (std::size_t i0 = 0; i0 < n; i0 += kTileChunk) {
     const std::size_t i1 = std::min(n, i0 + kTileChunk);
     const ChunkBox b = next;
-    if (i1 < n) {
-      next = chunk_box(rows, i1, n, image);
-      if (next.state == ChunkBox::boxed) prefetch_box(image, next);
-    }
+    next = i1 < n ? chunk_box(rows, i1, n, image) : ChunkBox{};
+    const bool prefetch = next.state == ChunkBox::boxed;
+    const int per_row = (next.rows + static_cast<int>(rows.size()) - 1) / static_cast<int>(rows.size());
     if (b.state == ChunkBox::outside) continue; // nothing of the chunk is seen
     const bool boxed = b.state == ChunkBox::boxed;
     const int x0 = b.x0, y0 = b.y0, texels = b.texels, box_rows = b.rows;
@@ -235,6 +239,7 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
     for (std::size_t r = 0; r < rows.size(); ++r) {
       float* acc_row = acc + 3 * n * r;
       float* seen_row = seen + n * r;
+      if (prefetch) prefetch_box(image, next, static_cast<int>(r) * per_row, static_cast<int>(r + 1) * per_row);
       for (std::size_t i = i0; i < i1; i += 16) {
         const ProjectiveLanes p = projective_lanes(rows[r], i, i1, nullptr);
         if (p.m == 0) continue;
