@@ -86,40 +86,39 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE bool box_step(const TileBox& box, int x
                                                        float* acc) noexcept {
   constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
-  // The seen lanes' taps, in box coordinates (clamped into the box: the box was found in double
-  // from the rows' end points, the lanes in float).
-  const __m512 xs = _mm512_mask_mov_ps(_mm512_set1_ps(static_cast<float>(x0)), p.m, p.x);
-  const __m512 ys = _mm512_mask_mov_ps(_mm512_set1_ps(static_cast<float>(y0)), p.m, p.y);
-  __m512i jx = _mm512_sub_epi32(_mm512_maskz_cvttps_epi32(kAll, _mm512_maskz_roundscale_ps(kAll, xs, kFloor)),
+  // The lanes' taps in box coordinates. x and y are monotonic along the row, so the seen lanes'
+  // extremes are at the first and last of them; those are clamped into the box (found in double
+  // from the rows' end points, the lanes in float), and every lane onto them (float rounding
+  // may break the monotony by an ulp at an integer; a lane the camera does not see may hold
+  // anything, even NaN, and ends with fraction 0 or 1 and weight 0). A clamped lane takes its
+  // fraction from the texel it is clamped to: an error of its rounding only, bilinear being
+  // continuous.
+  __m512i jx = _mm512_sub_epi32(_mm512_maskz_cvttps_epi32(kAll, _mm512_maskz_roundscale_ps(kAll, p.x, kFloor)),
                                 _mm512_set1_epi32(x0));
-  __m512i jy = _mm512_sub_epi32(_mm512_maskz_cvttps_epi32(kAll, _mm512_maskz_roundscale_ps(kAll, ys, kFloor)),
+  __m512i jy = _mm512_sub_epi32(_mm512_maskz_cvttps_epi32(kAll, _mm512_maskz_roundscale_ps(kAll, p.y, kFloor)),
                                 _mm512_set1_epi32(y0));
-  jx = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jx, _mm512_setzero_si512()),
-                              _mm512_set1_epi32(texels - 2));
-  jy = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jy, _mm512_setzero_si512()),
-                              _mm512_set1_epi32(rows - 2));
-  // x and y are monotonic along the row: the seen lanes' extremes are at the first and last of
-  // them (float rounding may break that by an ulp at an integer; such a lane is clamped onto
-  // the extremes below, its fraction taken from there: again an error of the rounding only).
   const int first = __builtin_ctz(p.m), last = 31 - __builtin_clz(p.m);
   const __m512i pick = _mm512_setr_epi32(first, last, 16 + first, 16 + last, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
   const __m128i ends = _mm512_maskz_extracti32x4_epi32(0xF, _mm512_permutex2var_epi32(jx, pick, jy), 0);
   const __m128i least = _mm_min_epi32(ends, _mm_shuffle_epi32(ends, 0xB1)),
                 most = _mm_max_epi32(ends, _mm_shuffle_epi32(ends, 0xB1));
-  const int jx0 = _mm_cvtsi128_si32(least), jy0 = _mm_cvtsi128_si32(_mm_srli_si128(least, 8));
-  const int jx1 = _mm_cvtsi128_si32(most), jy1 = _mm_cvtsi128_si32(_mm_srli_si128(most, 8));
+  const int jx0 = std::clamp(_mm_cvtsi128_si32(least), 0, texels - 2);
+  const int jx1 = std::clamp(_mm_cvtsi128_si32(most), 0, texels - 2);
+  const int jy0 = std::clamp(_mm_cvtsi128_si32(_mm_srli_si128(least, 8)), 0, rows - 2);
+  const int jy1 = std::clamp(_mm_cvtsi128_si32(_mm_srli_si128(most, 8)), 0, rows - 2);
   if (jx1 - jx0 > 30 || jy1 - jy0 > kWindowRows - 2) return false;
   jx = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jx, _mm512_set1_epi32(jx0)), _mm512_set1_epi32(jx1));
   jy = _mm512_maskz_min_epi32(kAll, _mm512_maskz_max_epi32(kAll, jy, _mm512_set1_epi32(jy0)), _mm512_set1_epi32(jy1));
+  // max(NaN, 0) is 0: the second operand when either is NaN.
   const __m512 ax = _mm512_maskz_min_ps(
       kAll,
       _mm512_maskz_max_ps(
-          kAll, _mm512_sub_ps(xs, _mm512_maskz_cvtepi32_ps(kAll, _mm512_add_epi32(jx, _mm512_set1_epi32(x0)))), zero),
+          kAll, _mm512_sub_ps(p.x, _mm512_maskz_cvtepi32_ps(kAll, _mm512_add_epi32(jx, _mm512_set1_epi32(x0)))), zero),
       one);
   const __m512 ay = _mm512_maskz_min_ps(
       kAll,
       _mm512_maskz_max_ps(
-          kAll, _mm512_sub_ps(ys, _mm512_maskz_cvtepi32_ps(kAll, _mm512_add_epi32(jy, _mm512_set1_epi32(y0)))), zero),
+          kAll, _mm512_sub_ps(p.y, _mm512_maskz_cvtepi32_ps(kAll, _mm512_add_epi32(jy, _mm512_set1_epi32(y0)))), zero),
       one);
   const __m512i left = _mm512_sub_epi32(jx, _mm512_set1_epi32(jx0)),
                 right = _mm512_add_epi32(left, _mm512_set1_epi32(1));
