@@ -7,7 +7,9 @@
 /// of the image, found from the rows' end points) are decoded to linear light once into planar
 /// float rows, and each group of 16 points then takes its bilinear taps from that box with
 /// in-register float permutes instead of four gathers from the codes. A chunk whose box is too
-/// large, or a group too spread out for a 32-float window, takes the gather step.
+/// large, or a group too spread out for a 32-float window, takes the gather step. 8-bit texels
+/// need 64 readable bytes past the last one (`HugePageAllocator`'s padding): the box is read
+/// 64 bytes at a time.
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/detail/decode_vbmi.hpp>
