@@ -188,16 +188,19 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void projective_prefetch(const ProjectiveRow
   }
 }
 
-// acc[3 i ...] += the 16 points' channel sums, r g b interleaved in three vectors (slot s of
-// vector q: channel (16 q + s) % 3 of point (16 q + s) / 3); `count` points of the 16 are stored.
-MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void add_interleaved(const __m512 (&v)[3], std::size_t count, float* acc) noexcept {
+// acc[3 i ...] += the 16 points' channel sums (r, g and b of point l in lane l of sum[0], sum[1],
+// sum[2]), interleaved into r g b triples; `count` points of the 16 are stored.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void add_rgb_sums(const __m512 (&sum)[3], std::size_t count, float* acc) noexcept {
+  static constexpr InterleaveRgb16 order{};
   const std::size_t slots = 3 * count;
   for (int q = 0; q < 3; ++q) {
     const std::size_t first = 16 * static_cast<std::size_t>(q);
     if (first >= slots) break;
     const __mmask16 keep =
         slots - first >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (slots - first)) - 1);
-    _mm512_mask_storeu_ps(acc + first, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, acc + first), v[q]));
+    const __m512 rg = _mm512_permutex2var_ps(sum[0], _mm512_load_si512(order.rg[q]), sum[1]);
+    const __m512 v = _mm512_permutex2var_ps(rg, _mm512_load_si512(order.b[q]), sum[2]);
+    _mm512_mask_storeu_ps(acc + first, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, acc + first), v));
   }
 }
 
@@ -230,13 +233,7 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void projective_gather(const ProjectiveRow<f
   gather_tap_avx512(r.texels, decode, _mm512_add_epi32(ya, xb), w10, sum);
   gather_tap_avx512(r.texels, decode, _mm512_add_epi32(yb, xa), w01, sum);
   gather_tap_avx512(r.texels, decode, _mm512_add_epi32(yb, xb), w11, sum);
-  static constexpr InterleaveRgb16 order{};
-  __m512 v[3];
-  for (int q = 0; q < 3; ++q) {
-    const __m512 rg = _mm512_permutex2var_ps(sum[0], _mm512_load_si512(order.rg[q]), sum[1]);
-    v[q] = _mm512_permutex2var_ps(rg, _mm512_load_si512(order.b[q]), sum[2]);
-  }
-  add_interleaved(v, count, acc);
+  add_rgb_sums(sum, count, acc);
 }
 
 // The AVX-512 kernel: 16 points at a time, float coordinates, four gathered taps each.

@@ -148,13 +148,7 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE bool box_step(const TileBox& box, int x
   const __m512 s = _mm512_maskz_mov_ps(p.m, _mm512_set1_ps(scale));
   __m512 sum[3];
   for (int k = 0; k < 3; ++k) sum[k] = _mm512_mul_ps(s, _mm512_fmadd_ps(ay, _mm512_sub_ps(bottom[k], top[k]), top[k]));
-  static constexpr InterleaveRgb16 order{};
-  __m512 v[3];
-  for (int q = 0; q < 3; ++q) {
-    const __m512 rg = _mm512_permutex2var_ps(sum[0], _mm512_load_si512(order.rg[q]), sum[1]);
-    v[q] = _mm512_permutex2var_ps(rg, _mm512_load_si512(order.b[q]), sum[2]);
-  }
-  add_interleaved(v, count, acc);
+  add_rgb_sums(sum, count, acc);
   return true;
 }
 
