@@ -320,6 +320,13 @@ int main(int argc, char** argv) {
       measure(("Chess cylinder r=10" + at).c_str(), p, g, chess_cylinder, centre.width(), centre.height(), threads,
               repeats, false);
     }
+  // A plane tilted 20 degrees about the vertical axis (the cameras' rows cross it: projective
+  // rows, the synthetic aperture's decoded boxes), at the cameras' scale.
+  for (int threads : {1, 2}) {
+    const mpr::PlanarSurface<T> p = centre.image_plane(T(825)).tilted(T(0), T(20) * T(3.14159265358979) / 180);
+    measure("Chess synthetic tilt-y 20 deg z=825", p, mpr::pinhole_glc(centre, p), chess_full, centre.width(),
+            centre.height(), threads, repeats, threads == 2);
+  }
 
   // Half the cameras' scale (700x400 from 1400x800: the projective rows) and the README's Chess
   // animations at their middle frame (`mpr-render --stanford chess --size 700x400 ...`).

@@ -166,18 +166,29 @@ inline ChunkBox chunk_box(std::span<const ProjectiveRow<float, std::uint8_t>> ro
   const std::size_t i1 = std::min(n, i0 + kTileChunk);
   // x and y are monotonic along a row where w > 0 (w is affine in the point index), so the
   // rows' end points bound every point of the chunk.
-  double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
+  // Each row's largest step between neighbouring points (at an end: the step changes
+  // monotonically too) must let 16 points fit a box_step window, else every group would gather.
+  double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300, sx = 0, sy = 0;
   ChunkBox b;
   for (const ProjectiveRow<float, std::uint8_t>& r : rows)
     for (const std::size_t i : {i0, i1 - 1}) {
-      const double t = static_cast<double>(i);
-      const double w = static_cast<double>(r.h0[2]) + t * static_cast<double>(r.hs[2]);
-      if (!(w > 0)) return b;
-      const double x = (static_cast<double>(r.h0[0]) + t * static_cast<double>(r.hs[0])) / w;
-      const double y = (static_cast<double>(r.h0[1]) + t * static_cast<double>(r.hs[1])) / w;
+      double x = 0, y = 0;
+      for (const std::size_t j : {i, i + 1}) { // the point and the next one
+        const double t = static_cast<double>(j);
+        const double w = static_cast<double>(r.h0[2]) + t * static_cast<double>(r.hs[2]);
+        if (!(w > 0)) return b;
+        const double xj = (static_cast<double>(r.h0[0]) + t * static_cast<double>(r.hs[0])) / w;
+        const double yj = (static_cast<double>(r.h0[1]) + t * static_cast<double>(r.hs[1])) / w;
+        if (j == i) {
+          x = xj, y = yj;
+        } else {
+          sx = std::max(sx, std::abs(xj - x)), sy = std::max(sy, std::abs(yj - y));
+        }
+      }
       xlo = std::min(xlo, x), xhi = std::max(xhi, x), ylo = std::min(ylo, y), yhi = std::max(yhi, y);
     }
   if (!(std::isfinite(xlo) && std::isfinite(xhi) && std::isfinite(ylo) && std::isfinite(yhi))) return b;
+  if (!(15 * sx <= 29 && 15 * sy <= kWindowRows - 2)) return b;
   // Seen points lie in [-0.5, width - 0.5) x [-0.5, height - 0.5).
   if (!(xhi >= -1.5 && xlo < image.width + 0.5 && yhi >= -1.5 && ylo < image.height + 0.5)) {
     b.state = ChunkBox::outside;
@@ -189,7 +200,10 @@ inline ChunkBox chunk_box(std::span<const ProjectiveRow<float, std::uint8_t>> ro
   b.y0 = static_cast<int>(std::max(std::floor(ylo), -1.0));
   b.texels = static_cast<int>(std::min(std::floor(xhi) + 1, static_cast<double>(image.width))) - b.x0 + 1;
   b.rows = static_cast<int>(std::min(std::floor(yhi) + 1, static_cast<double>(image.height))) - b.y0 + 1;
-  if (b.texels <= kBoxTexels && b.rows <= kBoxRows) b.state = ChunkBox::boxed;
+  if (b.texels < 2 || b.rows < 2) // only when every point lies past an edge
+    b.state = ChunkBox::outside;
+  else if (b.texels <= kBoxTexels && b.rows <= kBoxRows)
+    b.state = ChunkBox::boxed;
   return b;
 }
 
