@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <sstream>
+#include <string>
 
 namespace mpr_test {
 
@@ -52,6 +54,24 @@ Expected expected(const mpr::detail::ProjectiveRow<T, C>& r, std::size_t i, LD w
       e.size = std::max(e.size, weight * std::abs(p));
   }
   return e;
+}
+
+/// Whether a kernel's sums at one point (`seen`, `acc[0..3)`) are the values before the call
+/// (`seen0`, `acc0`) plus the reference `e` at weight `weight`, within the precision of float
+/// coordinates (`single`) or double ones; else false, with both described in `why`.
+inline bool matches(const Expected& e, LD weight, bool single, float seen, float seen0, const float* acc,
+                    const float* acc0, std::string& why) {
+  const LD want_seen = LD(seen0) + (e.seen ? weight : 0);
+  bool good = std::abs(LD(seen) - want_seen) <= 1e-6L;
+  const LD tolerance = (single ? 2e-3L : 1e-5L) * (e.size + 1) + 1e-6L;
+  for (int k = 0; k < 3; ++k) good = good && std::abs(LD(acc[k]) - (LD(acc0[k]) + e.value[k])) <= tolerance;
+  if (!good) {
+    std::ostringstream text;
+    text << "seen " << seen << " (want " << static_cast<double>(want_seen) << "), acc " << acc[0] << " (want "
+         << static_cast<double>(LD(acc0[0]) + e.value[0]) << ")";
+    why = text.str();
+  }
+  return good;
 }
 
 } // namespace mpr_test

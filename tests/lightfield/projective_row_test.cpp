@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -86,18 +87,12 @@ void check_kernel() {
           if (e.ambiguous) continue;
           ++compared;
           seen_points += e.seen ? 1 : 0;
-          const LD want_seen = LD(seen0[i]) + (e.seen ? weight : 0);
-          bool good = std::abs(LD(seen[i]) - want_seen) <= 1e-6L;
-          for (int k = 0; k < 3; ++k) {
-            const LD want = LD(acc0[3 * i + k]) + e.value[k];
-            const LD tolerance = (std::is_same_v<T, float> ? 2e-3L : 1e-5L) * (e.size + 1) + 1e-6L;
-            good = good && std::abs(LD(acc[3 * i + k]) - want) <= tolerance;
-          }
-          if (!good && ++failures <= 5)
+          std::string why;
+          if (!mpr_test::matches(e, weight, std::is_same_v<T, float>, seen[i], seen0[i], &acc[3 * i], &acc0[3 * i],
+                                 why) &&
+              ++failures <= 5)
             FAIL_CHECK(mpr::detail::simd_level_name(level)
-                       << " n=" << n << " trial=" << trial << " i=" << i << ": seen " << seen[i] << " (want "
-                       << static_cast<double>(want_seen) << "), acc " << acc[3 * i] << " (want "
-                       << static_cast<double>(LD(acc0[3 * i]) + e.value[0]) << ")");
+                       << " n=" << n << " trial=" << trial << " i=" << i << ": " << why);
         }
       });
     }

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -107,19 +108,13 @@ void check_tiles(int width, int height) {
               ++compared;
               seen_points += e.seen ? 1 : 0;
               const std::size_t at = n * r + i;
-              const LD want_seen = LD(seen0[at]) + (e.seen ? 1 : 0);
-              bool good = std::abs(LD(seen[at]) - want_seen) <= 1e-6L;
-              for (int k = 0; k < 3; ++k) {
-                const LD want = LD(acc0[3 * at + k]) + e.value[k];
-                const LD tolerance = (std::is_same_v<T, float> ? 2e-3L : 1e-5L) * (e.size + 1) + 1e-6L;
-                good = good && std::abs(LD(acc[3 * at + k]) - want) <= tolerance;
-              }
-              if (!good && ++failures <= 5)
+              std::string why;
+              if (!mpr_test::matches(e, 1.0L, std::is_same_v<T, float>, seen[at], seen0[at], &acc[3 * at],
+                                     &acc0[3 * at], why) &&
+                  ++failures <= 5)
                 FAIL_CHECK(mpr::detail::simd_level_name(level)
                            << " " << width << "x" << height << " rows=" << rows << " n=" << n << " trial=" << trial
-                           << " row " << r << " i=" << i << ": seen " << seen[at] << " (want "
-                           << static_cast<double>(want_seen) << "), acc " << acc[3 * at] << " (want "
-                           << static_cast<double>(LD(acc0[3 * at]) + e.value[0]) << ")");
+                           << " row " << r << " i=" << i << ": " << why);
             }
         });
       }
