@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <string>
 #include <type_traits>
@@ -115,4 +116,29 @@ TEST_CASE("gather_indexable: 32-bit channel offsets for the whole image", "[proj
   STATIC_REQUIRE(!mpr::detail::gather_indexable(0, 10));
   STATIC_REQUIRE(!mpr::detail::gather_indexable(40000, 20000)); // 2.4e9 channels
   STATIC_REQUIRE(mpr::detail::gather_indexable(26000, 27000));  // 2.106e9 channels
+}
+
+TEST_CASE("projective_row: a w that is subnormal, overflows or is infinite is seen as by the plain loop",
+          "[projective_row]") {
+  // An ordinary row scaled by 1e-39 (w subnormal), a finite row whose w overflows to inf from
+  // point 4 on, and w = inf itself: the plain loop divides and sees every point; the AVX-512
+  // step must not lose them to a reciprocal estimate that is 0 or inf there.
+  std::vector<std::uint8_t, mpr::detail::HugePageAllocator<std::uint8_t>> texels(3 * 4 * 4, 200);
+  const std::uint16_t* lut = mpr::Srgb8Texel::linear16();
+  const float rows[3][6] = {{1.5e-39f, 1.5e-39f, 1e-39f, 0, 0, 0},
+                            {2e30f, 3e30f, 1e30f, 0, 0, 1e38f},
+                            {1, 1, std::numeric_limits<float>::infinity(), 0, 0, 0}};
+  for (const auto& h : rows) {
+    const ProjectiveRow<float, std::uint8_t> r{{h[0], h[1], h[2]}, {h[3], h[4], h[5]}, 4,  4,
+                                               texels.data(),      1.0f / 65535.0f,    lut};
+    std::vector<float> want_acc(3 * 16, 0), want_seen(16, 0);
+    mpr::detail::projective_row(r, 16, nullptr, want_acc.data(), want_seen.data(), SimdLevel::portable);
+    CHECK(std::count(want_seen.begin(), want_seen.end(), 1.0f) == 16);
+    mpr_test::for_each_simd_level([&](SimdLevel level) {
+      std::vector<float> acc(3 * 16, 0), seen(16, 0);
+      mpr::detail::projective_row(r, 16, nullptr, acc.data(), seen.data(), level);
+      CHECK(seen == want_seen);
+      for (std::size_t j = 0; j < acc.size(); ++j) CHECK(acc[j] == Approx(want_acc[j]).epsilon(1e-5));
+    });
+  }
 }

@@ -273,7 +273,10 @@ inline void projective_tile(std::span<const ProjectiveRow<T, C>> rows, std::size
   if (rows.empty() || n == 0) return;
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float> && std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && gather_indexable(rows[0].width, rows[0].height))
+    // Point indices past 2^24 are not exact in float: the lanes and the boxes (found in double)
+    // could then disagree by a point; such rows go row by row.
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && gather_indexable(rows[0].width, rows[0].height) &&
+        n <= (std::size_t(1) << 24))
       return projective_tile_codes_vbmi(rows, n, acc, seen);
   }
 #endif
