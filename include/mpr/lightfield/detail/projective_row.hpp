@@ -147,21 +147,8 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE ProjectiveLanes projective_lanes(const Proje
   const __m512 nx = _mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[0]), _mm512_set1_ps(r.h0[0]));
   const __m512 ny = _mm512_fmadd_ps(t, _mm512_set1_ps(r.hs[1]), _mm512_set1_ps(r.h0[1]));
   ProjectiveLanes p;
-  // 1 / w by the 14-bit estimate and one Newton step (within 2 ulp; two divisions cost more than
-  // the rest of a box step's set-up), where w and 1 / w are normal floats; else (a w near 0 or
-  // past 1e37, even inf) the divisions, as the plain loop does them.
-  const __m512 e = _mm512_maskz_rcp14_ps(kAll, w);
-  const __m512 inv = _mm512_fmadd_ps(e, _mm512_fnmadd_ps(w, e, _mm512_set1_ps(1.0f)), e);
-  const __mmask16 extreme =
-      _mm512_cmp_ps_mask(w, zero, _CMP_GT_OQ) & (_mm512_cmp_ps_mask(w, _mm512_set1_ps(1e-37f), _CMP_LT_OQ) |
-                                                 _mm512_cmp_ps_mask(w, _mm512_set1_ps(1e37f), _CMP_GT_OQ));
-  if ((extreme & live) == 0) {
-    p.x = _mm512_mul_ps(nx, inv);
-    p.y = _mm512_mul_ps(ny, inv);
-  } else {
-    p.x = _mm512_div_ps(nx, w);
-    p.y = _mm512_div_ps(ny, w);
-  }
+  p.x = _mm512_div_ps(nx, w);
+  p.y = _mm512_div_ps(ny, w);
   p.m = live & _mm512_cmp_ps_mask(w, zero, _CMP_GT_OQ);
   p.m &= _mm512_cmp_ps_mask(p.x, lo, _CMP_GE_OQ) &
          _mm512_cmp_ps_mask(p.x, _mm512_set1_ps(static_cast<float>(r.width) - 0.5f), _CMP_LT_OQ);
