@@ -120,6 +120,66 @@ TEST_CASE("the translated-row cost blends four texels with fixed weights and tru
     }
 }
 
+TEST_CASE("the fused translated-row kernel averages the best costs as the per-neighbour kernels do",
+          "[sweep_kernels]") {
+  TestImage image(61, 9, 5);
+  const int width = 40;
+  const std::vector<float> ref = random_values(3 * width, 9);
+  const float* ref_rows[3] = {ref.data(), ref.data() + width, ref.data() + 2 * width};
+  const float tau = 0.9f;
+  // Four neighbours' rows: shifts, rows and sub-pixel offsets differ.
+  const int shifts[4] = {17, 3, 20, 0}, rows[4] = {4, 0, 7, 2};
+  const float fus[4] = {0.25f, 0.0f, 0.8f, 1.0f}, fvs[4] = {0.4f, 1.0f, 0.0f, 0.65f};
+  mpr::detail::SweepShiftRow r[4];
+  for (int j = 0; j < 4; ++j) {
+    r[j].fu = fus[j];
+    r[j].fv = fvs[j];
+    for (int c = 0; c < 3; ++c) {
+      r[j].top[c] = image.channel(c) + rows[j] * image.stride + shifts[j];
+      r[j].bottom[c] = image.channel(c) + (rows[j] + 1) * image.stride + shifts[j];
+    }
+  }
+  for (const int n : {0, 1, 15, 16, 17, width})
+    for (int m = 1; m <= mpr::detail::kSweepShiftMeanNeighbours; ++m)
+      for (int best = 1; best <= m; ++best) {
+        // The reference: the m costs per pixel from the texels, sorted, the best averaged.
+        std::vector<float> expected(static_cast<std::size_t>(n));
+        int spread = 0; // pixels where the kept costs differ (the choice of the best matters)
+        for (int x = 0; x < n; ++x) {
+          const float px[3] = {ref_rows[0][x], ref_rows[1][x], ref_rows[2][x]};
+          std::vector<float> c;
+          for (int j = 0; j < m; ++j)
+            c.push_back(reference_cost(image, static_cast<float>(x + shifts[j]) + fus[j],
+                                       static_cast<float>(rows[j]) + fvs[j], px, tau));
+          std::sort(c.begin(), c.end());
+          spread += c.front() != c.back();
+          float sum = 0;
+          for (int i = 0; i < best; ++i) sum += c[static_cast<std::size_t>(i)];
+          expected[static_cast<std::size_t>(x)] = sum / static_cast<float>(best);
+        }
+        if (n == width && m > 1) CHECK(spread > n / 2);
+        mpr_test::for_each_simd_level([&](SimdLevel level) {
+          // The per-neighbour kernels at the same level: the fused one must give the same bits.
+          const std::ptrdiff_t stride = width + 5;
+          std::vector<float> keep(static_cast<std::size_t>(best * stride), tau), mean(static_cast<std::size_t>(n) + 1);
+          for (int j = 0; j < m; ++j)
+            mpr::detail::sweep_shift_keep(ref_rows, r[j], tau, keep.data(), stride, best, static_cast<std::size_t>(n),
+                                          level);
+          float* k[4];
+          for (int i = 0; i < best; ++i) k[i] = keep.data() + i * stride;
+          mpr::detail::sweep_mean_best(k, best, mean.data(), static_cast<std::size_t>(n), level);
+          std::vector<float> out(static_cast<std::size_t>(n) + 1, -1.0f);
+          mpr::detail::sweep_shift_mean(ref_rows, r, m, best, tau, out.data(), static_cast<std::size_t>(n), level);
+          for (int x = 0; x < n; ++x) {
+            INFO("n " << n << " m " << m << " best " << best << " x " << x);
+            CHECK(out[static_cast<std::size_t>(x)] == mean[static_cast<std::size_t>(x)]);
+            CHECK(out[static_cast<std::size_t>(x)] == Approx(expected[static_cast<std::size_t>(x)]).margin(1e-5));
+          }
+          CHECK(out[static_cast<std::size_t>(n)] == -1.0f); // nothing written past n
+        });
+      }
+}
+
 TEST_CASE("the projective-row cost follows any homography, unseen where it leaves the image", "[sweep_kernels]") {
   TestImage image(37, 23, 5);
   const int first = 3, n = 90;

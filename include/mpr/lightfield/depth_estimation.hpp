@@ -17,6 +17,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/detail/depth_homography.hpp>
 #include <mpr/lightfield/detail/sweep_kernels.hpp>
+#include <mpr/lightfield/detail/sweep_row.hpp>
 #include <mpr/lightfield/detail/sweep_workspace.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
@@ -178,84 +179,10 @@ template <std::floating_point T, class Px>
                  static_cast<std::size_t>(width));
   ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const std::size_t w = static_cast<std::size_t>(width);
-  // Row y's cost at depth d into `out`: per neighbour a cost row (`value`), the best few kept
-  // sorted in keep[0..best).
+  // Row y's cost at depth d into `out` (`sweep_cost_row`).
+  const SweepRowInputs inputs{&rt, nt.data(), M.data(), A.data(), m, best, tau, level};
   const auto cost_row = [&](int y, float d, float* out, float* const* keep, float* value) noexcept {
-    const float* ref_row[3];
-    for (int c = 0; c < 3; ++c) ref_row[c] = rt.channel(c) + static_cast<std::ptrdiff_t>(y) * rt.stride;
-    for (int i = 0; i < best; ++i) std::fill(keep[i], keep[i] + width, tau);
-    for (int j = 0; j < m; ++j) {
-      const SweepPlanes& nb = nt[static_cast<std::size_t>(j)];
-      const Mat3<float>& Mj = M[static_cast<std::size_t>(j)];
-      const Vec3<float>& Aj = A[static_cast<std::size_t>(j)];
-      const auto project = [&](int x) -> Vec3<float> {
-        return Aj + d * (Mj * Vec3<float>(static_cast<float>(x), static_cast<float>(y), 1.0f));
-      };
-      // A translation when three points of the row (ends and middle) are shifted alike.
-      const Vec3<float> h0 = project(0), hm = project(width / 2), h1 = project(width - 1);
-      bool shift = h0.z() > 0 && hm.z() > 0 && h1.z() > 0;
-      const float off = h0.x() / h0.z(), v = h0.y() / h0.z();
-      if (shift) {
-        constexpr float eps = 1e-3f;
-        shift = std::abs(hm.x() / hm.z() - (off + static_cast<float>(width / 2))) <= eps &&
-                std::abs(h1.x() / h1.z() - (off + static_cast<float>(width - 1))) <= eps &&
-                std::abs(hm.y() / hm.z() - v) <= eps && std::abs(h1.y() / h1.z() - v) <= eps;
-      }
-      if (!shift) {
-        const SweepProjectiveRow row{{Aj.x(), Aj.y(), Aj.z()},
-                                     {Mj(0, 1) * static_cast<float>(y) + Mj(0, 2),
-                                      Mj(1, 1) * static_cast<float>(y) + Mj(1, 2),
-                                      Mj(2, 1) * static_cast<float>(y) + Mj(2, 2)},
-                                     {Mj(0, 0), Mj(1, 0), Mj(2, 0)},
-                                     d};
-        sweep_projective_cost(ref_row, nb.view(), row, 0, tau, value, w, level);
-        sweep_keep_best(keep, best, value, w, level);
-        continue;
-      }
-      // Reference pixel x sees the neighbour at (x + off, v): seen for x in [xb, xe).
-      if (!(v >= 0 && v <= static_cast<float>(nb.height - 1))) continue;
-      const double lo = std::ceil(-static_cast<double>(off));
-      const double hi = std::floor(static_cast<double>(nb.width - 1) - static_cast<double>(off)) + 1;
-      int xb = static_cast<int>(std::clamp(lo, 0.0, static_cast<double>(width)));
-      int xe = static_cast<int>(std::clamp(hi, 0.0, static_cast<double>(width)));
-      // The ends as the per-pixel projection decides them (it rounds differently from x + off
-      // by a few ulp, which decides pixels on the image's border).
-      const float max_u = static_cast<float>(nb.width - 1), max_v = static_cast<float>(nb.height - 1);
-      const auto seen = [&](int x) {
-        const Vec3<float> h = project(x);
-        const float u = h.x() / h.z(), hv = h.y() / h.z();
-        return h.z() > 0 && u >= 0 && hv >= 0 && u <= max_u && hv <= max_v;
-      };
-      while (xb < xe && !seen(xb)) ++xb;
-      while (xe > xb && !seen(xe - 1)) --xe;
-      while (xb > 0 && xb < xe && xb - 1 + off > -0.5f && seen(xb - 1)) --xb;
-      while (xe < width && xb < xe && xe + off < max_u + 0.5f && seen(xe)) ++xe;
-      if (xb >= xe) continue;
-      const int v0 = std::min(static_cast<int>(v), std::max(nb.height - 2, 0));
-      const int v1 = std::min(v0 + 1, nb.height - 1);
-      const int s = static_cast<int>(std::floor(off));
-      SweepShiftRow row{};
-      row.fu = off - static_cast<float>(s);
-      row.fv = v - static_cast<float>(v0);
-      const float* seg_ref[3];
-      for (int c = 0; c < 3; ++c) {
-        row.top[c] = nb.channel(c) + static_cast<std::ptrdiff_t>(v0) * nb.stride + s + xb;
-        row.bottom[c] = nb.channel(c) + static_cast<std::ptrdiff_t>(v1) * nb.stride + s + xb;
-        seg_ref[c] = ref_row[c] + xb;
-      }
-      const std::size_t count = static_cast<std::size_t>(xe - xb);
-      if (best <= kSweepShiftKeepBest) {
-        sweep_shift_keep(seg_ref, row, tau, keep[0] + xb, static_cast<std::ptrdiff_t>(w), best, count, level);
-        continue;
-      }
-      sweep_shift_cost(seg_ref, row, tau, value + xb, count, level);
-      float* seg_keep[32];
-      for (int i = 0; i < best; ++i) seg_keep[i] = keep[i] + xb;
-      sweep_keep_best(seg_keep, best, value + xb, count, level);
-    }
-    // A neighbour that does not see the point counts as the truncation (the worst cost),
-    // so a plane is not preferred because few neighbours see it; the best few are averaged.
-    sweep_mean_best(keep, best, out, w, level);
+    sweep_cost_row(inputs, y, d, out, keep, value);
   };
   // One worker: the blocks in order, each row pulled towards the one above (the forward
   // vertical pass) while in cache; more: blocks in parallel, the forward pass down strips.

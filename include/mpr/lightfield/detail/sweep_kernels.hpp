@@ -80,6 +80,50 @@ MPR_ALWAYS_INLINE void sweep_shift_keep_body(const float* const ref[3], const Sw
 /// The most kept costs `sweep_shift_keep` takes.
 inline constexpr int kSweepShiftKeepBest = 4;
 
+/// The most neighbours `sweep_shift_mean` takes.
+inline constexpr int kSweepShiftMeanNeighbours = 4;
+
+/// out[x] = the mean of the B smallest of the M neighbours' costs of pixel x (`SweepShiftCost`
+/// of rows[j], each truncated at tau) for x in [0, n): what filling B rows with tau, then
+/// `sweep_shift_keep` for every neighbour in order and `sweep_mean_best` give, in one pass with
+/// the kept costs in registers (the same insertions and the same sum, so the same values).
+template <int M, int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_body(const float* const ref[3], const SweepShiftRow* rows, float tau,
+                                             float* MPR_RESTRICT out, std::size_t n) noexcept {
+  static_assert(B >= 1 && B <= M);
+  const SweepShiftCost c0(ref, rows[0], tau);
+  const SweepShiftCost c1(ref, rows[M > 1 ? 1 : 0], tau);
+  const SweepShiftCost c2(ref, rows[M > 2 ? 2 : 0], tau);
+  const SweepShiftCost c3(ref, rows[M > 3 ? 3 : 0], tau);
+  for (std::size_t x = 0; x < n; ++x) {
+    float keep[B];
+#pragma GCC unroll 4
+    for (int i = 0; i < B; ++i) keep[i] = tau;
+#pragma GCC unroll 4
+    for (int j = 0; j < M; ++j) {
+      float v = j == 0 ? c0(x) : j == 1 ? c1(x) : j == 2 ? c2(x) : c3(x);
+#pragma GCC unroll 4
+      for (int i = 0; i < B; ++i) {
+        const float k = keep[i];
+        keep[i] = std::min(k, v);
+        v = std::max(k, v);
+      }
+    }
+    float sum = keep[0];
+#pragma GCC unroll 4
+    for (int i = 1; i < B; ++i) sum += keep[i];
+    out[x] = sum / static_cast<float>(B);
+  }
+}
+
+template <int M, int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_best(const float* const ref[3], const SweepShiftRow* rows, int best, float tau,
+                                             float* out, std::size_t n) noexcept {
+  if constexpr (B < M)
+    if (best > B) return sweep_shift_mean_best<M, B + 1>(ref, rows, best, tau, out, n);
+  sweep_shift_mean_body<M, B>(ref, rows, tau, out, n);
+}
+
 /// A neighbour camera's image for the projective path: planar channels, `stride` floats per row.
 struct SweepImage {
   const float* channel[3];
@@ -157,6 +201,20 @@ MPR_ALWAYS_INLINE void sweep_mean_best_body(const float* const* keep, int best, 
   }
   const float b = static_cast<float>(best);
   for (std::size_t x = 0; x < n; ++x) out[x] /= b;
+}
+
+/// `sweep_mean_best_body` for B kept rows in one pass (the same sums in the same order).
+template <int B>
+MPR_ALWAYS_INLINE void sweep_mean_best_fixed(const float* const* keep, float* MPR_RESTRICT out,
+                                             std::size_t n) noexcept {
+  const float* MPR_RESTRICT k[B];
+  for (int i = 0; i < B; ++i) k[i] = keep[i];
+  for (std::size_t x = 0; x < n; ++x) {
+    float s = k[0][x];
+#pragma GCC unroll 4
+    for (int i = 1; i < B; ++i) s += k[i][x];
+    out[x] = s / static_cast<float>(B);
+  }
 }
 
 /// The rows of a block handled in lockstep by the horizontal domain-transform pass.
@@ -284,6 +342,22 @@ inline void sweep_shift_keep(const float* const ref[3], const SweepShiftRow& row
       sweep_shift_keep_body<4>(ref, row, tau, keep, stride, n);
   });
 }
+/// `sweep_shift_mean_body` for m (1..kSweepShiftMeanNeighbours) neighbours' rows and `best`
+/// (1..m) kept costs.
+inline void sweep_shift_mean(const float* const ref[3], const SweepShiftRow* rows, int m, int best, float tau,
+                             float* out, std::size_t n, SimdLevel level = simd_level()) noexcept {
+  static_assert(kSweepShiftMeanNeighbours == 4);
+  run_at(level, [&]() MPR_INLINE_LAMBDA {
+    if (m == 1)
+      sweep_shift_mean_best<1, 1>(ref, rows, best, tau, out, n);
+    else if (m == 2)
+      sweep_shift_mean_best<2, 1>(ref, rows, best, tau, out, n);
+    else if (m == 3)
+      sweep_shift_mean_best<3, 1>(ref, rows, best, tau, out, n);
+    else
+      sweep_shift_mean_best<4, 1>(ref, rows, best, tau, out, n);
+  });
+}
 inline void sweep_projective_cost(const float* const ref[3], const SweepImage& image, const SweepProjectiveRow& row,
                                   int first, float tau, float* out, std::size_t n,
                                   SimdLevel level = simd_level()) noexcept {
@@ -295,7 +369,18 @@ inline void sweep_keep_best(float* const* keep, int best, float* value, std::siz
 }
 inline void sweep_mean_best(const float* const* keep, int best, float* out, std::size_t n,
                             SimdLevel level = simd_level()) noexcept {
-  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_mean_best_body(keep, best, out, n); });
+  run_at(level, [&]() MPR_INLINE_LAMBDA {
+    if (best == 1)
+      sweep_mean_best_fixed<1>(keep, out, n);
+    else if (best == 2)
+      sweep_mean_best_fixed<2>(keep, out, n);
+    else if (best == 3)
+      sweep_mean_best_fixed<3>(keep, out, n);
+    else if (best == 4)
+      sweep_mean_best_fixed<4>(keep, out, n);
+    else
+      sweep_mean_best_body(keep, best, out, n);
+  });
 }
 inline void sweep_dt_rows(float* v, const float* a, std::ptrdiff_t stride, int n,
                           SimdLevel level = simd_level()) noexcept {
