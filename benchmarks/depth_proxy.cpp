@@ -3,7 +3,7 @@
 // agreement with the per-ray `sample(ray)` contract on the same rays.
 //
 //   build/bench/benchmarks/depth_proxy [DATA_DIR] [--quick] [--repeats=N] [--depth-cache=DIR]
-//                                      [--no-per-ray] [--out=DIR]
+//                                      [--no-per-ray] [--out=DIR] [--only=classroom|chess|temple]
 //
 // Workloads:
 // - Stanford Chess view (08,08) (index 24) rendered from the 48 other views through its own
@@ -18,6 +18,7 @@
 // - The classroom as a rasterized 8x6 array of 320x240 with exact z-buffer depth, camera 28
 //   held out (--quick: a 4x3 array of 80x60).
 //
+// --only=NAME runs that workload alone.
 // --out=DIR writes each render and the captured image as PNGs (depth_proxy_<set>[_captured].png).
 // Times: 1 thread as thread CPU time and 2 threads wall-clock, median of --repeats (default 5)
 // after one warm-up run.
@@ -66,6 +67,8 @@ struct Options {
   bool quick = false, per_ray = true;
   int repeats = 5;
   std::filesystem::path depth_cache, out;
+  std::string only; // empty: every workload
+  [[nodiscard]] bool runs(const char* name) const { return only.empty() || only == name; }
 };
 
 // Times the render of `held` (perspective GLC at `depth`) from `frames` through DepthProxy{radius}
@@ -234,7 +237,11 @@ int main(int argc, char** argv) try {
       o.depth_cache = a.substr(14);
     else if (a.rfind("--out=", 0) == 0)
       o.out = a.substr(6);
-    else if (!a.empty() && a[0] == '-')
+    else if (a.rfind("--only=", 0) == 0) {
+      o.only = a.substr(7);
+      if (o.only != "classroom" && o.only != "chess" && o.only != "temple")
+        throw std::runtime_error("--only: expected classroom, chess or temple, got '" + o.only + "'");
+    } else if (!a.empty() && a[0] == '-')
       throw std::runtime_error("unknown option " + a);
     else
       data = a;
@@ -243,13 +250,16 @@ int main(int argc, char** argv) try {
   std::printf("%s\n\n", mpr_bench::machine_description().c_str());
   std::printf("| workload | output | 1 thread, CPU ms | 2 threads, wall ms | PSNR (dB) | tile path against per ray |\n"
               "|---|---|---|---|---|---|\n");
-  classroom(o);
+  if (o.runs("classroom")) classroom(o);
   std::printf("\n");
-  if (o.quick || data.empty() || !std::filesystem::exists(data / "stanford" / "chess"))
-    std::printf("Chess: skipped (%s)\n", o.quick ? "--quick" : "no data; pass DATA_DIR or set MPR_DATA_DIR");
-  else
-    chess(data, o);
-  if (!o.quick && !data.empty() && std::filesystem::exists(mpr_loo::temple_par_file<T>(data))) temple(data, o);
+  if (o.runs("chess")) {
+    if (o.quick || data.empty() || !std::filesystem::exists(data / "stanford" / "chess"))
+      std::printf("Chess: skipped (%s)\n", o.quick ? "--quick" : "no data; pass DATA_DIR or set MPR_DATA_DIR");
+    else
+      chess(data, o);
+  }
+  if (o.runs("temple") && !o.quick && !data.empty() && std::filesystem::exists(mpr_loo::temple_par_file<T>(data)))
+    temple(data, o);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "depth_proxy: %s\n", e.what());
