@@ -7,11 +7,15 @@
 // DATA_DIR (default: $MPR_DATA_DIR) holds stanford/chess; without it the Chess part is skipped.
 // --quick (ctest's smoke run) sweeps a small classroom array only. --planes=, --neighbours=,
 // --best=, --truncation=, --spatial=, --range= change the classroom's settings (default: the
-// PlaneSweepConfig defaults, 64 planes); --views limits the Chess views timed (default all, else one by one
-// with estimate_depth); --threads=N times only N threads; --no-classroom skips the accuracy part.
+// PlaneSweepConfig defaults, 64 planes, and a second row with settings for this array: all four
+// neighbours, 256 planes, spatial 3); --views limits the Chess views timed (default all, else one by one
+// with estimate_depth); --threads=N times only N threads; --no-classroom skips the accuracy part;
+// --out=DIR writes camera 28's exact depth and each row's estimate as colour-mapped PNGs
+// (classroom_depth_exact.png, classroom_depth_estimated_<row>.png, one depth range).
 
 #include "bench_common.hpp"
 
+#include <mpr/io/depth_maps.hpp>
 #include <mpr/io/stanford_light_field.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/scene/classroom.hpp>
@@ -25,6 +29,7 @@
 #include <filesystem>
 #include <string>
 #include <sys/resource.h>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -63,8 +68,10 @@ double median(std::vector<double> v) {
 }
 
 // The classroom as an 8 x 6 array of rasterized cameras (as examples/lightfield_glc_gallery.cpp
-// makes it), camera 28's depth estimated from the colours against its exact z-buffer.
-void classroom_accuracy(bool quick, mpr::PlaneSweepConfig sweep) {
+// makes it), camera 28's depth estimated from the colours against its exact z-buffer, once per
+// settings row (each: a label and the sweep; near, far and threads are set here).
+void classroom_accuracy(bool quick, std::vector<std::pair<std::string, mpr::PlaneSweepConfig>> runs,
+                        const std::filesystem::path& out) {
   using T = float;
   const auto scene = mpr::scene::classroom<T>();
   const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
@@ -80,12 +87,6 @@ void classroom_accuracy(bool quick, mpr::PlaneSweepConfig sweep) {
   config.depth_maps = true;
   const auto array = mpr::scene::rasterize_virtual_array(scene, room, config);
   const std::size_t camera = 28;
-  sweep.near = 1.5;
-  sweep.far = 30;
-  if (quick) sweep.planes = 16;
-  sweep.threads = 2;
-  mpr::DepthEstimate e;
-  const double s = seconds([&] { e = mpr::estimate_depth(array.frames, camera, sweep); });
   const mpr::Image<float>& truth = array.frames.depth(camera);
   const mpr::Image<mpr::Rgb8>& image = array.frames.image(camera);
   const int w = image.width(), h = image.height();
@@ -93,32 +94,53 @@ void classroom_accuracy(bool quick, mpr::PlaneSweepConfig sweep) {
     const mpr::Rgb8 p = image(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1));
     return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b;
   };
-  std::vector<double> all, textured, signed_textured;
-  int within1 = 0, within5 = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const double z = truth(x, y);
-      if (!std::isfinite(z)) continue;
-      const double error = std::abs(static_cast<double>(e.depth(x, y)) - z) / z;
-      all.push_back(error);
-      within1 += error <= 0.01;
-      within5 += error <= 0.05;
-      const double gx = luma(x + 1, y) - luma(x - 1, y), gy = luma(x, y + 1) - luma(x, y - 1);
-      if (std::hypot(gx, gy) > 60) {
-        textured.push_back(error);
-        signed_textured.push_back((static_cast<double>(e.depth(x, y)) - z) / z);
+  std::printf("\nclassroom, 8x6 rasterized cameras of %dx%d, camera %zu from colours, 1.5..30 m, 2 threads\n\n", w, h,
+              camera);
+  const mpr::DepthRange range = mpr::depth_range(truth.view());
+  if (!out.empty()) mpr::write_depth_preview(out / "classroom_depth_exact.png", truth.view(), range);
+  bool header = false;
+  int run = 0;
+  for (auto& [label, sweep] : runs) {
+    sweep.near = 1.5;
+    sweep.far = 30;
+    if (quick) sweep.planes = 16;
+    sweep.threads = 2;
+    mpr::DepthEstimate e;
+    const double s = seconds([&] { e = mpr::estimate_depth(array.frames, camera, sweep); });
+    std::vector<double> all, textured, signed_textured;
+    int within1 = 0, within5 = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double z = truth(x, y);
+        if (!std::isfinite(z)) continue;
+        const double error = std::abs(static_cast<double>(e.depth(x, y)) - z) / z;
+        all.push_back(error);
+        within1 += error <= 0.01;
+        within5 += error <= 0.05;
+        const double gx = luma(x + 1, y) - luma(x - 1, y), gy = luma(x, y + 1) - luma(x, y - 1);
+        if (std::hypot(gx, gy) > 60) {
+          textured.push_back(error);
+          signed_textured.push_back((static_cast<double>(e.depth(x, y)) - z) / z);
+        }
       }
+    if (!out.empty())
+      mpr::write_depth_preview(out / ("classroom_depth_estimated_" + std::to_string(run) + ".png"), e.depth.view(),
+                               range);
+    ++run;
+    const double count = static_cast<double>(all.size());
+    if (!header) {
+      std::printf("| settings | time s | median rel. error, textured (%zu px, luma gradient > 60) | median rel. "
+                  "error, all (%zu px) | within 1%% | within 5%% | median signed error, textured |\n"
+                  "|---|---|---|---|---|---|---|\n",
+                  textured.size(), all.size());
+      header = true;
     }
-  const double count = static_cast<double>(all.size());
-  std::printf("\nclassroom, 8x6 rasterized cameras of %dx%d, camera %zu from colours, %d planes %.1f..%.0f m, "
-              "neighbours %d best %d truncation %.2f spatial %.0f range %.2f, 2 threads\n\n",
-              w, h, camera, sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation,
-              sweep.spatial, sweep.range);
-  std::printf("| time s | median rel. error, textured (%zu px, luma gradient > 60) | median rel. error, all (%zu px) "
-              "| within 1%% | within 5%% | median signed error, textured |\n|---|---|---|---|---|---|\n",
-              textured.size(), all.size());
-  std::printf("| %.3f | %.2f%% | %.2f%% | %.1f%% | %.1f%% | %+.2f%% |\n", s, 100 * median(textured), 100 * median(all),
-              100 * within1 / count, 100 * within5 / count, 100 * median(signed_textured));
+    std::printf("| %s: %d planes, neighbours %d best %d, truncation %.2f, spatial %.0f, range %.2f | %.3f | %.2f%% | "
+                "%.2f%% | %.1f%% | %.1f%% | %+.2f%% |\n",
+                label.c_str(), sweep.planes, sweep.neighbours, sweep.best, sweep.truncation, sweep.spatial, sweep.range,
+                s, 100 * median(textured), 100 * median(all), 100 * within1 / count, 100 * within5 / count,
+                100 * median(signed_textured));
+  }
 }
 
 } // namespace
@@ -128,9 +150,13 @@ int main(int argc, char** argv) {
   std::string data;
   int views = 0, only_threads = 0;
   mpr::PlaneSweepConfig classroom_config; // the settings of the classroom run (defaults, 64 planes)
-  bool classroom = true;
+  std::filesystem::path out;              // --out=DIR: the classroom's depth maps as PNG previews
+  bool classroom = true, options = false; // options: a sweep setting was given
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a.rfind("--planes=", 0) == 0 || a.rfind("--neighbours=", 0) == 0 || a.rfind("--best=", 0) == 0 ||
+        a.rfind("--truncation=", 0) == 0 || a.rfind("--spatial=", 0) == 0 || a.rfind("--range=", 0) == 0)
+      options = true;
     if (a.rfind("--planes=", 0) == 0)
       classroom_config.planes = std::atoi(a.c_str() + 9);
     else if (a.rfind("--neighbours=", 0) == 0)
@@ -147,6 +173,8 @@ int main(int argc, char** argv) {
       views = std::atoi(a.c_str() + 8);
     else if (a.rfind("--threads=", 0) == 0)
       only_threads = std::atoi(a.c_str() + 10);
+    else if (a.rfind("--out=", 0) == 0)
+      out = a.substr(6);
     else if (a == "--no-classroom")
       classroom = false;
     else if (a != "--quick")
@@ -159,7 +187,22 @@ int main(int argc, char** argv) {
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("plane-sweep kernels: %s; load average at start: %s\n", mpr::detail::simd_level_name(),
               load_average().c_str());
-  if (classroom) classroom_accuracy(quick, classroom_config);
+  if (classroom) {
+    std::vector<std::pair<std::string, mpr::PlaneSweepConfig>> runs{{options ? "given" : "defaults", classroom_config}};
+    if (!options) {
+      // For this array: every neighbour counts (the four at 1 m see nearly all of camera 28's
+      // view, and two of them agree on false matches along the floor's checkers and the rows of
+      // desks), planes 0.34 px of disparity apart at the 1 m baseline (64 planes: 1.35 px), and
+      // the spatial extent of the defaults (12 px, set for 1400-pixel Chess frames) scaled to
+      // 320-pixel frames.
+      mpr::PlaneSweepConfig array = classroom_config;
+      array.best = 4;
+      array.planes = 256;
+      array.spatial = 3;
+      runs.emplace_back("for this array", array);
+    }
+    classroom_accuracy(quick, runs, out);
+  }
 
   const std::filesystem::path chess = std::filesystem::path(data) / "stanford" / "chess";
   if (quick || data.empty() || !std::filesystem::is_directory(chess)) {
