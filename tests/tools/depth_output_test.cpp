@@ -246,6 +246,52 @@ TEST_CASE("mpr-render --depth-maps estimate: the depth of a textured plane estim
                     Catch::Contains("--save-depth-maps") && Catch::Contains("estimate"));
 }
 
+TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, naming a bad key", "[tools]") {
+  const std::filesystem::path dir = mpr_tools_test::textured_plane_light_field("sweep", 2.3);
+  const std::string par = (dir / "tiny_par.txt").string();
+  const std::vector<std::string> base{"--par",         par,   "--depth-maps", "estimate:1:4:48",
+                                      "--focal-depth", "1.5", "--focus-at",   "24,18"};
+  std::vector<std::string> args = base;
+  args.insert(args.end(), {"--sweep", "neighbours=2,best=2,truncation=0.2,spatial=4,range=0.5"});
+  const mpr_cli::Job job = job_of(args);
+  REQUIRE(job.depth_estimate.has_value());
+  CHECK(job.depth_estimate->planes == 48);
+  CHECK(job.depth_estimate->neighbours == 2);
+  CHECK(job.depth_estimate->best == 2);
+  CHECK(job.depth_estimate->truncation == 0.2);
+  CHECK(job.depth_estimate->spatial == 4);
+  CHECK(job.depth_estimate->range == 0.5);
+  // The settings reach the sweep (printed with its time), and the plane is still found.
+  std::ostringstream info;
+  (void)mpr_cli::render_frames(job, &info);
+  INFO(info.str());
+  CHECK_THAT(info.str(), Catch::Contains("48 planes from 1 to 4; neighbours 2, best 2, truncation 0.2, spatial 4, "
+                                         "range 0.5"));
+  const std::string focus = info.str().substr(info.str().find("focus at pixel"));
+  CHECK(std::stod(focus.substr(focus.find("depth ") + 6)) == Approx(2.3).epsilon(0.03));
+  // Without it, the defaults.
+  const mpr_cli::Job plain = job_of(base);
+  CHECK(plain.depth_estimate->neighbours == mpr::PlaneSweepConfig{}.neighbours);
+  CHECK(plain.depth_estimate->best == mpr::PlaneSweepConfig{}.best);
+
+  // Bad items: one line naming --sweep and the key (or what is expected).
+  const std::pair<const char*, const char*> bad[] = {
+      {"best", "KEY=VALUE"},          {"best=", "KEY=VALUE"},         {"depth=3", "unknown key 'depth'"},
+      {"best=5", "--sweep best"},     {"best=0", "--sweep best"},     {"neighbours=33", "--sweep neighbours"},
+      {"best=x", "--sweep best"},     {"truncation=0", "truncation"}, {"spatial=-1", "--sweep spatial"},
+      {"range=nan", "--sweep range"}, {"range=0", "--sweep range"},   {"best=2,,spatial=3", "KEY=VALUE"}};
+  for (const auto& [item, expected] : bad) {
+    INFO(item);
+    std::vector<std::string> b = base;
+    b.insert(b.end(), {"--sweep", item});
+    CHECK_THROWS_WITH(job_of(b), Catch::Contains("--sweep") && Catch::Contains(expected));
+  }
+  // Only with an estimate.
+  CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", dir.string(), "--all-in-focus", "--sweep", "best=1"}),
+                    Catch::Contains("--sweep") && Catch::Contains("estimate"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("mpr-render --depth-maps estimate refuses cameras whose sweep exceeds its working memory", "[tools]") {
   // Two flat 6000 x 4000 views (24 Mpixels each, under the loader's limits): the sweep of either
   // needs about 2.3 GiB (`mpr::plane_sweep_bytes`), above PlaneSweepConfig::memory_limit's

@@ -54,13 +54,14 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  bool interpolation_given = false;                     ///< else: synthetic for refocusing, cylinder for other views
-  Track radius{10};                                     ///< cylinder aperture radius (depth proxy: candidate radius)
-  bool radius_given = false;                            ///< else: the array's camera spacing (light fields, --raster)
-  std::optional<Track> focal_depth;                     ///< light fields: depth of the focal (image) plane
-  std::optional<std::filesystem::path> depth_maps;      ///< light fields: folder of one PFM per camera
-  std::optional<mpr::PlaneSweepConfig> depth_estimate;  ///< light fields: --depth-maps estimate:NEAR:FAR[:PLANES]
-  std::string depth_maps_arg;                           ///< --depth-maps as given (the viewer's command line)
+  bool interpolation_given = false;                ///< else: synthetic for refocusing, cylinder for other views
+  Track radius{10};                                ///< cylinder aperture radius (depth proxy: candidate radius)
+  bool radius_given = false;                       ///< else: the array's camera spacing (light fields, --raster)
+  std::optional<Track> focal_depth;                ///< light fields: depth of the focal (image) plane
+  std::optional<std::filesystem::path> depth_maps; ///< light fields: folder of one PFM per camera
+  std::optional<mpr::PlaneSweepConfig>
+      depth_estimate;         ///< light fields: --depth-maps estimate:NEAR:FAR[:PLANES], --sweep
+  std::string depth_maps_arg; ///< --depth-maps as given (the viewer's command line)
   std::optional<std::filesystem::path> save_depth_maps; ///< --save-depth-maps FOLDER: the estimated maps
   bool all_in_focus = false;                            ///< --all-in-focus: the same as --interp depth
   std::optional<std::pair<int, int>> focus_at;          ///< --focus-at X,Y: output pixel whose depth sets the focus
@@ -136,6 +137,42 @@ inline void check_animation(const Job& job) {
     throw mpr::argument_error("--depth-maps", "'" + text + "': needs 0 < NEAR < FAR");
   if (f.size() == 4) c.planes = parse_int(f[3], "--depth-maps", 2, 1024);
   return c;
+}
+
+/// `--sweep KEY=VALUE[,KEY=VALUE...]`: the other settings of the plane sweep of `--depth-maps
+/// estimate:` (keys neighbours, best, truncation, spatial, range: `mpr::PlaneSweepConfig`), set
+/// in `c`. Throws argument_error naming --sweep and the key.
+inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
+  for (const std::string& item : split(text, ',')) {
+    const std::size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    if (eq == std::string::npos || eq + 1 == item.size())
+      throw mpr::argument_error("--sweep", "'" + item +
+                                               "' is not KEY=VALUE (keys: neighbours, best, truncation, "
+                                               "spatial, range)");
+    const std::string value = item.substr(eq + 1), option = "--sweep " + key;
+    if (key == "neighbours")
+      c.neighbours = parse_int(value, option, 1, 32);
+    else if (key == "best")
+      c.best = parse_int(value, option, 1, 32);
+    else if (key == "truncation")
+      c.truncation = parse_number(value, option);
+    else if (key == "spatial")
+      c.spatial = parse_number(value, option);
+    else if (key == "range")
+      c.range = parse_number(value, option);
+    else
+      throw mpr::argument_error("--sweep", "unknown key '" + key +
+                                               "' (keys: neighbours, best, truncation, spatial, "
+                                               "range)");
+  }
+  if (c.best > c.neighbours)
+    throw mpr::argument_error("--sweep best", std::to_string(c.best) + " exceeds neighbours (" +
+                                                  std::to_string(c.neighbours) + "): the best of the neighbours count");
+  if (!(c.truncation > 0)) throw mpr::argument_error("--sweep truncation", "must be positive");
+  if (!(c.spatial >= 0)) throw mpr::argument_error("--sweep spatial", "must be >= 0 (0: no aggregation)");
+  if (!(c.range > 0)) throw mpr::argument_error("--sweep range", "must be positive");
+  mpr::validate(c); // the library's own check, for what the ranges above do not cover
 }
 
 /// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.
@@ -282,6 +319,12 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       std::error_code ec;
       if (!std::filesystem::is_directory(job.depth_maps.value(), ec)) throw mpr::io_error(*v, "no such folder");
     }
+  }
+  if (const auto v = args.get("sweep")) {
+    if (!job.depth_estimate)
+      throw mpr::argument_error("--sweep", "sets the plane sweep of estimated depth maps: needs --depth-maps "
+                                           "estimate:NEAR:FAR");
+    parse_sweep(*v, *job.depth_estimate);
   }
   if (const auto v = args.get("save-depth-maps")) {
     if (!job.depth_estimate)

@@ -89,10 +89,13 @@ Loaded<T> load(const Job& job) {
         why.erase(0, why.find(": ", why.find("memory_limit")) + 2);
         throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
       }
-      char note[160];
-      std::snprintf(note, sizeof note, "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g)",
+      char note[256];
+      std::snprintf(note, sizeof note,
+                    "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g; neighbours %d, best "
+                    "%d, truncation %g, spatial %g, range %g)",
                     set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    sweep.planes, sweep.near, sweep.far);
+                    sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation, sweep.spatial,
+                    sweep.range);
       l.notes.emplace_back(note);
       set = std::move(set).with_depth(std::move(maps));
       if (job.save_depth_maps) {

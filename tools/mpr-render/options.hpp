@@ -87,6 +87,14 @@ inline const std::vector<OptionSpec>& options() {
        "--interp depth, --all-in-focus, --focus-at and --write-depth.",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
        "estimate:0.44:0.72"},
+      {"sweep", "KEY=VALUE,...",
+       "With --depth-maps estimate: the plane sweep's other settings (mpr::PlaneSweepConfig; defaults suit "
+       "1400-pixel real arrays such as Chess): neighbours (cameras compared, 4), best (the smallest costs averaged, "
+       "2: occluded neighbours drop out), truncation (0.3), spatial (aggregation extent in pixels, 12), range "
+       "(colour difference that cuts it, 0.2). Clean synthetic arrays: best=4 and spatial scaled to the frames "
+       "(docs/lightfield.md).",
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
+       "estimate:0.44:0.72 --sweep best=3,spatial=6"},
       {"save-depth-maps", "FOLDER",
        "With --depth-maps estimate: write the estimated maps there as PFMs (read them back with --depth-maps FOLDER).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
