@@ -116,6 +116,7 @@ MPR_ALWAYS_INLINE void sweep_shift_mean_body(const float* const ref[3], const Sw
   }
 }
 
+/// `sweep_shift_mean_body<M, best>` for a run-time `best` in [B, M].
 template <int M, int B>
 MPR_ALWAYS_INLINE void sweep_shift_mean_best(const float* const ref[3], const SweepShiftRow* rows, int best, float tau,
                                              float* out, std::size_t n) noexcept {
