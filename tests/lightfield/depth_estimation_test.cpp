@@ -354,6 +354,52 @@ TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a textured plane", "[dep
   CHECK(e.confidence(24, 18) > 0.3f);
 }
 
+TEST_CASE("extreme plane sweep settings stay finite: a huge truncation acts as 3, a tiny range cuts every "
+          "colour edge",
+          "[depth_estimation]") {
+  using T = float;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 0.3, 40, 30, 40.0);
+  const mpr::CameraFrameSet<T> frames(cams, smooth_images(cams, 5.0));
+  mpr::PlaneSweepConfig config;
+  config.near = 2;
+  config.far = 20;
+  config.planes = 32;
+  config.threads = 1;
+  config.best = 4;
+  const auto same = [](const mpr::DepthEstimate& a, const mpr::DepthEstimate& b) {
+    for (int y = 0; y < a.depth.height(); ++y)
+      for (int x = 0; x < a.depth.width(); ++x)
+        if (!(a.depth(x, y) == b.depth(x, y)) || !(a.confidence(x, y) == b.confidence(x, y))) return false;
+    return true;
+  };
+  const auto finite_and_near = [](const mpr::DepthEstimate& e) {
+    int near = 0; // pixels within 5% of the plane
+    for (int y = 0; y < e.depth.height(); ++y)
+      for (int x = 0; x < e.depth.width(); ++x) {
+        if (!std::isfinite(e.depth(x, y)) || !std::isfinite(e.confidence(x, y))) return -1;
+        near += std::abs(e.depth(x, y) - 5.0f) <= 0.25f;
+      }
+    return near;
+  };
+  // Costs are at most 3, so truncations of 3 and of 1e39 (infinite as a float) are the same
+  // sweep; an unseen neighbour counts 3 in both.
+  config.truncation = 3;
+  const mpr::DepthEstimate three = mpr::estimate_depth(frames, 4, config);
+  config.truncation = 1e39;
+  const mpr::DepthEstimate huge = mpr::estimate_depth(frames, 4, config);
+  CHECK(same(three, huge));
+  CHECK(finite_and_near(huge) > 40 * 30 / 2);
+  // A subnormal range: the spatial-to-range ratio overflows; every colour difference cuts the
+  // aggregation, equal colours do not (no NaN), as with a tiny normal range.
+  config.truncation = 0.3;
+  config.range = 1e-320;
+  const mpr::DepthEstimate subnormal = mpr::estimate_depth(frames, 4, config);
+  config.range = 1e-30;
+  const mpr::DepthEstimate tiny = mpr::estimate_depth(frames, 4, config);
+  CHECK(same(subnormal, tiny));
+  CHECK(finite_and_near(subnormal) > 40 * 30 / 2);
+}
+
 TEST_CASE("a plane sweep refuses a bad camera index, a single camera and lens distortion", "[depth_estimation]") {
   using T = double;
   const auto cams = mpr_test::grid_cameras<T>(2, 1, 0.3, 16, 12, 16.0);

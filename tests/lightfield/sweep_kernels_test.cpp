@@ -249,11 +249,13 @@ TEST_CASE("the best-of-m network keeps the smallest costs and averages them", "[
           std::vector<float> v = rows[static_cast<std::size_t>(j)];
           mpr::detail::sweep_keep_best(k, best, v.data(), n, level);
         }
-        std::vector<float> out(n);
+        std::vector<float> out(n), body(n);
         mpr::detail::sweep_mean_best(k, best, out.data(), n, level);
+        mpr::detail::sweep_mean_best_body(k, best, body.data(), n); // the generic loops, every best
         for (std::size_t x = 0; x < n; ++x) {
           INFO("m " << m << " best " << best << " x " << x);
           CHECK(out[x] == Approx(expected[x]).margin(1e-6));
+          CHECK(out[x] == body[x]); // the one-pass form for best <= 4: the same sums, bit for bit
           for (int i = 1; i < best; ++i)
             CHECK(keep[static_cast<std::size_t>(i - 1)][x] <= keep[static_cast<std::size_t>(i)][x]);
         }

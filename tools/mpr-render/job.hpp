@@ -14,6 +14,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -141,15 +142,18 @@ inline void check_animation(const Job& job) {
 
 /// `--sweep KEY=VALUE[,KEY=VALUE...]`: the other settings of the plane sweep of `--depth-maps
 /// estimate:` (keys neighbours, best, truncation, spatial, range: `mpr::PlaneSweepConfig`), set
-/// in `c`. Throws argument_error naming --sweep and the key.
+/// in `c`, each key at most once. Throws argument_error naming --sweep and the key.
 inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
+  const char* keys = "keys: neighbours, best, truncation, spatial, range";
+  std::vector<std::string> given;
   for (const std::string& item : split(text, ',')) {
     const std::size_t eq = item.find('=');
     const std::string key = item.substr(0, eq);
     if (eq == std::string::npos || eq + 1 == item.size())
-      throw mpr::argument_error("--sweep", "'" + item +
-                                               "' is not KEY=VALUE (keys: neighbours, best, truncation, "
-                                               "spatial, range)");
+      throw mpr::argument_error("--sweep", "'" + item + "' is not KEY=VALUE (" + keys + ")");
+    if (std::find(given.begin(), given.end(), key) != given.end())
+      throw mpr::argument_error("--sweep " + key, "given twice");
+    given.push_back(key);
     const std::string value = item.substr(eq + 1), option = "--sweep " + key;
     if (key == "neighbours")
       c.neighbours = parse_int(value, option, 1, 32);
@@ -162,17 +166,18 @@ inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
     else if (key == "range")
       c.range = parse_number(value, option);
     else
-      throw mpr::argument_error("--sweep", "unknown key '" + key +
-                                               "' (keys: neighbours, best, truncation, spatial, "
-                                               "range)");
+      throw mpr::argument_error("--sweep", "unknown key '" + key + "' (" + keys + ")");
   }
-  if (c.best > c.neighbours)
-    throw mpr::argument_error("--sweep best", std::to_string(c.best) + " exceeds neighbours (" +
-                                                  std::to_string(c.neighbours) + "): the best of the neighbours count");
+  if (c.best > c.neighbours) {
+    const bool default_best = std::find(given.begin(), given.end(), "best") == given.end();
+    throw mpr::argument_error("--sweep best", std::to_string(c.best) + (default_best ? " (the default)" : "") +
+                                                  " exceeds neighbours (" + std::to_string(c.neighbours) +
+                                                  "): give best=1.." + std::to_string(c.neighbours));
+  }
+  // Finite by parse_number; mpr::PlaneSweepConfig's ranges (a truncation above 3 acts as 3).
   if (!(c.truncation > 0)) throw mpr::argument_error("--sweep truncation", "must be positive");
   if (!(c.spatial >= 0)) throw mpr::argument_error("--sweep spatial", "must be >= 0 (0: no aggregation)");
   if (!(c.range > 0)) throw mpr::argument_error("--sweep range", "must be positive");
-  mpr::validate(c); // the library's own check, for what the ranges above do not cover
 }
 
 /// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.

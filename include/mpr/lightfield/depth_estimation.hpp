@@ -48,7 +48,9 @@ struct PlaneSweepConfig {
   /// (1..neighbours): cameras that are occluded there do not count.
   int best = 2;
   /// A neighbour's cost per pixel is the sum over channels of |difference| of the sRGB codes
-  /// / 255, truncated at this value (robust to specularities and occlusion), > 0.
+  /// / 255, truncated at this value (robust to specularities and occlusion), > 0 and finite.
+  /// Values above 3 act as 3: no cost is larger, so nothing is truncated, and a neighbour that
+  /// does not see a pixel counts 3 there.
   double truncation = 0.3;
   /// Edge-aware aggregation (domain transform): spatial extent in pixels (>= 0; 0: none) and the
   /// colour difference (sum over channels of sRGB codes / 255) that cuts the support, > 0.
@@ -144,7 +146,10 @@ template <std::floating_point T, class Px>
     const double sigma = std::max(config.spatial, 1e-6);
     const double base = std::exp(-std::sqrt(2.0) / sigma), ratio = sigma / config.range;
     float table[766];
-    for (int k = 0; k < 766; ++k) table[k] = static_cast<float>(std::pow(base, 1 + ratio * (k / 255.0)));
+    // Entry 0 is base itself: a range so small that the ratio overflows cuts at every colour
+    // difference (pow(base, inf) = 0) but not between equal colours (inf * 0 would be NaN).
+    table[0] = static_cast<float>(base);
+    for (int k = 1; k < 766; ++k) table[k] = static_cast<float>(std::pow(base, 1 + ratio * (k / 255.0)));
     const auto diff = [&](std::size_t a, std::size_t b) {
       const Rgb8 p = rt.codes[a], q = rt.codes[b];
       return std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
@@ -170,7 +175,9 @@ template <std::floating_point T, class Px>
   const auto depth_of = [&](double index) {
     return 1 / (inv_near + (inv_far - inv_near) * index / static_cast<double>(config.planes - 1));
   };
-  const float tau = static_cast<float>(config.truncation);
+  // A neighbour's cost is at most 3 (three channels, each |difference| <= 1): a larger
+  // truncation truncates nothing, and the sums of unseen neighbours' costs stay finite.
+  const float tau = static_cast<float>(std::min(config.truncation, 3.0));
   const SimdLevel level = simd_level();
   constexpr int rows_per_block = kSweepLockstepRows;
   const int blocks = (height + rows_per_block - 1) / rows_per_block;
