@@ -315,16 +315,32 @@ TEST_CASE("a plane sweep's working memory is counted, and bounded by memory_limi
   }
 }
 
-TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a textured plane", "[depth_estimation]", float, double) {
-  using T = TestType;
-  // 3 x 3 cameras 0.3 apart, 48 x 36 pixels, focal 40, facing a textured plane at z = 5.
-  const auto cams = mpr_test::grid_cameras<T>(3, 3, 0.3, 48, 36, 40.0);
-  const mpr::CameraFrameSet<T> frames(cams, smooth_images(cams, 5.0));
+namespace {
+
+// 3 x 3 cameras 0.3 apart, width x height pixels, focal 40, facing a textured plane at z = 5.
+template <class T>
+mpr::CameraFrameSet<T> textured_plane_grid(int width, int height) {
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 0.3, width, height, 40.0);
+  return mpr::CameraFrameSet<T>(cams, smooth_images(cams, 5.0));
+}
+
+// A sweep of `planes` planes from depth 2 to 20 on `threads` workers, else the defaults.
+mpr::PlaneSweepConfig sweep_2_to_20(int planes, int threads) {
   mpr::PlaneSweepConfig config;
   config.near = 2;
   config.far = 20;
-  config.planes = 48;
-  config.threads = 2;
+  config.planes = planes;
+  config.threads = threads;
+  return config;
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a textured plane", "[depth_estimation]", float, double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 0.3, 48, 36, 40.0);
+  const mpr::CameraFrameSet<T> frames = textured_plane_grid<T>(48, 36);
+  mpr::PlaneSweepConfig config = sweep_2_to_20(48, 2);
   const mpr::DepthEstimate e = mpr::estimate_depth(frames, 4, config);
   REQUIRE(e.depth.width() == 48);
   REQUIRE(e.confidence.height() == 36);
@@ -357,14 +373,8 @@ TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a textured plane", "[dep
 TEST_CASE("extreme plane sweep settings stay finite: a huge truncation acts as 3, a tiny range cuts every "
           "colour edge",
           "[depth_estimation]") {
-  using T = float;
-  const auto cams = mpr_test::grid_cameras<T>(3, 3, 0.3, 40, 30, 40.0);
-  const mpr::CameraFrameSet<T> frames(cams, smooth_images(cams, 5.0));
-  mpr::PlaneSweepConfig config;
-  config.near = 2;
-  config.far = 20;
-  config.planes = 32;
-  config.threads = 1;
+  const mpr::CameraFrameSet<float> frames = textured_plane_grid<float>(40, 30);
+  mpr::PlaneSweepConfig config = sweep_2_to_20(32, 1);
   config.best = 4;
   const auto same = [](const mpr::DepthEstimate& a, const mpr::DepthEstimate& b) {
     for (int y = 0; y < a.depth.height(); ++y)
