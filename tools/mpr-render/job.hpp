@@ -55,14 +55,13 @@ struct Job {
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   Interpolation interpolation = Interpolation::synthetic;
-  bool interpolation_given = false;                ///< else: synthetic for refocusing, cylinder for other views
-  Track radius{10};                                ///< cylinder aperture radius (depth proxy: candidate radius)
-  bool radius_given = false;                       ///< else: the array's camera spacing (light fields, --raster)
-  std::optional<Track> focal_depth;                ///< light fields: depth of the focal (image) plane
-  std::optional<std::filesystem::path> depth_maps; ///< light fields: folder of one PFM per camera
-  std::optional<mpr::PlaneSweepConfig>
-      depth_estimate;         ///< light fields: --depth-maps estimate:NEAR:FAR[:PLANES], --sweep
-  std::string depth_maps_arg; ///< --depth-maps as given (the viewer's command line)
+  bool interpolation_given = false;                     ///< else: synthetic for refocusing, cylinder for other views
+  Track radius{10};                                     ///< cylinder aperture radius (depth proxy: candidate radius)
+  bool radius_given = false;                            ///< else: the array's camera spacing (light fields, --raster)
+  std::optional<Track> focal_depth;                     ///< light fields: depth of the focal (image) plane
+  std::optional<std::filesystem::path> depth_maps;      ///< light fields: folder of one PFM per camera
+  std::optional<mpr::PlaneSweepConfig> depth_estimate;  ///< light fields: --depth-maps estimate:, --sweep
+  std::string depth_maps_arg;                           ///< --depth-maps as given (the viewer's command line)
   std::optional<std::filesystem::path> save_depth_maps; ///< --save-depth-maps FOLDER: the estimated maps
   bool all_in_focus = false;                            ///< --all-in-focus: the same as --interp depth
   std::optional<std::pair<int, int>> focus_at;          ///< --focus-at X,Y: output pixel whose depth sets the focus

@@ -186,11 +186,8 @@ template <std::floating_point T, class Px>
                  static_cast<std::size_t>(width));
   ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const std::size_t w = static_cast<std::size_t>(width);
-  // Row y's cost at depth d into `out` (`sweep_cost_row`).
+  // What a row's cost at a depth reads (`sweep_cost_row`).
   const SweepRowInputs inputs{&rt, nt.data(), M.data(), A.data(), m, best, tau, level};
-  const auto cost_row = [&](int y, float d, float* out, float* const* keep, float* value) noexcept {
-    sweep_cost_row(inputs, y, d, out, keep, value);
-  };
   // One worker: the blocks in order, each row pulled towards the one above (the forward
   // vertical pass) while in cache; more: blocks in parallel, the forward pass down strips.
   const bool in_order = resolve_thread_count(threads, blocks) == 1;
@@ -208,7 +205,7 @@ template <std::floating_point T, class Px>
       const int y0 = block * rows_per_block, y1 = std::min(height, y0 + rows_per_block);
       for (int i = 0; i < count; ++i) {
         const float d = static_cast<float>(depth_of(first + i));
-        for (int y = y0; y < y1; ++y) cost_row(y, d, row_of(i, y), keep, value);
+        for (int y = y0; y < y1; ++y) sweep_cost_row(inputs, y, d, row_of(i, y), keep, value);
         if (!(config.spatial > 0)) continue;
         // The horizontal aggregation pass, the block's rows side by side.
         const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y0) * width;
