@@ -6,12 +6,14 @@
 #include <mpr/mpr.hpp>
 #include <mpr/scene.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <random>
+#include <span>
 #include <vector>
 
 namespace {
@@ -28,13 +30,15 @@ std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> plane_set(float depth 
 
 } // namespace
 
-TEST_CASE("DepthProxy is a per-ray frame interpolation", "[depth_proxy]") {
+TEST_CASE("DepthProxy is a frame interpolation with a batch path", "[depth_proxy]") {
   STATIC_REQUIRE(mpr::FrameInterpolation<mpr::DepthProxy, float, mpr::Rgb8>);
   STATIC_REQUIRE(mpr::FrameInterpolation<mpr::DepthProxy, double, mpr::Color>);
-  STATIC_REQUIRE_FALSE(mpr::BatchFrameInterpolation<mpr::DepthProxy, float, mpr::Rgb8>);
+  STATIC_REQUIRE(mpr::BatchFrameInterpolation<mpr::DepthProxy, float, mpr::Rgb8>);
+  STATIC_REQUIRE(mpr::BatchFrameInterpolation<mpr::DepthProxy, double, mpr::Color>);
   STATIC_REQUIRE_FALSE(mpr::TileFrameInterpolation<mpr::DepthProxy, double, mpr::Rgb8>);
   STATIC_REQUIRE(mpr::RaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
-  STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
+  STATIC_REQUIRE_FALSE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::DepthProxy, float>>);
   STATIC_REQUIRE(mpr::DepthProxy::uses_depth_maps);
 }
 
@@ -338,4 +342,116 @@ TEMPLATE_TEST_CASE("DepthProxy answers alike whether a linear scan or the ball t
     INFO("ray " << n);
     CHECK((tree.sample(ray) - scan.sample(ray)).abs().maxCoeff() < 1e-4f);
   }
+}
+
+namespace {
+
+// The rays of every pixel of `cam`, then rays no camera answers: a zero and a NaN direction, one
+// pointing away from the scene (background), one from far outside the array.
+template <class T>
+std::vector<mpr::Ray<T>> batch_rays(const mpr::PinholeCamera<T>& cam) {
+  std::vector<mpr::Ray<T>> rays;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x) rays.push_back(cam.ray_through({x, y}));
+  const mpr::Vec3<T> o = cam.centre();
+  rays.push_back({o, mpr::Vec3<T>::Zero()});
+  rays.push_back({o, mpr::Vec3<T>(std::numeric_limits<T>::quiet_NaN(), 0, 1)});
+  rays.push_back({o, -cam.forward()});
+  rays.push_back({o + mpr::Vec3<T>(T(1e4), 0, 0), cam.forward()});
+  return rays;
+}
+
+// `sample_rays` over `rays` in spans of 1, 2, ..., 40 rays (partial groups of sixteen), against
+// `sample` per ray: equal, or (where the per-ray code may have fused multiply-adds, whose
+// rounding moves a decision at a threshold) differing in at most `allowed` of the rays.
+template <class Sampler, class T>
+void check_batch(const Sampler& sampler, const std::vector<mpr::Ray<T>>& rays) {
+  std::vector<mpr::Color> batch(rays.size());
+  std::size_t at = 0;
+  for (std::size_t length = 1; at < rays.size(); length = length % 40 + 1) {
+    const std::size_t n = std::min(length, rays.size() - at);
+    sampler.sample_rays(std::span<const mpr::Ray<T>>(rays).subspan(at, n), std::span<mpr::Color>(batch).subspan(at, n));
+    at += n;
+  }
+  std::size_t differ = 0;
+  float worst = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const mpr::Color one = sampler.sample(rays[i]);
+    REQUIRE(batch[i].allFinite());
+    if ((one != batch[i]).any()) {
+      ++differ;
+      worst = std::max(worst, (one - batch[i]).abs().maxCoeff());
+    }
+  }
+  INFO(differ << " of " << rays.size() << " rays differ, by at most " << worst << "; SIMD level "
+              << mpr::detail::simd_level_name());
+#if defined(__FMA__) || defined(__FP_FAST_FMAF)
+  CHECK(differ <= rays.size() / 500);
+#else
+  CHECK(differ == 0);
+#endif
+}
+
+} // namespace
+
+TEST_CASE("DepthProxy's batch path answers as sample(ray) on a rasterized classroom array", "[depth_proxy]") {
+  // The classroom as an 8 x 6 array of 80 x 60 cameras with exact depth, camera 28 held out:
+  // every pixel's ray (occlusions, depth edges, the floor at the corners, rays that leave the
+  // room) through the 47 others, for several k (k + 1 = 8 is the most the sixteen-lane path
+  // keeps; k = 8 takes the per-ray path inside `sample_rays`).
+  using T = float;
+  const auto scene = mpr::scene::classroom<T>();
+  const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
+  const mpr::Vec3<T> forward = (target - eye).normalized();
+  const mpr::Vec3<T> right = forward.cross(mpr::Vec3<T>::UnitY()).normalized();
+  const mpr::Vec3<T> down = forward.cross(right);
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.width = 80;
+  config.height = 60;
+  config.raster.threads = 2;
+  config.depth_maps = true;
+  const auto array = mpr::scene::rasterize_virtual_array(
+      scene, mpr::PlanarSurface<T>::centred(eye, T(8) * right, T(6) * down), config);
+  const std::size_t held = 28;
+  const auto others = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames.without(held));
+  const std::vector<mpr::Ray<T>> rays = batch_rays(array.frames.camera(held));
+  mpr::FrameSamplerConfig<T> frames_config;
+  frames_config.background = mpr::Color(0.2f, 0.4f, 0.6f);
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Rgb8>>(others, frames_config);
+  for (const int k : {1, 4, 7, 8}) {
+    for (const double radius : {0.6, 2.0}) {
+      INFO("k = " << k << ", radius " << radius);
+      mpr::DepthProxy proxy{radius, k};
+      check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>::sharing(table, proxy), rays);
+    }
+  }
+  // The half-line search and the nearest-pixel filter.
+  mpr::DepthProxy half{2.0};
+  half.whole_line = false;
+  check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>::sharing(table, half), rays);
+  frames_config.filter = mpr::PixelFilter::nearest;
+  check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>(others, mpr::DepthProxy{2.0}, frames_config),
+              rays);
+}
+
+TEMPLATE_TEST_CASE("DepthProxy's batch path answers as sample(ray) on float frames", "[depth_proxy]", float, double) {
+  // The 3 x 3 plane set (linear float texels), one map with a step and a hole of +inf, random
+  // rays across it; double takes the per-ray path.
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps(cams.size(), mpr::Image<float>(40, 30, 5.0f));
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      if (x > 25) maps[4](x, y) = 3.0f;
+      if (x < 6 && y < 6) maps[4](x, y) = std::numeric_limits<float>::infinity();
+    }
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5), slope(-0.3, 0.3);
+  std::vector<mpr::Ray<T>> rays;
+  for (int n = 0; n < 600; ++n)
+    rays.push_back({mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
+                    mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
+  check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>(frames, mpr::DepthProxy{1.5}), rays);
 }

@@ -11,7 +11,9 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/depth_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
@@ -19,9 +21,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
+#include <type_traits>
 
 namespace mpr {
 
@@ -60,7 +65,8 @@ namespace mpr {
 /// walked. Per ray: the candidates (a linear scan up to 64 cameras, else one ball-tree query), a
 /// walk from where the ray reaches the nearest depth of the camera's map, about one pixel a step,
 /// the crossing narrowed by regula falsi (about 4 lookups), then the visibility of the candidates
-/// in order of angle until k + 1 see the point. No batch or tile path: `sample` per ray.
+/// in order of angle until k + 1 see the point. A batch path (`sample_rays`) shares the scan and
+/// the blend's tests among sixteen rays on AVX-512.
 struct DepthProxy {
   /// Cameras farther than this from the ray line (world units, positive) are neither walked nor
   /// blended. About twice the camera spacing suits planar arrays.
@@ -108,6 +114,25 @@ struct DepthProxy {
     if (escaped) return table.config().background;
     const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
     return blend(table, ray, X, c);
+  }
+
+  /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On AVX-512,
+  /// for float tables of at most 64 undistorted cameras and k < 8, sixteen rays at a time: one
+  /// scan of the camera centres for all sixteen, and the blend's visibility tests, angles and
+  /// choice of the k + 1 best cameras in the lanes of a register (the surface walk stays per
+  /// ray). Elsewhere, `sample` per ray.
+  template <std::floating_point T, class Px>
+  void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
+#if defined(MPR_SIMD_X86)
+    if constexpr (std::is_same_v<T, float>) {
+      if (detail::simd_level() == detail::SimdLevel::avx512 && lanes_apply(table)) {
+        for (std::size_t s = 0; s < rays.size(); s += 16)
+          sample16(table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
+        return;
+      }
+    }
+#endif
+    for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
   }
 
   /// The ray parameter t of the first surface point along `ray` that the depth maps show (see
@@ -199,6 +224,129 @@ private:
     return std::nullopt;
   }
 
+#if defined(MPR_SIMD_X86)
+  // Whether the sixteen-lane path answers for this table (see `sample_rays`).
+  template <class Px>
+  [[nodiscard]] bool lanes_apply(const FrameTable<float, Px>& table) const noexcept {
+    if (table.size() > kScanCameras || k + 1 > detail::kDepthLaneSlots) return false;
+    for (const auto& cam : table.cameras())
+      if (cam.distorted || static_cast<long long>(cam.width) * cam.height >= (1ll << 31)) return false;
+    return true;
+  }
+
+  // Up to sixteen rays (see `sample_rays`). The steps across the lanes are AVX-512 kernels
+  // (detail/depth_lanes.hpp); the walks and the weighing stay per ray here, compiled as the
+  // per-ray path is, so that both round alike.
+  template <class Px>
+  void sample16(const FrameTable<float, Px>& table, std::span<const Ray<float>> rays, Color* out) const noexcept {
+    using T = float;
+    const int n = static_cast<int>(rays.size());
+    detail::RayLanes r;
+    unsigned valid = 0;
+    for (int l = 0; l < 16; ++l) {
+      const Ray<T>& ray = rays[static_cast<std::size_t>(std::min(l, n - 1))];
+      const T dd = ray.direction.squaredNorm();
+      if (l < n && dd > 0 && std::isfinite(dd)) valid |= 1u << l;
+      r.ox[l] = ray.origin.x();
+      r.oy[l] = ray.origin.y();
+      r.oz[l] = ray.origin.z();
+      r.vx[l] = ray.direction.x();
+      r.vy[l] = ray.direction.y();
+      r.vz[l] = ray.direction.z();
+      r.inverse_length2[l] = T(1) / dd;
+      r.length[l] = ray.direction.norm();
+    }
+    // The candidates: every camera against the sixteen ray lines at once, then each lane's list
+    // sorted as `collect` sorts it.
+    alignas(64) T distance[kScanCameras][16];
+    std::uint16_t near[kScanCameras];
+    const std::size_t cameras = table.size();
+    detail::scan_cameras16(table, r, static_cast<T>(radius) * static_cast<T>(radius), valid, near, distance);
+    Candidates<T> c[16];
+    for (std::size_t i = 0; i < cameras; ++i)
+      for (unsigned m = near[i]; m != 0; m &= m - 1) {
+        const int l = __builtin_ctz(m);
+        Candidates<T>& cl = c[l];
+        const T d = distance[i][l];
+        int at = cl.count++;
+        for (; at > 0 && d < cl.distance[at - 1]; --at) {
+          cl.index[at] = cl.index[at - 1];
+          cl.distance[at] = cl.distance[at - 1];
+        }
+        cl.index[at] = static_cast<int>(i);
+        cl.distance[at] = d;
+      }
+    // The surface point of each ray, by its own walk.
+    alignas(64) T point[3][16] = {};
+    unsigned blended = 0;
+    bool escaped[16] = {};
+    for (int l = 0; l < n; ++l) {
+      const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
+      if (c[l].count == 0) {
+        const int nearest = table.index().nearest(ray.origin, ray.direction);
+        if (nearest >= 0) {
+          c[l].index[0] = nearest;
+          c[l].distance[0] = 0;
+          c[l].count = 1;
+          near[nearest] = static_cast<std::uint16_t>(near[nearest] | 1u << l); // blended as well
+          distance[nearest][l] = 0;
+        }
+      }
+      const std::optional<T> t = surface(table, ray, c[l], escaped[l]);
+      const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
+      for (int j = 0; j < 3; ++j) point[j][l] = X[j];
+      if (!escaped[l]) blended |= 1u << l;
+    }
+    // The blend: the k + 1 cameras that see each point with the smallest angles, chosen across
+    // the lanes, then weighed per ray.
+    const int slots = k + 1;
+    detail::LaneChoice best;
+    detail::choose_cameras16(table, r, point, distance, near, blended, slots, static_cast<T>(tolerance), best);
+    for (int l = 0; l < n; ++l) {
+      if (escaped[l]) {
+        out[l] = table.config().background;
+        continue;
+      }
+      T penalty[detail::kDepthLaneSlots];
+      int count = 0;
+      for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = std::acos(best.cosine[count][l]);
+      if (count == 0) {
+        out[l] =
+            table.camera_color(c[l].count > 0 ? c[l].index[0] : -1, Vec3<T>(point[0][l], point[1][l], point[2][l]));
+        continue;
+      }
+      out[l] = weigh(table, penalty, count, [&](int j) {
+        return Seen<T>{best.camera[j][l], best.x[j][l], best.y[j][l]};
+      });
+    }
+  }
+#endif
+
+  template <std::floating_point T>
+  struct Seen {
+    int camera;
+    T x, y;
+  };
+
+  // The Unstructured-Lumigraph average of the `n` cameras that see the point, by increasing
+  // `penalty`; `at(j)` gives the j-th camera and its pixel.
+  template <std::floating_point T, class Px, class At>
+  [[nodiscard]] Color weigh(const FrameTable<T, Px>& table, const T* penalty, int n, const At& at) const noexcept {
+    // The (k+1)-th smallest penalty of the cameras that see X, or twice the largest when at most
+    // k do.
+    const T threshold = n > k ? std::max(penalty[k], T(1e-6)) : 2 * penalty[n - 1] + T(1e-6);
+    float acc[3] = {0, 0, 0};
+    float weight = 0;
+    for (int j = 0; j < n; ++j) {
+      if (!(penalty[j] < threshold)) continue;
+      const float w = static_cast<float>((1 - penalty[j] / threshold) / (penalty[j] + T(1e-6)));
+      const Seen<T> s = at(j);
+      table.fetch_add(table.camera(static_cast<std::size_t>(s.camera)), s.x, s.y, w, acc);
+      weight += w;
+    }
+    return table.finish(acc, weight);
+  }
+
   template <std::floating_point T, class Px>
   [[nodiscard]] Color blend(const FrameTable<T, Px>& table, const Ray<T>& ray, const Vec3<T>& X,
                             const Candidates<T>& c) const noexcept {
@@ -243,18 +391,7 @@ private:
       const int nearest = c.count > 0 ? c.index[0] : -1;
       return table.camera_color(nearest, X);
     }
-    // The (k+1)-th smallest penalty of the cameras that see X, or twice the largest when at most
-    // k do.
-    const T threshold = n > k ? std::max(penalty[k], T(1e-6)) : 2 * penalty[n - 1] + T(1e-6);
-    float acc[3] = {0, 0, 0};
-    float weight = 0;
-    for (int j = 0; j < n; ++j) {
-      if (!(penalty[j] < threshold)) continue;
-      const float w = static_cast<float>((1 - penalty[j] / threshold) / (penalty[j] + T(1e-6)));
-      table.fetch_add(table.camera(static_cast<std::size_t>(seen[j])), px[j], py[j], w, acc);
-      weight += w;
-    }
-    return table.finish(acc, weight);
+    return weigh(table, penalty, n, [&](int j) { return Seen<T>{seen[j], px[j], py[j]}; });
   }
 };
 
