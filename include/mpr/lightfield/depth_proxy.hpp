@@ -15,6 +15,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/detail/depth_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
+#include <mpr/lightfield/detail/depth_walk_lanes.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 
@@ -256,17 +257,37 @@ private:
       r.inverse_length2[l] = T(1) / dd;
       r.length[l] = ray.direction.norm();
     }
-    // The candidates: every camera against the sixteen ray lines at once, then each lane's list
-    // sorted as `collect` sorts it.
+    // The candidates: every camera against the sixteen ray lines at once. Each lane's nearest
+    // is its first walk; its whole list, sorted as `collect` sorts it, is only needed when that
+    // walk does not find the surface.
     alignas(64) T distance[kScanCameras][16];
     std::uint16_t near[kScanCameras];
+    alignas(64) int first[16];
     const std::size_t cameras = table.size();
-    detail::scan_cameras16(table, r, static_cast<T>(radius) * static_cast<T>(radius), valid, near, distance);
-    Candidates<T> c[16];
-    for (std::size_t i = 0; i < cameras; ++i)
-      for (unsigned m = near[i]; m != 0; m &= m - 1) {
-        const int l = __builtin_ctz(m);
-        Candidates<T>& cl = c[l];
+    detail::scan_cameras16(table, r, static_cast<T>(radius) * static_cast<T>(radius), valid, near, distance, first);
+    unsigned alone = 0, walking = 0; // lanes with no camera within the radius, lanes that walk
+    for (int l = 0; l < n; ++l) {
+      if (first[l] < 0) {
+        const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
+        first[l] = table.index().nearest(ray.origin, ray.direction);
+        alone |= 1u << l;
+        if (first[l] < 0) continue;
+        const std::size_t i = static_cast<std::size_t>(first[l]);
+        near[i] = static_cast<std::uint16_t>(near[i] | 1u << l); // blended as well
+        distance[i][l] = 0;
+      }
+      walking |= 1u << l;
+    }
+    const auto candidates = [&](int l, Candidates<T>& cl) {
+      if (alone >> l & 1u) {
+        cl.count = first[l] < 0 ? 0 : 1;
+        cl.index[0] = first[l];
+        cl.distance[0] = 0;
+        return;
+      }
+      cl.count = 0;
+      for (std::size_t i = 0; i < cameras; ++i) {
+        if (!(near[i] >> l & 1u)) continue;
         const T d = distance[i][l];
         int at = cl.count++;
         for (; at > 0 && d < cl.distance[at - 1]; --at) {
@@ -276,23 +297,38 @@ private:
         cl.index[at] = static_cast<int>(i);
         cl.distance[at] = d;
       }
-    // The surface point of each ray, by its own walk.
+    };
+    // The surface point of each ray: the rays that share their nearest camera walk its map
+    // together; a ray whose walk there takes another turn than a hit walks again per ray.
     alignas(64) T point[3][16] = {};
     unsigned blended = 0;
     bool escaped[16] = {};
+    alignas(64) T hit_t[16];
+    unsigned hit = 0;
+    while (walking != 0) {
+      const int camera = first[__builtin_ctz(walking)];
+      unsigned group = 0;
+      for (unsigned m = walking; m != 0; m &= m - 1)
+        if (first[__builtin_ctz(m)] == camera) group |= 1u << __builtin_ctz(m);
+      walking &= ~group;
+      alignas(64) T t[16];
+      const std::size_t i = static_cast<std::size_t>(camera);
+      const unsigned found =
+          detail::walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group,
+                               whole_line ? -std::numeric_limits<T>::infinity() : T(0), static_cast<T>(tolerance), t);
+      for (unsigned m = found; m != 0; m &= m - 1) hit_t[__builtin_ctz(m)] = t[__builtin_ctz(m)];
+      hit |= found;
+    }
     for (int l = 0; l < n; ++l) {
       const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
-      if (c[l].count == 0) {
-        const int nearest = table.index().nearest(ray.origin, ray.direction);
-        if (nearest >= 0) {
-          c[l].index[0] = nearest;
-          c[l].distance[0] = 0;
-          c[l].count = 1;
-          near[nearest] = static_cast<std::uint16_t>(near[nearest] | 1u << l); // blended as well
-          distance[nearest][l] = 0;
-        }
+      std::optional<T> t;
+      if (hit >> l & 1u) {
+        t = hit_t[l];
+      } else {
+        Candidates<T> c;
+        candidates(l, c);
+        t = surface(table, ray, c, escaped[l]);
       }
-      const std::optional<T> t = surface(table, ray, c[l], escaped[l]);
       const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
       for (int j = 0; j < 3; ++j) point[j][l] = X[j];
       if (!escaped[l]) blended |= 1u << l;
@@ -311,8 +347,7 @@ private:
       int count = 0;
       for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = std::acos(best.cosine[count][l]);
       if (count == 0) {
-        out[l] =
-            table.camera_color(c[l].count > 0 ? c[l].index[0] : -1, Vec3<T>(point[0][l], point[1][l], point[2][l]));
+        out[l] = table.camera_color(first[l], Vec3<T>(point[0][l], point[1][l], point[2][l]));
         continue;
       }
       out[l] = weigh(table, penalty, count, [&](int j) {

@@ -30,6 +30,11 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 mul16(__m512 a, __m512 b) noexcept {
   return _mm512_maskz_mul_ps(0xFFFF, a, b);
 }
 
+/// -a, lane by lane (the sign flipped, as the scalar negation does: -(+0) is -0).
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 neg16(__m512 a) noexcept {
+  return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a), _mm512_set1_epi32(INT32_MIN)));
+}
+
 /// a + (b + c): the order in which Eigen sums the three terms of a fixed-size 3-vector's dot
 /// product or squared norm (its unrolled reduction splits them into halves of one and two).
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 sum3(__m512 a, __m512 b, __m512 c) noexcept {
@@ -172,18 +177,27 @@ struct LaneChoice {
 };
 
 /// For each camera i of `table`: near[i] = the lanes of `valid` whose ray line passes within
-/// sqrt(radius2) of the camera's centre, distance[i][l] = that distance (every lane).
+/// sqrt(radius2) of the camera's centre, distance[i][l] = that distance (every lane); first[l] =
+/// the nearest of those cameras to lane l's ray line (the lowest index among equals), or -1.
 template <class Table>
 MPR_TARGET_AVX512 void scan_cameras16(const Table& table, const RayLanes& lanes, float radius2, unsigned valid,
-                                      std::uint16_t* near, float (*distance)[16]) noexcept {
+                                      std::uint16_t* near, float (*distance)[16], int* first) noexcept {
   const RayLanes16 r = load_lanes(lanes);
   const __m512 limit = _mm512_set1_ps(radius2);
+  __m512 best = _mm512_set1_ps(__builtin_inff());
+  __m512i nearest = _mm512_set1_epi32(-1);
   for (std::size_t i = 0; i < table.size(); ++i) {
     const auto& C = table.camera(i).centre;
     const __m512 d2 = line_distance2_x16(r, C.x(), C.y(), C.z());
-    near[i] = static_cast<std::uint16_t>(valid & _mm512_cmp_ps_mask(d2, limit, _CMP_LT_OQ));
-    _mm512_store_ps(distance[i], _mm512_maskz_sqrt_ps(0xFFFF, d2));
+    const __mmask16 m = static_cast<__mmask16>(valid & _mm512_cmp_ps_mask(d2, limit, _CMP_LT_OQ));
+    near[i] = m;
+    const __m512 d = _mm512_maskz_sqrt_ps(0xFFFF, d2);
+    _mm512_store_ps(distance[i], d);
+    const __mmask16 nearer = m & _mm512_cmp_ps_mask(d, best, _CMP_LT_OQ);
+    best = _mm512_mask_blend_ps(nearer, best, d);
+    nearest = _mm512_mask_blend_epi32(nearer, nearest, _mm512_set1_epi32(static_cast<int>(i)));
   }
+  _mm512_storeu_si512(first, nearest);
 }
 
 /// The blend's choice of cameras for the points `point` (x, y, z rows) of the rays `lanes`,

@@ -1,0 +1,182 @@
+#pragma once
+/// \file
+/// `depth_walk` (detail/depth_walk.hpp) for sixteen rays at once in one camera, on AVX-512: the
+/// rays of `DepthProxy`'s batch path whose nearest camera is the same walk its depth map
+/// together, one lane per ray, each lane stepping and narrowing the crossing as the per-ray walk
+/// does, with the same operations in the same order and no fused multiply-add. Only the walk's
+/// common course is taken here: from the first step in front of the surface to a crossing the
+/// tolerance accepts. A lane that would leave that course (the ray not in the camera's view,
+/// starting behind the surface, reaching the end of the view or the vanishing point, or a
+/// crossing the tolerance refuses: an occlusion) is handed back, and the caller walks that ray
+/// per ray from the start.
+
+#include <mpr/core/config.hpp>
+#include <mpr/lightfield/detail/depth_lanes.hpp>
+#include <mpr/lightfield/detail/depth_walk.hpp>
+
+namespace mpr::detail {
+
+#if defined(MPR_SIMD_X86)
+
+/// The walk's ray as h(s) = a + s b in homogeneous pixels of one camera, for sixteen lanes.
+struct WalkLanes16 {
+  __m512 a0, a1, a2, b0, b1, b2;
+};
+
+/// f(s) = ray depth - map depth at the ray's pixel, and the ray depth z (`depth_walk`'s f): -inf
+/// where z <= 0, the map read in the lanes of `m` only.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 walk_f16(const WalkLanes16& h, const float* d, int width, int height,
+                                                    float smooth, __m512 s, __mmask16 m, __m512& z) noexcept {
+  z = _mm512_add_ps(h.a2, mul16(s, h.b2));
+  const __mmask16 front = m & _mm512_cmp_ps_mask(z, _mm512_setzero_ps(), _CMP_GT_OQ);
+  const __m512 inv = _mm512_maskz_div_ps(front, _mm512_set1_ps(1), z);
+  const __m512 x = mul16(_mm512_add_ps(h.a0, mul16(s, h.b0)), inv);
+  const __m512 y = mul16(_mm512_add_ps(h.a1, mul16(s, h.b1)), inv);
+  const __m512 depth = depth_lookup_x16(d, width, height, x, y, smooth, front);
+  return _mm512_mask_blend_ps(front, _mm512_set1_ps(-__builtin_inff()), _mm512_sub_ps(z, depth));
+}
+
+/// (p[0] x + p[1] y) + p[2] z for each lane.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 linear_row16(const float* p, __m512 x, __m512 y, __m512 z) noexcept {
+  return _mm512_add_ps(_mm512_add_ps(mul16(_mm512_set1_ps(p[0]), x), mul16(_mm512_set1_ps(p[1]), y)),
+                       mul16(_mm512_set1_ps(p[2]), z));
+}
+
+/// `depth_walk`'s clip: keeps u + s w >= 0 in [lo, hi]; lanes where w is 0 (or NaN) and u < 0
+/// leave `live`.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void clip16(__m512 u, __m512 w, __m512& lo, __m512& hi, __mmask16& live) noexcept {
+  const __m512 zero = _mm512_setzero_ps();
+  const __m512 bound = _mm512_div_ps(neg16(u), w);
+  const __mmask16 up = _mm512_cmp_ps_mask(w, zero, _CMP_GT_OQ), down = _mm512_cmp_ps_mask(w, zero, _CMP_LT_OQ);
+  lo = _mm512_mask_max_ps(lo, up, bound, lo);
+  hi = _mm512_mask_min_ps(hi, down, bound, hi);
+  live &= static_cast<__mmask16>(~(~up & ~down & _mm512_cmp_ps_mask(u, zero, _CMP_LT_OQ)));
+}
+
+/// Keeps the lanes of `live` whose interval [lo, hi) is not empty and starts at a finite lo.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void keep_in_view16(__m512 lo, __m512 hi, __mmask16& live) noexcept {
+  live &= _mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ) &
+          _mm512_cmp_ps_mask(_mm512_abs_ps(lo), _mm512_set1_ps(__builtin_inff()), _CMP_LT_OQ);
+}
+
+/// Walks the rays `lanes` of the lanes in `walk` through camera `c`'s depth map `d` (`near` its
+/// nearest depth), from parameter `start` (-inf for the whole line, 0 for the half-line) with
+/// nothing seen free yet, as `depth_walk` does. Returns the lanes that hit the surface, with
+/// their ray parameter in `t`; the other lanes of `walk` took a turn this walk leaves to the
+/// per-ray code (see the file comment).
+template <class Camera>
+MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float near, const RayLanes& lanes,
+                                        unsigned walk, float start, float tolerance, float* t) noexcept {
+  const RayLanes16 r = load_lanes(lanes);
+  const float* P = c.P;
+  // a = P (o, 1), b = P (v, 0), each row summed as `depth_walk` sums it.
+  WalkLanes16 h;
+  h.a0 = _mm512_add_ps(linear_row16(P, r.ox, r.oy, r.oz), _mm512_set1_ps(P[3]));
+  h.a1 = _mm512_add_ps(linear_row16(P + 4, r.ox, r.oy, r.oz), _mm512_set1_ps(P[7]));
+  h.a2 = _mm512_add_ps(linear_row16(P + 8, r.ox, r.oy, r.oz), _mm512_set1_ps(P[11]));
+  h.b0 = linear_row16(P, r.vx, r.vy, r.vz);
+  h.b1 = linear_row16(P + 4, r.vx, r.vy, r.vz);
+  h.b2 = linear_row16(P + 8, r.vx, r.vy, r.vz);
+  const __m512 zero = _mm512_setzero_ps(), inf = _mm512_set1_ps(__builtin_inff());
+  // The interval of s where h projects inside the image in front of c.
+  __m512 lo = _mm512_set1_ps(start), hi = inf;
+  __mmask16 live = static_cast<__mmask16>(walk);
+  const __m512 e = _mm512_set1_ps(0.499f);
+  const __m512 W = _mm512_set1_ps(static_cast<float>(c.width) - 0.5f - 1e-3f);
+  const __m512 H = _mm512_set1_ps(static_cast<float>(c.height) - 0.5f - 1e-3f);
+  const __m512 margin = mul16(_mm512_set1_ps(1e-6f), _mm512_add_ps(_mm512_abs_ps(h.a2), _mm512_abs_ps(h.b2)));
+  clip16(_mm512_sub_ps(h.a2, margin), h.b2, lo, hi, live);
+  clip16(_mm512_add_ps(h.a0, mul16(e, h.a2)), _mm512_add_ps(h.b0, mul16(e, h.b2)), lo, hi, live);
+  clip16(_mm512_sub_ps(mul16(W, h.a2), h.a0), _mm512_sub_ps(mul16(W, h.b2), h.b0), lo, hi, live);
+  clip16(_mm512_add_ps(h.a1, mul16(e, h.a2)), _mm512_add_ps(h.b1, mul16(e, h.b2)), lo, hi, live);
+  clip16(_mm512_sub_ps(mul16(H, h.a2), h.a1), _mm512_sub_ps(mul16(H, h.b2), h.b1), lo, hi, live);
+  keep_in_view16(lo, hi, live);
+  const float tol = tolerance;
+  if (__builtin_isfinite(near)) {
+    clip16(_mm512_sub_ps(h.a2, mul16(_mm512_set1_ps(near), _mm512_set1_ps(1 - tol))), h.b2, lo, hi, live);
+    keep_in_view16(lo, hi, live);
+  }
+  // Pixels moved per unit s: m / z^2.
+  const __m512 mx = _mm512_sub_ps(mul16(h.b0, h.a2), mul16(h.a0, h.b2));
+  const __m512 my = _mm512_sub_ps(mul16(h.b1, h.a2), mul16(h.a1, h.b2));
+  const __m512 m = _mm512_maskz_sqrt_ps(0xFFFF, _mm512_add_ps(mul16(mx, mx), mul16(my, my)));
+  const float smooth = 1 + 4 * tol;
+  const int width = c.width, height = c.height;
+  __m512 s = lo, z;
+  __m512 fs = walk_f16(h, d, width, height, smooth, s, live, z);
+  live &= _mm512_cmp_ps_mask(fs, zero, _CMP_LT_OQ); // else the walk starts behind the surface
+  // Step about a pixel at a time until f >= 0 brackets the crossing in [s, next].
+  const __mmask16 bounded = _mm512_cmp_ps_mask(hi, inf, _CMP_LT_OQ);
+  const __m512 half = _mm512_set1_ps(0.5f);
+  __m512 s1 = zero, f1 = zero, z0 = zero, z1 = zero;
+  __mmask16 stepping = live, bracketed = 0;
+  for (int step = 0; stepping != 0 && step < 1 << 16; ++step) {
+    stepping &= ~_mm512_cmp_ps_mask(s, hi, _CMP_GE_OQ); // else the ray leaves the view in front of all
+    const __m512 zs = _mm512_add_ps(h.a2, mul16(s, h.b2));
+    // Unbounded rays near their vanishing point take the per-ray code.
+    const __mmask16 vanishing = ~bounded & (~_mm512_cmp_ps_mask(m, zero, _CMP_GT_OQ) |
+                                            _mm512_cmp_ps_mask(m, mul16(mul16(half, h.b2), zs), _CMP_LT_OQ));
+    stepping &= ~vanishing;
+    const __m512 ahead = _mm512_add_ps(s, _mm512_div_ps(mul16(zs, zs), m));
+    const __m512 next = _mm512_mask_blend_ps(
+        bounded, ahead,
+        _mm512_mask_blend_ps(_mm512_cmp_ps_mask(m, zero, _CMP_GT_OQ), hi, _mm512_maskz_min_ps(0xFFFF, ahead, hi)));
+    __m512 zn;
+    const __m512 fn = walk_f16(h, d, width, height, smooth, next, stepping, zn);
+    const __mmask16 found = stepping & _mm512_cmp_ps_mask(fn, zero, _CMP_GE_OQ);
+    s1 = _mm512_mask_blend_ps(found, s1, next);
+    f1 = _mm512_mask_blend_ps(found, f1, fn);
+    z0 = _mm512_mask_blend_ps(found, z0, zs);
+    z1 = _mm512_mask_blend_ps(found, z1, zn);
+    bracketed |= found;
+    stepping &= ~found;
+    s = _mm512_mask_blend_ps(stepping, s, next);
+    fs = _mm512_mask_blend_ps(stepping, fs, fn);
+  }
+  // Regula falsi (Illinois) in [s0, s1], as `depth_walk` narrows it.
+  __m512 s0 = s, f0 = fs, g0 = fs, g1 = f1;
+  const __m512 resolution = mul16(_mm512_sub_ps(s1, s0), _mm512_set1_ps(1.0f / 256));
+  const __m512 half_tol = _mm512_set1_ps(0.5f * tol);
+  __mmask16 kept_low = 0, kept_high = 0; // the last step moved s0 / s1
+  __mmask16 narrowing = bracketed;
+  for (int it = 0; narrowing != 0 && it < kDepthRefineLimit; ++it) {
+    const __mmask16 loose = _mm512_cmp_ps_mask(_mm512_sub_ps(z1, z0), mul16(half_tol, z1), _CMP_GT_OQ);
+    if (it >= kDepthRefineSteps) narrowing &= loose;
+    narrowing &= _mm512_cmp_ps_mask(_mm512_sub_ps(s1, s0), resolution, _CMP_GT_OQ) | loose;
+    if (narrowing == 0) break;
+    const __m512 gap = _mm512_sub_ps(g1, g0);
+    const __m512 centre = mul16(half, _mm512_add_ps(s0, s1));
+    __m512 mid = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(g0), gap)));
+    mid = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(gap, zero, _CMP_GT_OQ), centre, mid);
+    const __mmask16 inside = _mm512_cmp_ps_mask(mid, s0, _CMP_GT_OQ) & _mm512_cmp_ps_mask(mid, s1, _CMP_LT_OQ);
+    mid = _mm512_mask_blend_ps(inside, centre, mid);
+    __m512 zm;
+    const __m512 fm = walk_f16(h, d, width, height, smooth, mid, narrowing, zm);
+    const __mmask16 below = narrowing & _mm512_cmp_ps_mask(fm, zero, _CMP_LT_OQ);
+    const __mmask16 above = narrowing & ~below;
+    s0 = _mm512_mask_blend_ps(below, s0, mid);
+    z0 = _mm512_mask_blend_ps(below, z0, zm);
+    f0 = _mm512_mask_blend_ps(below, f0, fm);
+    g0 = _mm512_mask_blend_ps(below, g0, fm);
+    g1 = _mm512_mask_blend_ps(below & kept_low, g1, mul16(g1, half));
+    s1 = _mm512_mask_blend_ps(above, s1, mid);
+    f1 = _mm512_mask_blend_ps(above, f1, fm);
+    g1 = _mm512_mask_blend_ps(above, g1, fm);
+    z1 = _mm512_mask_blend_ps(above, z1, zm);
+    g0 = _mm512_mask_blend_ps(above & kept_high, g0, mul16(g0, half));
+    kept_low = (kept_low & ~narrowing) | below;
+    kept_high = (kept_high & ~narrowing) | above;
+  }
+  // A crossing within the tolerance is the surface; else the camera is occluded there.
+  const __m512 limit = mul16(_mm512_set1_ps(tol), z1);
+  const __mmask16 hit =
+      bracketed & _mm512_cmp_ps_mask(f1, limit, _CMP_LE_OQ) & _mm512_cmp_ps_mask(neg16(f0), limit, _CMP_LE_OQ);
+  const __m512 denom = _mm512_sub_ps(f1, f0);
+  const __m512 cross = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(f0), denom)));
+  _mm512_storeu_ps(t, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(denom, zero, _CMP_GT_OQ), s1, cross));
+  return hit;
+}
+
+#endif
+
+} // namespace mpr::detail
