@@ -68,6 +68,8 @@ def M(name, area, edits, tests, why):
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
 CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
 KER = "include/mpr/lightfield/detail/kernels.hpp"
+DWL = "include/mpr/lightfield/detail/depth_walk_lanes.hpp"
+DLN = "include/mpr/lightfield/detail/depth_lanes.hpp"
 SA_LOOP = "for (const auto& c : table.cameras())"
 
 MUTATIONS = [
@@ -151,6 +153,16 @@ MUTATIONS = [
     M("tool_reference_camera_first", "tools",
       [("tools/mpr-render/render_job.hpp", ": l.frames->size() / 2);", ": 0);")],
       ["tools"], "mpr-render views a _par.txt light field from the first camera, not the middle one"),
+    # --- DepthProxy's sixteen-lane batch path (issue 12) ---
+    M("depth_lanes_refine_coarser", "lightfield",
+      [(DWL, "_mm512_set1_ps(1.0f / 256)", "_mm512_set1_ps(1.0f / 128)")],
+      ["lightfield"], "the lanes narrow the crossing to 1/128 of a step, the per-ray walk to 1/256"),
+    M("depth_lanes_pass_forgets_skip", "lightfield",
+      [(DWL, "    skip_end = _mm512_mask_mov_ps(skip_end, skip, at);", "")],
+      ["lightfield"], "a lane passed on records no end of the stretch it saw free"),
+    M("depth_lanes_equal_cosines_by_index", "lightfield",
+      [(DLN, "(_mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_EQ_OQ) & nearer)", "0")],
+      ["lightfield"], "equal cosines kept in the order of the cameras, not of their distance"),
 ]
 
 

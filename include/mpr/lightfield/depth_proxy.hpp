@@ -13,16 +13,13 @@
 #include <mpr/core/ray.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/depth_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
-#include <mpr/lightfield/detail/depth_walk_lanes.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -30,6 +27,11 @@
 #include <type_traits>
 
 namespace mpr {
+
+namespace detail {
+template <class Px>
+struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
+} // namespace detail
 
 /// Answers a ray from the surface point the depth maps give it (see the file comment).
 ///
@@ -66,8 +68,8 @@ namespace mpr {
 /// walked. Per ray: the candidates (a linear scan up to 64 cameras, else one ball-tree query), a
 /// walk from where the ray reaches the nearest depth of the camera's map, about one pixel a step,
 /// the crossing narrowed by regula falsi (about 4 lookups), then the visibility of the candidates
-/// in order of angle until k + 1 see the point. A batch path (`sample_rays`) shares the scan and
-/// the blend's tests among sixteen rays on AVX-512.
+/// in order of angle until k + 1 see the point. A batch path (`sample_rays`) takes sixteen rays
+/// at a time on AVX-512.
 struct DepthProxy {
   /// Cameras farther than this from the ray line (world units, positive) are neither walked nor
   /// blended. About twice the camera spacing suits planar arrays.
@@ -118,17 +120,20 @@ struct DepthProxy {
   }
 
   /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On AVX-512,
-  /// for float tables of at most 64 undistorted cameras and k < 8, sixteen rays at a time: one
-  /// scan of the camera centres for all sixteen, and the blend's visibility tests, angles and
-  /// choice of the k + 1 best cameras in the lanes of a register (the surface walk stays per
-  /// ray). Elsewhere, `sample` per ray.
+  /// for float tables of at most 64 undistorted cameras, maps at least 2 pixels wide and k < 8:
+  /// sixteen rays at a time (detail/depth_proxy_lanes.hpp), one lane per ray, for the scan of
+  /// the camera centres, the walk through each ray's nearest camera and the blend's choice of
+  /// cameras; bit for bit the per-ray answer where the per-ray code is built without fused
+  /// multiply-adds (no -march/-mfma), else up to decisions at a threshold that the rounding of
+  /// a fused product moves (a few pixels in a million). Elsewhere, `sample` per ray.
   template <std::floating_point T, class Px>
   void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
 #if defined(MPR_SIMD_X86)
     if constexpr (std::is_same_v<T, float>) {
-      if (detail::simd_level() == detail::SimdLevel::avx512 && lanes_apply(table)) {
+      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
         for (std::size_t s = 0; s < rays.size(); s += 16)
-          sample16(table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
+          detail::DepthProxyLanes<Px>::sample16(
+              *this, table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
         return;
       }
     }
@@ -148,6 +153,9 @@ struct DepthProxy {
   }
 
 private:
+  template <class Px>
+  friend struct detail::DepthProxyLanes;
+
   static constexpr int kMaxCandidates = 64;
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
@@ -208,9 +216,17 @@ private:
                                          bool& escaped) const noexcept {
     const T inf = std::numeric_limits<T>::infinity();
     detail::DepthSearch<T> search{whole_line ? -inf : T(0), inf, inf};
+    return surface(table, ray, c, 0, search, escaped);
+  }
+
+  // The surface search from candidate `from` on (the ones before it walked, all undistorted),
+  // with the search where their walks left it.
+  template <std::floating_point T, class Px>
+  [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray, const Candidates<T>& c,
+                                         int from, detail::DepthSearch<T> search, bool& escaped) const noexcept {
     T& t = search.t;
-    int walked = 0;
-    for (int j = 0; j < c.count && walked < march_cameras; ++j) {
+    int walked = from;
+    for (int j = from; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
       if (table.camera(i).distorted) continue;
       ++walked;
@@ -224,138 +240,6 @@ private:
     }
     return std::nullopt;
   }
-
-#if defined(MPR_SIMD_X86)
-  // Whether the sixteen-lane path answers for this table (see `sample_rays`).
-  template <class Px>
-  [[nodiscard]] bool lanes_apply(const FrameTable<float, Px>& table) const noexcept {
-    if (table.size() > kScanCameras || k + 1 > detail::kDepthLaneSlots) return false;
-    for (const auto& cam : table.cameras())
-      if (cam.distorted || static_cast<long long>(cam.width) * cam.height >= (1ll << 31)) return false;
-    return true;
-  }
-
-  // Up to sixteen rays (see `sample_rays`). The steps across the lanes are AVX-512 kernels
-  // (detail/depth_lanes.hpp); the walks and the weighing stay per ray here, compiled as the
-  // per-ray path is, so that both round alike.
-  template <class Px>
-  void sample16(const FrameTable<float, Px>& table, std::span<const Ray<float>> rays, Color* out) const noexcept {
-    using T = float;
-    const int n = static_cast<int>(rays.size());
-    detail::RayLanes r;
-    unsigned valid = 0;
-    for (int l = 0; l < 16; ++l) {
-      const Ray<T>& ray = rays[static_cast<std::size_t>(std::min(l, n - 1))];
-      const T dd = ray.direction.squaredNorm();
-      if (l < n && dd > 0 && std::isfinite(dd)) valid |= 1u << l;
-      r.ox[l] = ray.origin.x();
-      r.oy[l] = ray.origin.y();
-      r.oz[l] = ray.origin.z();
-      r.vx[l] = ray.direction.x();
-      r.vy[l] = ray.direction.y();
-      r.vz[l] = ray.direction.z();
-      r.inverse_length2[l] = T(1) / dd;
-      r.length[l] = ray.direction.norm();
-    }
-    // The candidates: every camera against the sixteen ray lines at once. Each lane's nearest
-    // is its first walk; its whole list, sorted as `collect` sorts it, is only needed when that
-    // walk does not find the surface.
-    alignas(64) T distance[kScanCameras][16];
-    std::uint16_t near[kScanCameras];
-    alignas(64) int first[16];
-    const std::size_t cameras = table.size();
-    detail::scan_cameras16(table, r, static_cast<T>(radius) * static_cast<T>(radius), valid, near, distance, first);
-    unsigned alone = 0, walking = 0; // lanes with no camera within the radius, lanes that walk
-    for (int l = 0; l < n; ++l) {
-      if (first[l] < 0) {
-        const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
-        first[l] = table.index().nearest(ray.origin, ray.direction);
-        alone |= 1u << l;
-        if (first[l] < 0) continue;
-        const std::size_t i = static_cast<std::size_t>(first[l]);
-        near[i] = static_cast<std::uint16_t>(near[i] | 1u << l); // blended as well
-        distance[i][l] = 0;
-      }
-      walking |= 1u << l;
-    }
-    const auto candidates = [&](int l, Candidates<T>& cl) {
-      if (alone >> l & 1u) {
-        cl.count = first[l] < 0 ? 0 : 1;
-        cl.index[0] = first[l];
-        cl.distance[0] = 0;
-        return;
-      }
-      cl.count = 0;
-      for (std::size_t i = 0; i < cameras; ++i) {
-        if (!(near[i] >> l & 1u)) continue;
-        const T d = distance[i][l];
-        int at = cl.count++;
-        for (; at > 0 && d < cl.distance[at - 1]; --at) {
-          cl.index[at] = cl.index[at - 1];
-          cl.distance[at] = cl.distance[at - 1];
-        }
-        cl.index[at] = static_cast<int>(i);
-        cl.distance[at] = d;
-      }
-    };
-    // The surface point of each ray: the rays that share their nearest camera walk its map
-    // together; a ray whose walk there takes another turn than a hit walks again per ray.
-    alignas(64) T point[3][16] = {};
-    unsigned blended = 0;
-    bool escaped[16] = {};
-    alignas(64) T hit_t[16];
-    unsigned hit = 0;
-    while (walking != 0) {
-      const int camera = first[__builtin_ctz(walking)];
-      unsigned group = 0;
-      for (unsigned m = walking; m != 0; m &= m - 1)
-        if (first[__builtin_ctz(m)] == camera) group |= 1u << __builtin_ctz(m);
-      walking &= ~group;
-      alignas(64) T t[16];
-      const std::size_t i = static_cast<std::size_t>(camera);
-      const unsigned found =
-          detail::walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group,
-                               whole_line ? -std::numeric_limits<T>::infinity() : T(0), static_cast<T>(tolerance), t);
-      for (unsigned m = found; m != 0; m &= m - 1) hit_t[__builtin_ctz(m)] = t[__builtin_ctz(m)];
-      hit |= found;
-    }
-    for (int l = 0; l < n; ++l) {
-      const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
-      std::optional<T> t;
-      if (hit >> l & 1u) {
-        t = hit_t[l];
-      } else {
-        Candidates<T> c;
-        candidates(l, c);
-        t = surface(table, ray, c, escaped[l]);
-      }
-      const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
-      for (int j = 0; j < 3; ++j) point[j][l] = X[j];
-      if (!escaped[l]) blended |= 1u << l;
-    }
-    // The blend: the k + 1 cameras that see each point with the smallest angles, chosen across
-    // the lanes, then weighed per ray.
-    const int slots = k + 1;
-    detail::LaneChoice best;
-    detail::choose_cameras16(table, r, point, distance, near, blended, slots, static_cast<T>(tolerance), best);
-    for (int l = 0; l < n; ++l) {
-      if (escaped[l]) {
-        out[l] = table.config().background;
-        continue;
-      }
-      T penalty[detail::kDepthLaneSlots];
-      int count = 0;
-      for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = std::acos(best.cosine[count][l]);
-      if (count == 0) {
-        out[l] = table.camera_color(first[l], Vec3<T>(point[0][l], point[1][l], point[2][l]));
-        continue;
-      }
-      out[l] = weigh(table, penalty, count, [&](int j) {
-        return Seen<T>{best.camera[j][l], best.x[j][l], best.y[j][l]};
-      });
-    }
-  }
-#endif
 
   template <std::floating_point T>
   struct Seen {
@@ -431,3 +315,5 @@ private:
 };
 
 } // namespace mpr
+
+#include <mpr/lightfield/detail/depth_proxy_lanes.hpp>

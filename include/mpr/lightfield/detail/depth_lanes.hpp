@@ -124,12 +124,14 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 depth_lookup_x16(const float* d, int 
   return _mm512_mask_blend_ps(even, nearest, bilinear);
 }
 
-/// The cameras each lane keeps, best first: cosine of the angle to the ray (descending; -inf in
-/// an empty slot; equal cosines by increasing distance of the camera from the ray line, then
-/// by camera), the camera, its distance and its pixel (x, y) there.
+/// The cameras each lane keeps, best first, in the order in which `DepthProxy::blend` tries
+/// them (see `slot_before`): cosine of the angle to the ray, clamped to 1 (-inf in an empty
+/// slot), whether the cosine as computed exceeded 1 (`over`), the camera (-1: empty), its
+/// distance from the ray line and its pixel (x, y).
 struct LaneSlots16 {
   __m512 cosine[kDepthLaneSlots], distance[kDepthLaneSlots], x[kDepthLaneSlots], y[kDepthLaneSlots];
   __m512i camera[kDepthLaneSlots];
+  __mmask16 over[kDepthLaneSlots];
 };
 
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void clear_slots(LaneSlots16& s, int slots) noexcept {
@@ -137,34 +139,54 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void clear_slots(LaneSlots16& s, int slots) 
     s.cosine[j] = _mm512_set1_ps(-__builtin_inff());
     s.distance[j] = s.x[j] = s.y[j] = _mm512_setzero_ps();
     s.camera[j] = _mm512_set1_epi32(-1);
+    s.over[j] = 0;
   }
 }
 
-/// Inserts camera `camera` (greater than every camera inserted before) with cosines `cs`,
-/// distances `d` and pixels (x, y) into the lanes of `m`, keeping the first `slots` in the
-/// order of `LaneSlots16`: the order in which `DepthProxy::blend` tries its candidates.
-MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void insert_slots(LaneSlots16& s, int slots, __mmask16 m, __m512 cs, __m512 d,
-                                                      int camera, __m512 x, __m512 y) noexcept {
+/// The lanes where a camera with cosine `cs` (clamped), `over`, distance `d` and index `camera`
+/// goes before the one in slot j. `blend` sorts its candidates, taken by increasing (distance,
+/// index), by insertion, comparing each new cosine as computed with the clamped ones kept: so
+/// cosines above 1 come first, the later candidate first among them, then the others by
+/// decreasing cosine, the earlier candidate first among equals. This is that order.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __mmask16 slot_before(const LaneSlots16& s, int j, __m512 cs, __mmask16 over,
+                                                          __m512 d, __m512i camera) noexcept {
+  const __mmask16 nearer =
+      _mm512_cmp_ps_mask(d, s.distance[j], _CMP_LT_OQ) |
+      (_mm512_cmp_ps_mask(d, s.distance[j], _CMP_EQ_OQ) & _mm512_cmp_epi32_mask(camera, s.camera[j], _MM_CMPINT_LT));
+  const __mmask16 farther =
+      _mm512_cmp_ps_mask(d, s.distance[j], _CMP_GT_OQ) |
+      (_mm512_cmp_ps_mask(d, s.distance[j], _CMP_EQ_OQ) & _mm512_cmp_epi32_mask(camera, s.camera[j], _MM_CMPINT_GT));
+  const __mmask16 larger =
+      _mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_GT_OQ) | (_mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_EQ_OQ) & nearer);
+  const __mmask16 y = s.over[j];
+  return static_cast<__mmask16>((over & y & farther) | (over & ~y) | (~over & ~y & larger));
+}
+
+/// Inserts camera `camera` with cosines `cs` (clamped to 1; `over`: the lanes where it was
+/// above), distances `d` and pixels (x, y) into the lanes of `m`, keeping the first `slots` in
+/// the order of `slot_before`.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void insert_slots(LaneSlots16& s, int slots, __mmask16 m, __m512 cs, __mmask16 over,
+                                                      __m512 d, int camera, __m512 x, __m512 y) noexcept {
   __m512i cam = _mm512_set1_epi32(camera);
   __mmask16 shifting = 0; // lanes that placed their entry: the rest moves down one slot
   for (int j = 0; j < slots && m != 0; ++j) {
-    const __mmask16 before =
-        _mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_GT_OQ) |
-        (_mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_EQ_OQ) & _mm512_cmp_ps_mask(d, s.distance[j], _CMP_LT_OQ));
-    const __mmask16 swap = m & (shifting | before);
+    const __mmask16 swap = m & (shifting | slot_before(s, j, cs, over, d, cam));
     shifting |= swap;
     const __m512 c0 = s.cosine[j], d0 = s.distance[j], x0 = s.x[j], y0 = s.y[j];
     const __m512i k0 = s.camera[j];
+    const __mmask16 o0 = s.over[j];
     s.cosine[j] = _mm512_mask_blend_ps(swap, c0, cs);
     s.distance[j] = _mm512_mask_blend_ps(swap, d0, d);
     s.x[j] = _mm512_mask_blend_ps(swap, x0, x);
     s.y[j] = _mm512_mask_blend_ps(swap, y0, y);
     s.camera[j] = _mm512_mask_blend_epi32(swap, k0, cam);
+    s.over[j] = static_cast<__mmask16>((o0 & ~swap) | (over & swap));
     cs = _mm512_mask_blend_ps(swap, cs, c0);
     d = _mm512_mask_blend_ps(swap, d, d0);
     x = _mm512_mask_blend_ps(swap, x, x0);
     y = _mm512_mask_blend_ps(swap, y, y0);
     cam = _mm512_mask_blend_epi32(swap, cam, k0);
+    over = static_cast<__mmask16>((over & ~swap) | (o0 & swap));
     // A lane whose displaced entry was empty is done.
     m &= ~(swap & _mm512_cmp_epi32_mask(cam, _mm512_set1_epi32(-1), _MM_CMPINT_EQ));
   }
@@ -218,9 +240,21 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
   const float smooth = 1 + 4 * tolerance;
   const __m512 keep = _mm512_set1_ps(1 - tolerance), zero = _mm512_setzero_ps(), edge = _mm512_set1_ps(-0.5f);
   const __m512 inf = _mm512_set1_ps(__builtin_inff()), one = _mm512_set1_ps(1);
-  for (std::size_t i = 0; i < table.size(); ++i) {
+  // The cameras any lane has, nearest to the first blended lane's ray first: tried in that
+  // order, the lanes fill their slots with the best cameras early, and a camera that cannot
+  // enter a lane's full slots is not projected for it.
+  int order[64];
+  int cameras = 0;
+  const int reference = blended != 0 ? __builtin_ctz(blended) : 0;
+  for (std::size_t i = 0; i < table.size() && cameras < 64; ++i) {
+    if ((near[i] & blended) == 0) continue;
+    int at = cameras++;
+    for (; at > 0 && distance[i][reference] < distance[order[at - 1]][reference]; --at) order[at] = order[at - 1];
+    order[at] = static_cast<int>(i);
+  }
+  for (int o = 0; o < cameras; ++o) {
+    const std::size_t i = static_cast<std::size_t>(order[o]);
     __mmask16 m = static_cast<__mmask16>(near[i] & blended);
-    if (m == 0) continue;
     const auto& cam = table.camera(i);
     // The cosine of the angle between X - centre and the ray, as `blend` computes it.
     const __m512 tx = _mm512_sub_ps(X, _mm512_set1_ps(cam.centre.x()));
@@ -228,8 +262,16 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
     const __m512 tz = _mm512_sub_ps(Z, _mm512_set1_ps(cam.centre.z()));
     const __m512 dot = sum3(mul16(tx, r.vx), mul16(ty, r.vy), mul16(tz, r.vz));
     const __m512 norm = _mm512_maskz_sqrt_ps(0xFFFF, sum3(mul16(tx, tx), mul16(ty, ty), mul16(tz, tz)));
-    const __m512 cs = _mm512_div_ps(dot, mul16(norm, r.length));
-    m &= _mm512_cmp_ps_mask(cs, zero, _CMP_GT_OQ);
+    const __m512 raw = _mm512_div_ps(dot, mul16(norm, r.length));
+    m &= _mm512_cmp_ps_mask(raw, zero, _CMP_GT_OQ);
+    const __m512 cs = _mm512_maskz_min_ps(0xFFFF, raw, one);
+    const __mmask16 over = _mm512_cmp_ps_mask(raw, one, _CMP_GT_OQ);
+    const __m512 d = _mm512_load_ps(distance[i]);
+    const __m512i index = _mm512_set1_epi32(static_cast<int>(i));
+    // Lanes whose slots are full of cameras that go before this one do not need it.
+    m &= static_cast<__mmask16>(_mm512_cmp_epi32_mask(best.camera[slots - 1], _mm512_set1_epi32(-1), _MM_CMPINT_EQ) |
+                                slot_before(best, slots - 1, cs, over, d, index));
+    if (m == 0) continue;
     // `FrameTable::project`: in front, finite, inside the image.
     const float* P = cam.P;
     const __m512 w = project_row16(P + 8, X, Y, Z);
@@ -245,8 +287,7 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
     // Visible unless the map shows something nearer by more than the tolerance.
     const __m512 depth = depth_lookup_x16(table.frames().depth(i).data(), cam.width, cam.height, x, y, smooth, m);
     m &= _mm512_cmp_ps_mask(depth, mul16(w, keep), _CMP_NLT_UQ);
-    insert_slots(best, slots, m, _mm512_maskz_min_ps(0xFFFF, cs, one), _mm512_load_ps(distance[i]), static_cast<int>(i),
-                 x, y);
+    insert_slots(best, slots, m, cs, over, d, static_cast<int>(i), x, y);
   }
   for (int j = 0; j < slots; ++j) {
     _mm512_store_ps(out.cosine[j], best.cosine[j]);

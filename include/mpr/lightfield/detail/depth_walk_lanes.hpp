@@ -3,12 +3,10 @@
 /// `depth_walk` (detail/depth_walk.hpp) for sixteen rays at once in one camera, on AVX-512: the
 /// rays of `DepthProxy`'s batch path whose nearest camera is the same walk its depth map
 /// together, one lane per ray, each lane stepping and narrowing the crossing as the per-ray walk
-/// does, with the same operations in the same order and no fused multiply-add. Only the walk's
-/// common course is taken here: from the first step in front of the surface to a crossing the
-/// tolerance accepts. A lane that would leave that course (the ray not in the camera's view,
-/// starting behind the surface, reaching the end of the view or the vanishing point, or a
-/// crossing the tolerance refuses: an occlusion) is handed back, and the caller walks that ray
-/// per ray from the start.
+/// does, with the same operations in the same order and no fused multiply-add, and ending as it
+/// ends: on the surface, escaped, or passed on to the next camera with the search where the
+/// per-ray walk leaves it (the caller walks the next cameras per ray). Only the first camera of
+/// a search: nothing seen free yet.
 
 #include <mpr/core/config.hpp>
 #include <mpr/lightfield/detail/depth_lanes.hpp>
@@ -59,14 +57,37 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void keep_in_view16(__m512 lo, __m512 hi, __
           _mm512_cmp_ps_mask(_mm512_abs_ps(lo), _mm512_set1_ps(__builtin_inff()), _CMP_LT_OQ);
 }
 
+/// The search of sixteen walks (`DepthSearch` per lane) in their first camera, which sees each
+/// ray from `view` on (`gap`: the lanes where that lies beyond the search's t).
+struct SearchLanes16 {
+  __m512 t, skip_begin, skip_end, view;
+  __mmask16 gap;
+
+  /// `depth_walk`'s pass(at) for the lanes of m, nothing seen free before: the search moves on
+  /// to `at`, or, where the camera does not see the ray at t, records [view, at) as seen free.
+  MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void pass(__mmask16 m, __m512 at) noexcept {
+    const __mmask16 moved = m & ~gap;
+    const __mmask16 skip = m & gap & _mm512_cmp_ps_mask(view, at, _CMP_LT_OQ);
+    t = _mm512_mask_mov_ps(t, moved, at);
+    skip_begin = _mm512_mask_mov_ps(skip_begin, skip, view);
+    skip_end = _mm512_mask_mov_ps(skip_end, skip, at);
+  }
+};
+
+/// How the walks of `walk_lanes16` ended, lane by lane: `hit` (t: the surface), `escaped` (the
+/// ray runs to its vanishing point in front of everything the camera sees), `passed` (t,
+/// skip_begin, skip_end: the search's `DepthSearch` after this camera, for the next).
+struct WalkLanesResult {
+  unsigned hit = 0, escaped = 0, passed = 0;
+  alignas(64) float t[16], skip_begin[16], skip_end[16];
+};
+
 /// Walks the rays `lanes` of the lanes in `walk` through camera `c`'s depth map `d` (`near` its
-/// nearest depth), from parameter `start` (-inf for the whole line, 0 for the half-line) with
-/// nothing seen free yet, as `depth_walk` does. Returns the lanes that hit the surface, with
-/// their ray parameter in `t`; the other lanes of `walk` took a turn this walk leaves to the
-/// per-ray code (see the file comment).
+/// nearest depth), from the search {start, +inf, +inf} (start -inf for the whole line, 0 for the
+/// half-line), exactly as `depth_walk` does (see the file comment), and says how each walk ended.
 template <class Camera>
-MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float near, const RayLanes& lanes,
-                                        unsigned walk, float start, float tolerance, float* t) noexcept {
+MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near, const RayLanes& lanes, unsigned walk,
+                                    float start, float tolerance, WalkLanesResult& out) noexcept {
   const RayLanes16 r = load_lanes(lanes);
   const float* P = c.P;
   // a = P (o, 1), b = P (v, 0), each row summed as `depth_walk` sums it.
@@ -78,8 +99,10 @@ MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float n
   h.b1 = linear_row16(P + 4, r.vx, r.vy, r.vz);
   h.b2 = linear_row16(P + 8, r.vx, r.vy, r.vz);
   const __m512 zero = _mm512_setzero_ps(), inf = _mm512_set1_ps(__builtin_inff());
+  const __m512 t0 = _mm512_set1_ps(start);
+  __mmask16 hit = 0, escaped = 0;
   // The interval of s where h projects inside the image in front of c.
-  __m512 lo = _mm512_set1_ps(start), hi = inf;
+  __m512 lo = t0, hi = inf;
   __mmask16 live = static_cast<__mmask16>(walk);
   const __m512 e = _mm512_set1_ps(0.499f);
   const __m512 W = _mm512_set1_ps(static_cast<float>(c.width) - 0.5f - 1e-3f);
@@ -90,33 +113,66 @@ MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float n
   clip16(_mm512_sub_ps(mul16(W, h.a2), h.a0), _mm512_sub_ps(mul16(W, h.b2), h.b0), lo, hi, live);
   clip16(_mm512_add_ps(h.a1, mul16(e, h.a2)), _mm512_add_ps(h.b1, mul16(e, h.b2)), lo, hi, live);
   clip16(_mm512_sub_ps(mul16(H, h.a2), h.a1), _mm512_sub_ps(mul16(H, h.b2), h.b1), lo, hi, live);
-  keep_in_view16(lo, hi, live);
+  keep_in_view16(lo, hi, live); // the others pass with the search unchanged
+  const __m512 leave = hi, view = lo;
+  const __mmask16 gap = _mm512_cmp_ps_mask(lo, t0, _CMP_GT_OQ); // c sees the ray only from beyond t
+  SearchLanes16 search{t0, inf, inf, view, gap};
   const float tol = tolerance;
   if (__builtin_isfinite(near)) {
+    const __mmask16 before = live;
     clip16(_mm512_sub_ps(h.a2, mul16(_mm512_set1_ps(near), _mm512_set1_ps(1 - tol))), h.b2, lo, hi, live);
     keep_in_view16(lo, hi, live);
+    // In front of all c sees wherever c sees the ray.
+    search.pass(before & ~live, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(leave, inf, _CMP_LT_OQ), t0, leave));
   }
   // Pixels moved per unit s: m / z^2.
   const __m512 mx = _mm512_sub_ps(mul16(h.b0, h.a2), mul16(h.a0, h.b2));
   const __m512 my = _mm512_sub_ps(mul16(h.b1, h.a2), mul16(h.a1, h.b2));
   const __m512 m = _mm512_maskz_sqrt_ps(0xFFFF, _mm512_add_ps(mul16(mx, mx), mul16(my, my)));
   const float smooth = 1 + 4 * tol;
+  const __m512 tolerance16 = _mm512_set1_ps(tol);
   const int width = c.width, height = c.height;
   __m512 s = lo, z;
   __m512 fs = walk_f16(h, d, width, height, smooth, s, live, z);
-  live &= _mm512_cmp_ps_mask(fs, zero, _CMP_LT_OQ); // else the walk starts behind the surface
+  {
+    // Starting at or behind the surface c sees: the surface itself within the tolerance, else
+    // c is occluded from there.
+    const __mmask16 behind = live & ~_mm512_cmp_ps_mask(fs, zero, _CMP_LT_OQ);
+    const __mmask16 on = behind & _mm512_cmp_ps_mask(fs, mul16(tolerance16, z), _CMP_LE_OQ);
+    hit |= on;
+    search.t = _mm512_mask_mov_ps(search.t, on, s);
+    search.pass(behind & ~on, s);
+    live &= ~behind;
+  }
   // Step about a pixel at a time until f >= 0 brackets the crossing in [s, next].
   const __mmask16 bounded = _mm512_cmp_ps_mask(hi, inf, _CMP_LT_OQ);
   const __m512 half = _mm512_set1_ps(0.5f);
+  // Where a walk stops without a bracket: the end of the view, or where it stood.
   __m512 s1 = zero, f1 = zero, z0 = zero, z1 = zero;
   __mmask16 stepping = live, bracketed = 0;
   for (int step = 0; stepping != 0 && step < 1 << 16; ++step) {
-    stepping &= ~_mm512_cmp_ps_mask(s, hi, _CMP_GE_OQ); // else the ray leaves the view in front of all
+    const __mmask16 out_of_view = stepping & _mm512_cmp_ps_mask(s, hi, _CMP_GE_OQ);
+    search.pass(out_of_view, _mm512_mask_blend_ps(bounded, s, leave));
+    stepping &= ~out_of_view;
     const __m512 zs = _mm512_add_ps(h.a2, mul16(s, h.b2));
-    // Unbounded rays near their vanishing point take the per-ray code.
-    const __mmask16 vanishing = ~bounded & (~_mm512_cmp_ps_mask(m, zero, _CMP_GT_OQ) |
-                                            _mm512_cmp_ps_mask(m, mul16(mul16(half, h.b2), zs), _CMP_LT_OQ));
-    stepping &= ~vanishing;
+    // Toward the vanishing point, within half a pixel of it: the surface there (if any) is hit
+    // where the depths agree; a map that shows nothing there lets the ray escape.
+    const __mmask16 vanishing =
+        stepping & ~bounded &
+        (~_mm512_cmp_ps_mask(m, zero, _CMP_GT_OQ) | _mm512_cmp_ps_mask(m, mul16(mul16(half, h.b2), zs), _CMP_LT_OQ));
+    if (vanishing != 0) {
+      const __m512 dv = _mm512_sub_ps(zs, fs); // the map's depth at s (zv = zs, fv = fs)
+      const __mmask16 finite = _mm512_cmp_ps_mask(_mm512_abs_ps(dv), inf, _CMP_LT_OQ);
+      const __mmask16 there =
+          vanishing & finite & _mm512_cmp_ps_mask(dv, zs, _CMP_GT_OQ) & _mm512_cmp_ps_mask(h.b2, zero, _CMP_GT_OQ);
+      const __mmask16 away = vanishing & ~there & _mm512_cmp_ps_mask(zs, zero, _CMP_GT_OQ) &
+                             _mm512_cmp_ps_mask(_mm512_abs_ps(dv), inf, _CMP_EQ_OQ);
+      hit |= there;
+      search.t = _mm512_mask_mov_ps(search.t, there, _mm512_div_ps(_mm512_sub_ps(dv, h.a2), h.b2));
+      escaped |= away;
+      search.pass(vanishing & ~there & ~away, s);
+      stepping &= ~vanishing;
+    }
     const __m512 ahead = _mm512_add_ps(s, _mm512_div_ps(mul16(zs, zs), m));
     const __m512 next = _mm512_mask_blend_ps(
         bounded, ahead,
@@ -133,6 +189,7 @@ MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float n
     s = _mm512_mask_blend_ps(stepping, s, next);
     fs = _mm512_mask_blend_ps(stepping, fs, fn);
   }
+  search.pass(stepping, _mm512_mask_blend_ps(bounded, s, leave)); // out of steps
   // Regula falsi (Illinois) in [s0, s1], as `depth_walk` narrows it.
   __m512 s0 = s, f0 = fs, g0 = fs, g1 = f1;
   const __m512 resolution = mul16(_mm512_sub_ps(s1, s0), _mm512_set1_ps(1.0f / 256));
@@ -144,10 +201,10 @@ MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float n
     if (it >= kDepthRefineSteps) narrowing &= loose;
     narrowing &= _mm512_cmp_ps_mask(_mm512_sub_ps(s1, s0), resolution, _CMP_GT_OQ) | loose;
     if (narrowing == 0) break;
-    const __m512 gap = _mm512_sub_ps(g1, g0);
+    const __m512 width_g = _mm512_sub_ps(g1, g0);
     const __m512 centre = mul16(half, _mm512_add_ps(s0, s1));
-    __m512 mid = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(g0), gap)));
-    mid = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(gap, zero, _CMP_GT_OQ), centre, mid);
+    __m512 mid = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(g0), width_g)));
+    mid = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(width_g, zero, _CMP_GT_OQ), centre, mid);
     const __mmask16 inside = _mm512_cmp_ps_mask(mid, s0, _CMP_GT_OQ) & _mm512_cmp_ps_mask(mid, s1, _CMP_LT_OQ);
     mid = _mm512_mask_blend_ps(inside, centre, mid);
     __m512 zm;
@@ -167,14 +224,22 @@ MPR_TARGET_AVX512 unsigned walk_lanes16(const Camera& c, const float* d, float n
     kept_low = (kept_low & ~narrowing) | below;
     kept_high = (kept_high & ~narrowing) | above;
   }
-  // A crossing within the tolerance is the surface; else the camera is occluded there.
-  const __m512 limit = mul16(_mm512_set1_ps(tol), z1);
-  const __mmask16 hit =
+  // A crossing within the tolerance is the surface; else c is occluded from s0 on.
+  const __m512 limit = mul16(tolerance16, z1);
+  const __mmask16 crossed =
       bracketed & _mm512_cmp_ps_mask(f1, limit, _CMP_LE_OQ) & _mm512_cmp_ps_mask(neg16(f0), limit, _CMP_LE_OQ);
   const __m512 denom = _mm512_sub_ps(f1, f0);
   const __m512 cross = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(f0), denom)));
-  _mm512_storeu_ps(t, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(denom, zero, _CMP_GT_OQ), s1, cross));
-  return hit;
+  search.t = _mm512_mask_mov_ps(search.t, crossed,
+                                _mm512_mask_blend_ps(_mm512_cmp_ps_mask(denom, zero, _CMP_GT_OQ), s1, cross));
+  search.pass(bracketed & ~crossed, s0);
+  hit |= crossed;
+  out.hit = hit;
+  out.escaped = escaped;
+  out.passed = walk & ~(hit | escaped);
+  _mm512_store_ps(out.t, search.t);
+  _mm512_store_ps(out.skip_begin, search.skip_begin);
+  _mm512_store_ps(out.skip_end, search.skip_end);
 }
 
 #endif

@@ -1,0 +1,194 @@
+#pragma once
+/// \file
+/// `DepthProxy`'s batch path (lightfield/depth_proxy.hpp): sixteen rays at a time, one per lane
+/// of the AVX-512 kernels of detail/depth_lanes.hpp and detail/depth_walk_lanes.hpp. The scan of
+/// the camera centres gives each ray its candidates and its nearest camera; the rays that share
+/// a nearest camera walk its depth map together, and the rays that camera does not settle go on
+/// per ray from where it left them; the blend's visibility tests, angles and choice of the k + 1
+/// best cameras run across the lanes, and the weighing per ray. Included by depth_proxy.hpp.
+
+#include <mpr/core/color.hpp>
+#include <mpr/core/ray.hpp>
+#include <mpr/core/vec.hpp>
+#include <mpr/lightfield/depth_proxy.hpp>
+#include <mpr/lightfield/detail/depth_lanes.hpp>
+#include <mpr/lightfield/detail/depth_walk.hpp>
+#include <mpr/lightfield/detail/depth_walk_lanes.hpp>
+#include <mpr/lightfield/frame_table.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+
+namespace mpr::detail {
+
+#if defined(MPR_SIMD_X86)
+
+/// The sixteen-lane steps of `DepthProxy::sample_rays` for tables of texel type `Px` (a friend
+/// of `DepthProxy`).
+template <class Px>
+struct DepthProxyLanes {
+  /// Whether the sixteen-lane path answers for `p` over `table` (see `DepthProxy::sample_rays`).
+  [[nodiscard]] static bool applies(const DepthProxy& p, const FrameTable<float, Px>& table) noexcept {
+    if (table.size() > DepthProxy::kScanCameras || p.k + 1 > kDepthLaneSlots) return false;
+    for (const auto& cam : table.cameras())
+      if (cam.distorted || static_cast<long long>(cam.width) * cam.height >= (1ll << 31)) return false;
+    return true;
+  }
+
+  /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays. The steps across the lanes are
+  /// AVX-512 kernels (detail/depth_lanes.hpp, detail/depth_walk_lanes.hpp); the rest stays per
+  /// ray here, compiled as the per-ray path is, so that both round alike.
+  static void sample16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                       Color* out) noexcept {
+    using T = float;
+    const int n = static_cast<int>(rays.size());
+    RayLanes r;
+    unsigned valid = 0;
+    for (int l = 0; l < 16; ++l) {
+      const Ray<T>& ray = rays[static_cast<std::size_t>(std::min(l, n - 1))];
+      const T dd = ray.direction.squaredNorm();
+      if (l < n && dd > 0 && std::isfinite(dd)) valid |= 1u << l;
+      r.ox[l] = ray.origin.x();
+      r.oy[l] = ray.origin.y();
+      r.oz[l] = ray.origin.z();
+      r.vx[l] = ray.direction.x();
+      r.vy[l] = ray.direction.y();
+      r.vz[l] = ray.direction.z();
+      r.inverse_length2[l] = T(1) / dd;
+      r.length[l] = ray.direction.norm();
+    }
+    // The candidates: every camera against the sixteen ray lines at once. Each lane's nearest
+    // is its first walk; its whole list, sorted as `collect` sorts it, is only needed when that
+    // walk does not find the surface.
+    alignas(64) T distance[DepthProxy::kScanCameras][16];
+    std::uint16_t near[DepthProxy::kScanCameras];
+    alignas(64) int first[16];
+    const std::size_t cameras = table.size();
+    scan_cameras16(table, r, static_cast<T>(p.radius) * static_cast<T>(p.radius), valid, near, distance, first);
+    unsigned alone = 0, walking = 0; // lanes with no camera within the radius, lanes that walk
+    for (int l = 0; l < n; ++l) {
+      if (first[l] < 0) {
+        const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
+        first[l] = table.index().nearest(ray.origin, ray.direction);
+        alone |= 1u << l;
+        if (first[l] < 0) continue;
+        const std::size_t i = static_cast<std::size_t>(first[l]);
+        near[i] = static_cast<std::uint16_t>(near[i] | 1u << l); // blended as well
+        distance[i][l] = 0;
+      }
+      walking |= 1u << l;
+    }
+    const auto candidates = [&](int l, DepthProxy::Candidates<T>& cl) {
+      if (alone >> l & 1u) {
+        cl.count = first[l] < 0 ? 0 : 1;
+        cl.index[0] = first[l];
+        cl.distance[0] = 0;
+        return;
+      }
+      cl.count = 0;
+      for (std::size_t i = 0; i < cameras; ++i) {
+        if (!(near[i] >> l & 1u)) continue;
+        const T d = distance[i][l];
+        int at = cl.count++;
+        for (; at > 0 && d < cl.distance[at - 1]; --at) {
+          cl.index[at] = cl.index[at - 1];
+          cl.distance[at] = cl.distance[at - 1];
+        }
+        cl.index[at] = static_cast<int>(i);
+        cl.distance[at] = d;
+      }
+    };
+    // The surface point of each ray: the rays that share their nearest camera walk its map
+    // together; where that camera does not settle it, the search goes on per ray from there.
+    alignas(64) T point[3][16] = {};
+    unsigned blended = 0;
+    bool escaped[16] = {};
+    alignas(64) T hit_t[16], skip_begin[16], skip_end[16];
+    unsigned hit = 0, passed = 0;
+    while (walking != 0) {
+      const int camera = first[__builtin_ctz(walking)];
+      unsigned group = 0;
+      for (unsigned m = walking; m != 0; m &= m - 1)
+        if (first[__builtin_ctz(m)] == camera) group |= 1u << __builtin_ctz(m);
+      walking &= ~group;
+      const std::size_t i = static_cast<std::size_t>(camera);
+      WalkLanesResult w;
+      walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group,
+                   p.whole_line ? -std::numeric_limits<T>::infinity() : T(0), static_cast<T>(p.tolerance), w);
+      for (unsigned m = group; m != 0; m &= m - 1) {
+        const int l = __builtin_ctz(m);
+        hit_t[l] = w.t[l];
+        skip_begin[l] = w.skip_begin[l];
+        skip_end[l] = w.skip_end[l];
+        escaped[l] = w.escaped >> l & 1u;
+      }
+      hit |= w.hit;
+      passed |= w.passed;
+    }
+    for (int l = 0; l < n; ++l) {
+      const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
+      std::optional<T> t;
+      if (hit >> l & 1u) {
+        t = hit_t[l];
+      } else if (passed >> l & 1u) {
+        DepthProxy::Candidates<T> c;
+        candidates(l, c);
+        t = p.surface(table, ray, c, 1, DepthSearch<T>{hit_t[l], skip_begin[l], skip_end[l]}, escaped[l]);
+      }
+      const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
+      for (int j = 0; j < 3; ++j) point[j][l] = X[j];
+      if (!escaped[l]) blended |= 1u << l;
+    }
+    // The blend: the k + 1 cameras that see each point with the smallest angles, chosen across
+    // the lanes, then weighed per ray.
+    const int slots = p.k + 1;
+    LaneChoice best;
+    choose_cameras16(table, r, point, distance, near, blended, slots, static_cast<T>(p.tolerance), best);
+    prefetch_next(table, best, slots, n);
+    for (int l = 0; l < n; ++l) {
+      if (escaped[l]) {
+        out[l] = table.config().background;
+        continue;
+      }
+      T penalty[kDepthLaneSlots];
+      int count = 0;
+      for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = std::acos(best.cosine[count][l]);
+      if (count == 0) {
+        out[l] = table.camera_color(first[l], Vec3<T>(point[0][l], point[1][l], point[2][l]));
+        continue;
+      }
+      out[l] = p.weigh(table, penalty, count, [&](int j) {
+        return DepthProxy::Seen<T>{best.camera[j][l], best.x[j][l], best.y[j][l]};
+      });
+    }
+  }
+
+  // Asks for the texels that the next sixteen rays of the row will likely read from the cameras
+  // these chose: those of the last lane, 16 to 32 pixels further along both rows of each of its
+  // bilinear taps (a row of rays moves about a camera pixel a ray). Row after row, each camera
+  // gives a new texel row, and there are more of these streams than the hardware follows.
+  static void prefetch_next(const FrameTable<float, Px>& table, const LaneChoice& best, int slots, int n) noexcept {
+    const int l = n - 1;
+    for (int j = 0; j < slots; ++j) {
+      const int i = best.camera[j][l];
+      if (i < 0) break;
+      const auto& cam = table.camera(static_cast<std::size_t>(i));
+      const int x = std::min(static_cast<int>(best.x[j][l]) + 16, cam.width - 1);
+      const int y = std::clamp(static_cast<int>(best.y[j][l]), 0, cam.height - 2);
+      const auto* row = cam.texels + static_cast<std::ptrdiff_t>(y) * cam.width + x;
+      __builtin_prefetch(row);
+      __builtin_prefetch(row + cam.width);
+      __builtin_prefetch(row + std::min(16, cam.width - 1 - x));
+      __builtin_prefetch(row + cam.width + std::min(16, cam.width - 1 - x));
+    }
+  }
+};
+
+#endif
+
+} // namespace mpr::detail
