@@ -188,7 +188,7 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void insert_slots(LaneSlots16& s, int slots,
     cam = _mm512_mask_blend_epi32(swap, cam, k0);
     over = static_cast<__mmask16>((over & ~swap) | (o0 & swap));
     // A lane whose displaced entry was empty is done.
-    m &= ~(swap & _mm512_cmp_epi32_mask(cam, _mm512_set1_epi32(-1), _MM_CMPINT_EQ));
+    m &= static_cast<__mmask16>(~(swap & _mm512_cmp_epi32_mask(cam, _mm512_set1_epi32(-1), _MM_CMPINT_EQ)));
   }
 }
 

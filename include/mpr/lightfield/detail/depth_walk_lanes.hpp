@@ -53,8 +53,8 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void clip16(__m512 u, __m512 w, __m512& lo, 
 
 /// Keeps the lanes of `live` whose interval [lo, hi) is not empty and starts at a finite lo.
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void keep_in_view16(__m512 lo, __m512 hi, __mmask16& live) noexcept {
-  live &= _mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ) &
-          _mm512_cmp_ps_mask(_mm512_abs_ps(lo), _mm512_set1_ps(__builtin_inff()), _CMP_LT_OQ);
+  live &= static_cast<__mmask16>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ) &
+                                 _mm512_cmp_ps_mask(_mm512_abs_ps(lo), _mm512_set1_ps(__builtin_inff()), _CMP_LT_OQ));
 }
 
 /// The search of sixteen walks (`DepthSearch` per lane) in their first camera, which sees each
