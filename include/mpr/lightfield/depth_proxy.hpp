@@ -14,6 +14,7 @@
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
+#include <mpr/lightfield/detail/unit_acos.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 
@@ -301,7 +302,7 @@ private:
       const T depth = detail::depth_lookup(table.frames().depth(i).data(), cam.width, cam.height, x, y, tol);
       if (depth < z * (1 - tol)) continue; // something nearer hides X from this camera
       seen[n] = static_cast<int>(i);
-      penalty[n] = std::acos(cosine[j]);
+      penalty[n] = detail::unit_acos(cosine[j]);
       px[n] = x;
       py[n] = y;
       ++n;

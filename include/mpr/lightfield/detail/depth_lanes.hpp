@@ -12,6 +12,7 @@
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/unit_acos.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -192,9 +193,10 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void insert_slots(LaneSlots16& s, int slots,
   }
 }
 
-/// The cameras each lane keeps, as `LaneSlots16` stored: slot j of lane l.
+/// The cameras each lane keeps (slot j of lane l), in the order of `LaneSlots16`: the angle to the
+/// ray (`unit_acos` of the cosine), the pixel, the camera (-1: empty).
 struct LaneChoice {
-  alignas(64) float cosine[kDepthLaneSlots][16], x[kDepthLaneSlots][16], y[kDepthLaneSlots][16];
+  alignas(64) float penalty[kDepthLaneSlots][16], x[kDepthLaneSlots][16], y[kDepthLaneSlots][16];
   alignas(64) int camera[kDepthLaneSlots][16];
 };
 
@@ -290,7 +292,7 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
     insert_slots(best, slots, m, cs, over, d, static_cast<int>(i), x, y);
   }
   for (int j = 0; j < slots; ++j) {
-    _mm512_store_ps(out.cosine[j], best.cosine[j]);
+    _mm512_store_ps(out.penalty[j], unit_acos16(best.cosine[j]));
     _mm512_store_ps(out.x[j], best.x[j]);
     _mm512_store_ps(out.y[j], best.y[j]);
     _mm512_store_si512(out.camera[j], best.camera[j]);

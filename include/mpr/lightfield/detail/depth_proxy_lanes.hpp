@@ -157,7 +157,7 @@ struct DepthProxyLanes {
       }
       T penalty[kDepthLaneSlots];
       int count = 0;
-      for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = std::acos(best.cosine[count][l]);
+      for (; count < slots && best.camera[count][l] >= 0; ++count) penalty[count] = best.penalty[count][l];
       if (count == 0) {
         out[l] = table.camera_color(first[l], Vec3<T>(point[0][l], point[1][l], point[2][l]));
         continue;
