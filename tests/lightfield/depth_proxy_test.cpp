@@ -425,6 +425,10 @@ TEST_CASE("DepthProxy's batch path answers as sample(ray) on a rasterized classr
       check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>::sharing(table, proxy), rays);
     }
   }
+  // The rays of a camera of the set itself: they pass through its centre, so its cosine
+  // rounds to about 1, above 1 for some rays.
+  const auto all = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames);
+  check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>(all, mpr::DepthProxy{2.0}), rays);
   // The half-line search and the nearest-pixel filter.
   mpr::DepthProxy half{2.0};
   half.whole_line = false;

@@ -201,7 +201,8 @@ struct LaneChoice {
 };
 
 /// For each camera i of `table`: near[i] = the lanes of `valid` whose ray line passes within
-/// sqrt(radius2) of the camera's centre, distance[i][l] = that distance (every lane); first[l] =
+/// sqrt(radius2) of the camera's centre, distance[i][l] = that distance (every lane, for the
+/// cameras of some lane; the others' rows are not written); first[l] =
 /// the nearest of those cameras to lane l's ray line (the lowest index among equals), or -1.
 template <class Table>
 MPR_TARGET_AVX512 void scan_cameras16(const Table& table, const RayLanes& lanes, float radius2, unsigned valid,
@@ -215,6 +216,7 @@ MPR_TARGET_AVX512 void scan_cameras16(const Table& table, const RayLanes& lanes,
     const __m512 d2 = line_distance2_x16(r, C.x(), C.y(), C.z());
     const __mmask16 m = static_cast<__mmask16>(valid & _mm512_cmp_ps_mask(d2, limit, _CMP_LT_OQ));
     near[i] = m;
+    if (m == 0) continue; // its distances are never read
     const __m512 d = _mm512_maskz_sqrt_ps(0xFFFF, d2);
     _mm512_store_ps(distance[i], d);
     const __mmask16 nearer = m & _mm512_cmp_ps_mask(d, best, _CMP_LT_OQ);

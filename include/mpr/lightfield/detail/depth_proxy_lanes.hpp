@@ -78,6 +78,7 @@ struct DepthProxyLanes {
         alone |= 1u << l;
         if (first[l] < 0) continue;
         const std::size_t i = static_cast<std::size_t>(first[l]);
+        if (near[i] == 0) std::fill(distance[i], distance[i] + 16, std::numeric_limits<T>::infinity()); // unwritten
         near[i] = static_cast<std::uint16_t>(near[i] | 1u << l); // blended as well
         distance[i][l] = 0;
       }
