@@ -14,6 +14,7 @@
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/detail/unit_acos.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -289,7 +290,20 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
          _mm512_cmp_ps_mask(_mm512_abs_ps(x), inf, _CMP_LT_OQ) & _mm512_cmp_ps_mask(_mm512_abs_ps(y), inf, _CMP_LT_OQ);
     if (m == 0) continue;
     // Visible unless the map shows something nearer by more than the tolerance.
-    const __m512 depth = depth_lookup_x16(table.frames().depth(i).data(), cam.width, cam.height, x, y, smooth, m);
+    const float* map = table.frames().depth(i).data();
+    const __m512 depth = depth_lookup_x16(map, cam.width, cam.height, x, y, smooth, m);
+    {
+      // The map rows the next sixteen rays of the row will likely read here, 16 pixels on.
+      const int last = 31 - __builtin_clz(static_cast<unsigned>(m));
+      alignas(64) float xs[16], ys[16];
+      _mm512_store_ps(xs, x);
+      _mm512_store_ps(ys, y);
+      const int px = std::min(static_cast<int>(xs[last]) + 16, cam.width - 1);
+      const int py = std::clamp(static_cast<int>(ys[last]), 0, cam.height - 2);
+      const float* row = map + static_cast<std::ptrdiff_t>(py) * cam.width + px;
+      __builtin_prefetch(row);
+      __builtin_prefetch(row + cam.width);
+    }
     m &= _mm512_cmp_ps_mask(depth, mul16(w, keep), _CMP_NLT_UQ);
     insert_slots(best, slots, m, cs, over, d, static_cast<int>(i), x, y);
   }
