@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <span>
 #include <vector>
 
 namespace {
@@ -31,6 +32,8 @@ std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> plane_set() {
 
 TEST_CASE("FrameDepthSampler is a ray sampler of float depths", "[view_depth]") {
   STATIC_REQUIRE(mpr::RaySampler<mpr::FrameDepthSampler<float>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<mpr::FrameDepthSampler<float>>);
+  STATIC_REQUIRE(mpr::BatchRaySampler<mpr::FrameDepthSampler<double, mpr::Color>>);
   STATIC_REQUIRE(std::is_same_v<mpr::FrameDepthSampler<double, mpr::Color>::color_type, float>);
 }
 
@@ -133,4 +136,50 @@ TEST_CASE("FrameDepthSampler on a rasterized classroom array matches the ray cas
     CHECK(within(0.01) > 0.7);
     CHECK(within(0.05) > 0.9);
   }
+}
+
+TEST_CASE("FrameDepthSampler's batch path gives the per-ray depths", "[view_depth]") {
+  // The classroom as a rasterized 4 x 3 array of 96 x 72 cameras with exact depth; the rays of a
+  // view inside the array and of the array's first camera, in spans of 1 to 80 rays, along the
+  // axis of that camera.
+  using T = float;
+  const auto scene = mpr::scene::classroom<T>();
+  const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
+      mpr::Vec3<T>(0.3f, 2.2f, 4.5f), mpr::Vec3<T>(0, 1.3f, -8), mpr::Vec3<T>(0, 1, 0), T(1.0), 96, 72);
+  const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
+  mpr::scene::VirtualArrayConfig<T> config;
+  config.columns = 4;
+  config.rows = 3;
+  config.width = 96;
+  config.height = 72;
+  config.raster.threads = 2;
+  config.depth_maps = true;
+  const auto array = mpr::scene::rasterize_virtual_array(scene, plane, config);
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames);
+  const T spacing = plane.width_vector().norm() / 4;
+  const mpr::FrameDepthSampler<T> depth =
+      mpr::FrameDepthSampler<T>(frames, mpr::DepthProxy{2 * spacing}).along_axis(frames->camera(0));
+  std::vector<mpr::Ray<T>> rays;
+  for (const mpr::PinholeCamera<T>* cam : {&view, &frames->camera(0)})
+    for (int y = 0; y < cam->height(); ++y)
+      for (int x = 0; x < cam->width(); ++x) rays.push_back(cam->ray_through({x, y}));
+  std::vector<float> batch(rays.size());
+  for (std::size_t at = 0, length = 1; at < rays.size(); length = length % 80 + 1) {
+    const std::size_t n = std::min(length, rays.size() - at);
+    depth.sample_rays(std::span<const mpr::Ray<T>>(rays).subspan(at, n), std::span<float>(batch).subspan(at, n));
+    at += n;
+  }
+  std::size_t differ = 0, finite = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const float one = depth.sample(rays[i]);
+    finite += std::isfinite(one);
+    differ += !(one == batch[i] || (std::isinf(one) && std::isinf(batch[i])));
+  }
+  INFO(differ << " of " << rays.size() << " depths differ");
+  CHECK(finite > rays.size() / 2);
+#if defined(__FMA__) || defined(__FP_FAST_FMAF)
+  CHECK(differ <= rays.size() / 500);
+#else
+  CHECK(differ == 0);
+#endif
 }

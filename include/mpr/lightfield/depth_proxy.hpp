@@ -142,6 +142,24 @@ struct DepthProxy {
     for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
   }
 
+  /// `out[i] = surface(table, rays[i])` for every i (precondition: equal lengths), with the
+  /// sixteen-lane walks of `sample_rays` where it has them.
+  template <std::floating_point T, class Px>
+  void surface_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays,
+                    std::span<std::optional<T>> out) const noexcept {
+#if defined(MPR_SIMD_X86)
+    if constexpr (std::is_same_v<T, float>) {
+      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
+        for (std::size_t s = 0; s < rays.size(); s += 16)
+          detail::DepthProxyLanes<Px>::surface16(
+              *this, table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
+        return;
+      }
+    }
+#endif
+    for (std::size_t i = 0; i < rays.size(); ++i) out[i] = surface(table, rays[i]);
+  }
+
   /// The ray parameter t of the first surface point along `ray` that the depth maps show (see
   /// the class comment; t >= 0 unless `whole_line`), or nullopt when none is found: the depth of
   /// a light-field view.

@@ -24,9 +24,12 @@
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 
 namespace mpr {
@@ -45,7 +48,8 @@ namespace mpr {
 /// Requirements: the frame set carries depth maps (throws otherwise, as `DepthProxy`). The
 /// search is `DepthProxy`'s (its radius, march cameras, tolerance and `whole_line` apply); the
 /// blend is skipped. Copies share the table (`shared_ptr`), so the sampler is cheap to copy into
-/// a `Renderer`. Per ray only (no batch or tile path).
+/// a `Renderer`. Its batch path (`sample_rays`) walks sixteen rays at a time where
+/// `DepthProxy::sample_rays` does.
 template <std::floating_point T, class Px = Rgb8>
 class FrameDepthSampler {
 public:
@@ -80,15 +84,27 @@ public:
   [[nodiscard]] const DepthProxy& proxy() const noexcept { return proxy_; }
 
   /// The depth along `ray` (see the class comment), never NaN for a finite ray.
-  [[nodiscard]] float sample(const Ray<T>& ray) const noexcept {
-    const std::optional<T> t = proxy_.surface(*table_, ray);
+  [[nodiscard]] float sample(const Ray<T>& ray) const noexcept { return depth_of(ray, proxy_.surface(*table_, ray)); }
+
+  /// `out[i] = sample(rays[i])` for every i (precondition: equal lengths): the depth proxy's
+  /// batch surface search (`DepthProxy::surface_rays`), 64 rays at a time.
+  void sample_rays(std::span<const Ray<T>> rays, std::span<float> out) const noexcept {
+    std::optional<T> t[64];
+    for (std::size_t s = 0; s < rays.size(); s += 64) {
+      const std::size_t n = std::min<std::size_t>(64, rays.size() - s);
+      proxy_.surface_rays(*table_, rays.subspan(s, n), std::span<std::optional<T>>(t, n));
+      for (std::size_t i = 0; i < n; ++i) out[s + i] = depth_of(rays[s + i], t[i]);
+    }
+  }
+
+private:
+  [[nodiscard]] float depth_of(const Ray<T>& ray, const std::optional<T>& t) const noexcept {
     if (!t) return std::numeric_limits<float>::infinity();
     if (!axis_) return static_cast<float>(*t);
     const Vec3<T> X = ray.at(*t);
     return static_cast<float>(axis_->row.dot(X) + axis_->offset);
   }
 
-private:
   struct Axis {
     Vec3<T> row; ///< third row of the camera's R
     T offset;    ///< third coordinate of its t

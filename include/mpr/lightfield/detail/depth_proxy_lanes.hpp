@@ -40,14 +40,25 @@ struct DepthProxyLanes {
     return true;
   }
 
-  /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays. The steps across the lanes are
-  /// AVX-512 kernels (detail/depth_lanes.hpp, detail/depth_walk_lanes.hpp); the rest stays per
-  /// ray here, compiled as the per-ray path is, so that both round alike.
-  static void sample16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
-                       Color* out) noexcept {
+  /// Up to sixteen rays in lanes: the scan's results, and each ray's surface (`t`, or none;
+  /// `escaped`: it ran to infinity unseen), as `DepthProxy::surface` finds it.
+  struct Group {
+    RayLanes r;
+    alignas(64) float distance[DepthProxy::kScanCameras][16];
+    std::uint16_t near[DepthProxy::kScanCameras];
+    alignas(64) int first[16];
+    std::optional<float> t[16];
+    bool escaped[16] = {};
+  };
+
+  /// Fills `g` for `rays` (at most sixteen). The steps across the lanes are AVX-512 kernels
+  /// (detail/depth_lanes.hpp, detail/depth_walk_lanes.hpp); the rest stays per ray here,
+  /// compiled as the per-ray path is, so that both round alike.
+  static void surfaces16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                         Group& g) noexcept {
     using T = float;
     const int n = static_cast<int>(rays.size());
-    RayLanes r;
+    RayLanes& r = g.r;
     unsigned valid = 0;
     for (int l = 0; l < 16; ++l) {
       const Ray<T>& ray = rays[static_cast<std::size_t>(std::min(l, n - 1))];
@@ -65,9 +76,9 @@ struct DepthProxyLanes {
     // The candidates: every camera against the sixteen ray lines at once. Each lane's nearest
     // is its first walk; its whole list, sorted as `collect` sorts it, is only needed when that
     // walk does not find the surface.
-    alignas(64) T distance[DepthProxy::kScanCameras][16];
-    std::uint16_t near[DepthProxy::kScanCameras];
-    alignas(64) int first[16];
+    auto& distance = g.distance;
+    auto& near = g.near;
+    auto& first = g.first;
     const std::size_t cameras = table.size();
     scan_cameras16(table, r, static_cast<T>(p.radius) * static_cast<T>(p.radius), valid, near, distance, first);
     unsigned alone = 0, walking = 0; // lanes with no camera within the radius, lanes that walk
@@ -104,11 +115,8 @@ struct DepthProxyLanes {
         cl.distance[at] = d;
       }
     };
-    // The surface point of each ray: the rays that share their nearest camera walk its map
-    // together; where that camera does not settle it, the search goes on per ray from there.
-    alignas(64) T point[3][16] = {};
-    unsigned blended = 0;
-    bool escaped[16] = {};
+    // The surface of each ray: the rays that share their nearest camera walk its map together;
+    // where that camera does not settle it, the search goes on per ray from there.
     alignas(64) T hit_t[16], skip_begin[16], skip_end[16];
     unsigned hit = 0, passed = 0;
     while (walking != 0) {
@@ -126,22 +134,46 @@ struct DepthProxyLanes {
         hit_t[l] = w.t[l];
         skip_begin[l] = w.skip_begin[l];
         skip_end[l] = w.skip_end[l];
-        escaped[l] = w.escaped >> l & 1u;
+        g.escaped[l] = w.escaped >> l & 1u;
       }
       hit |= w.hit;
       passed |= w.passed;
     }
     for (int l = 0; l < n; ++l) {
-      const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
-      std::optional<T> t;
+      g.t[l].reset();
       if (hit >> l & 1u) {
-        t = hit_t[l];
+        g.t[l] = hit_t[l];
       } else if (passed >> l & 1u) {
         DepthProxy::Candidates<T> c;
         candidates(l, c);
-        t = p.surface(table, ray, c, 1, DepthSearch<T>{hit_t[l], skip_begin[l], skip_end[l]}, escaped[l]);
+        g.t[l] = p.surface(table, rays[static_cast<std::size_t>(l)], c, 1,
+                           DepthSearch<T>{hit_t[l], skip_begin[l], skip_end[l]}, g.escaped[l]);
       }
-      const Vec3<T> X = t ? ray.at(*t) : table.point_of(ray);
+    }
+  }
+
+  /// `out[l] = p.surface(table, rays[l])` for up to sixteen rays.
+  static void surface16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                        std::optional<float>* out) noexcept {
+    Group g;
+    surfaces16(p, table, rays, g);
+    for (std::size_t l = 0; l < rays.size(); ++l) out[l] = g.escaped[l] ? std::nullopt : g.t[l];
+  }
+
+  /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays.
+  static void sample16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                       Color* out) noexcept {
+    using T = float;
+    const int n = static_cast<int>(rays.size());
+    Group g;
+    surfaces16(p, table, rays, g);
+    const auto& first = g.first;
+    const auto& escaped = g.escaped;
+    alignas(64) T point[3][16] = {};
+    unsigned blended = 0;
+    for (int l = 0; l < n; ++l) {
+      const Ray<T>& ray = rays[static_cast<std::size_t>(l)];
+      const Vec3<T> X = g.t[l] ? ray.at(*g.t[l]) : table.point_of(ray);
       for (int j = 0; j < 3; ++j) point[j][l] = X[j];
       if (!escaped[l]) blended |= 1u << l;
     }
@@ -149,7 +181,7 @@ struct DepthProxyLanes {
     // the lanes, then weighed per ray.
     const int slots = p.k + 1;
     LaneChoice best;
-    choose_cameras16(table, r, point, distance, near, blended, slots, static_cast<T>(p.tolerance), best);
+    choose_cameras16(table, g.r, point, g.distance, g.near, blended, slots, static_cast<T>(p.tolerance), best);
     prefetch_next(table, best, slots, n);
     for (int l = 0; l < n; ++l) {
       if (escaped[l]) {
