@@ -14,6 +14,7 @@
 #include <optional>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -458,4 +459,31 @@ TEMPLATE_TEST_CASE("DepthProxy's batch path answers as sample(ray) on float fram
     rays.push_back({mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
                     mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
   check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>(frames, mpr::DepthProxy{1.5}), rays);
+}
+
+TEST_CASE("DepthProxy's batch path answers as sample(ray) with cameras one pixel tall or wide", "[depth_proxy]") {
+  // Two cameras of 40 x 1 and two of 1 x 30 pixels side by side, a plane at depth 5: the walks,
+  // the lookups and the reads ahead stay inside such images (found by review: the read-ahead
+  // clamped to height - 2, below 0 for one row).
+  using T = float;
+  std::vector<mpr::PinholeCamera<T>> cams;
+  std::vector<mpr::Image<float>> maps;
+  for (const auto& [w, h] : {std::pair{40, 1}, std::pair{40, 1}, std::pair{1, 30}, std::pair{1, 30}}) {
+    mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+    K(0, 0) = K(1, 1) = 30;
+    K(0, 2) = 0.5f * static_cast<T>(w - 1);
+    K(1, 2) = 0.5f * static_cast<T>(h - 1);
+    const T x = 0.1f * static_cast<T>(cams.size());
+    cams.emplace_back(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(-x, 0, 0), w, h);
+    maps.emplace_back(w, h, 5.0f);
+  }
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-0.2, 0.5), slope(-0.1, 0.1);
+  std::vector<mpr::Ray<T>> rays;
+  for (int n = 0; n < 200; ++n)
+    rays.push_back({mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(0.1 * u(rng)), T(0)),
+                    mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
+  check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>(frames, mpr::DepthProxy{0.5}), rays);
 }

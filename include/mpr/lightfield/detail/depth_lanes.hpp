@@ -299,10 +299,10 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
       _mm512_store_ps(xs, x);
       _mm512_store_ps(ys, y);
       const int px = std::min(static_cast<int>(xs[last]) + 16, cam.width - 1);
-      const int py = std::clamp(static_cast<int>(ys[last]), 0, cam.height - 2);
+      const int py = std::clamp(static_cast<int>(ys[last]), 0, cam.height - 1);
       const float* row = map + static_cast<std::ptrdiff_t>(py) * cam.width + px;
       __builtin_prefetch(row);
-      __builtin_prefetch(row + cam.width);
+      if (py + 1 < cam.height) __builtin_prefetch(row + cam.width);
     }
     m &= _mm512_cmp_ps_mask(depth, mul16(w, keep), _CMP_NLT_UQ);
     insert_slots(best, slots, m, cs, over, d, static_cast<int>(i), x, y);

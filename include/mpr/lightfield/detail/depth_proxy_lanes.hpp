@@ -212,12 +212,15 @@ struct DepthProxyLanes {
       if (i < 0) break;
       const auto& cam = table.camera(static_cast<std::size_t>(i));
       const int x = std::min(static_cast<int>(best.x[j][l]) + 16, cam.width - 1);
-      const int y = std::clamp(static_cast<int>(best.y[j][l]), 0, cam.height - 2);
+      const int y = std::clamp(static_cast<int>(best.y[j][l]), 0, cam.height - 1);
       const auto* row = cam.texels + static_cast<std::ptrdiff_t>(y) * cam.width + x;
+      const int ahead = std::min(16, cam.width - 1 - x);
       __builtin_prefetch(row);
-      __builtin_prefetch(row + cam.width);
-      __builtin_prefetch(row + std::min(16, cam.width - 1 - x));
-      __builtin_prefetch(row + cam.width + std::min(16, cam.width - 1 - x));
+      __builtin_prefetch(row + ahead);
+      if (y + 1 < cam.height) {
+        __builtin_prefetch(row + cam.width);
+        __builtin_prefetch(row + cam.width + ahead);
+      }
     }
   }
 };
