@@ -257,14 +257,11 @@ TEST_CASE("DepthProxy on a rasterized classroom array is far closer to the ray c
   CHECK(proxy > cylinder + 3);
 }
 
-TEST_CASE("DepthProxy finds a held-out camera's own depth from the other cameras of a rasterized array",
-          "[depth_proxy]") {
-  // The classroom as an 8 x 6 array of 80 x 60 cameras with exact depth; camera 28 is held out
-  // and the surface is searched along each of its pixels' rays from the other 47 (whose walks
-  // start where each camera first sees the ray, and pass over stretches others saw free). The
-  // depth found is the held-out camera's own z-buffer at nearly every pixel, the view's corners
-  // included (the floor there lies outside the nearest cameras' images: it was lost before
-  // walks that entered the view late stopped moving the search on).
+namespace {
+
+// The classroom as the default 8 x 6 array of 80 x 60 cameras with exact depth (z-buffers),
+// looking into the room from the back.
+mpr::scene::VirtualArray<float, mpr::Rgb8> classroom_array() {
   using T = float;
   const auto scene = mpr::scene::classroom<T>();
   const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
@@ -276,8 +273,22 @@ TEST_CASE("DepthProxy finds a held-out camera's own depth from the other cameras
   config.height = 60;
   config.raster.threads = 2;
   config.depth_maps = true;
-  const auto array = mpr::scene::rasterize_virtual_array(
-      scene, mpr::PlanarSurface<T>::centred(eye, T(8) * right, T(6) * down), config);
+  return mpr::scene::rasterize_virtual_array(scene, mpr::PlanarSurface<T>::centred(eye, T(8) * right, T(6) * down),
+                                             config);
+}
+
+} // namespace
+
+TEST_CASE("DepthProxy finds a held-out camera's own depth from the other cameras of a rasterized array",
+          "[depth_proxy]") {
+  // The classroom as an 8 x 6 array of 80 x 60 cameras with exact depth; camera 28 is held out
+  // and the surface is searched along each of its pixels' rays from the other 47 (whose walks
+  // start where each camera first sees the ray, and pass over stretches others saw free). The
+  // depth found is the held-out camera's own z-buffer at nearly every pixel, the view's corners
+  // included (the floor there lies outside the nearest cameras' images: it was lost before
+  // walks that entered the view late stopped moving the search on).
+  using T = float;
+  const auto array = classroom_array();
   const std::size_t held = 28;
   const auto others = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames.without(held));
   const auto sampler = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8>(others, mpr::DepthProxy{2.0});
@@ -401,18 +412,7 @@ TEST_CASE("DepthProxy's batch path answers as sample(ray) on a rasterized classr
   // room) through the 47 others, for several k (k + 1 = 8 is the most the sixteen-lane path
   // keeps; k = 8 takes the per-ray path inside `sample_rays`).
   using T = float;
-  const auto scene = mpr::scene::classroom<T>();
-  const mpr::Vec3<T> eye(0, 3.1f, 3.0f), target(0, 1.6f, -8);
-  const mpr::Vec3<T> forward = (target - eye).normalized();
-  const mpr::Vec3<T> right = forward.cross(mpr::Vec3<T>::UnitY()).normalized();
-  const mpr::Vec3<T> down = forward.cross(right);
-  mpr::scene::VirtualArrayConfig<T> config;
-  config.width = 80;
-  config.height = 60;
-  config.raster.threads = 2;
-  config.depth_maps = true;
-  const auto array = mpr::scene::rasterize_virtual_array(
-      scene, mpr::PlanarSurface<T>::centred(eye, T(8) * right, T(6) * down), config);
+  const auto array = classroom_array();
   const std::size_t held = 28;
   const auto others = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames.without(held));
   const std::vector<mpr::Ray<T>> rays = batch_rays(array.frames.camera(held));

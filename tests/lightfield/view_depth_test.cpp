@@ -28,6 +28,22 @@ std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> plane_set() {
       mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
 }
 
+// A 96 x 72 view into the classroom from the back, and a 4 x 3 virtual array of cameras of
+// `width` x `height` on its image plane at depth 1.
+mpr::PinholeCamera<float> classroom_view() {
+  return mpr::PinholeCamera<float>::look_at(mpr::Vec3<float>(0.3f, 2.2f, 4.5f), mpr::Vec3<float>(0, 1.3f, -8),
+                                            mpr::Vec3<float>(0, 1, 0), 1.0f, 96, 72);
+}
+mpr::scene::VirtualArrayConfig<float> array_config(int width, int height) {
+  mpr::scene::VirtualArrayConfig<float> config;
+  config.columns = 4;
+  config.rows = 3;
+  config.width = width;
+  config.height = height;
+  config.raster.threads = 2;
+  return config;
+}
+
 } // namespace
 
 TEST_CASE("FrameDepthSampler is a ray sampler of float depths", "[view_depth]") {
@@ -81,15 +97,9 @@ TEST_CASE("FrameDepthSampler on a rasterized classroom array matches the ray cas
   using Scene = mpr::scene::Scene<T>;
   const auto scene = std::make_shared<const Scene>(mpr::scene::classroom<T>());
   const int w = 96, h = 72;
-  const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
-      mpr::Vec3<T>(0.3f, 2.2f, 4.5f), mpr::Vec3<T>(0, 1.3f, -8), mpr::Vec3<T>(0, 1, 0), T(1.0), w, h);
+  const mpr::PinholeCamera<T> view = classroom_view();
   const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
-  mpr::scene::VirtualArrayConfig<T> config;
-  config.columns = 4;
-  config.rows = 3;
-  config.width = 192;
-  config.height = 144;
-  config.raster.threads = 2;
+  const mpr::scene::VirtualArrayConfig<T> config = array_config(192, 144);
   const T spacing = plane.width_vector().norm() / 4;
   const mpr::SceneSampler<Scene, mpr::Rasterized<mpr::DepthProxy>> array(*scene, plane, config,
                                                                          {mpr::DepthProxy{2 * spacing}});
@@ -144,15 +154,9 @@ TEST_CASE("FrameDepthSampler's batch path gives the per-ray depths", "[view_dept
   // axis of that camera.
   using T = float;
   const auto scene = mpr::scene::classroom<T>();
-  const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
-      mpr::Vec3<T>(0.3f, 2.2f, 4.5f), mpr::Vec3<T>(0, 1.3f, -8), mpr::Vec3<T>(0, 1, 0), T(1.0), 96, 72);
+  const mpr::PinholeCamera<T> view = classroom_view();
   const mpr::PlanarSurface<T> plane = view.image_plane(T(1));
-  mpr::scene::VirtualArrayConfig<T> config;
-  config.columns = 4;
-  config.rows = 3;
-  config.width = 96;
-  config.height = 72;
-  config.raster.threads = 2;
+  mpr::scene::VirtualArrayConfig<T> config = array_config(96, 72);
   config.depth_maps = true;
   const auto array = mpr::scene::rasterize_virtual_array(scene, plane, config);
   const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Rgb8>>(array.frames);

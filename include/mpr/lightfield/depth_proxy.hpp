@@ -130,17 +130,11 @@ struct DepthProxy {
   /// sit on the tolerance test: 0.24%). Elsewhere, `sample` per ray.
   template <std::floating_point T, class Px>
   void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
-#if defined(MPR_SIMD_X86)
-    if constexpr (std::is_same_v<T, float>) {
-      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
-        for (std::size_t s = 0; s < rays.size(); s += 16)
-          detail::DepthProxyLanes<Px>::sample16(
-              *this, table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
-        return;
-      }
-    }
-#endif
-    for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
+    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at) {
+      detail::DepthProxyLanes<Px>::sample16(*this, table, group, out.data() + at);
+    });
+    if (!lanes)
+      for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
   }
 
   /// `out[i] = surface(table, rays[i])` for every i (precondition: equal lengths), with the
@@ -148,17 +142,11 @@ struct DepthProxy {
   template <std::floating_point T, class Px>
   void surface_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays,
                     std::span<std::optional<T>> out) const noexcept {
-#if defined(MPR_SIMD_X86)
-    if constexpr (std::is_same_v<T, float>) {
-      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
-        for (std::size_t s = 0; s < rays.size(); s += 16)
-          detail::DepthProxyLanes<Px>::surface16(
-              *this, table, rays.subspan(s, std::min<std::size_t>(16, rays.size() - s)), out.data() + s);
-        return;
-      }
-    }
-#endif
-    for (std::size_t i = 0; i < rays.size(); ++i) out[i] = surface(table, rays[i]);
+    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at) {
+      detail::DepthProxyLanes<Px>::surface16(*this, table, group, out.data() + at);
+    });
+    if (!lanes)
+      for (std::size_t i = 0; i < rays.size(); ++i) out[i] = surface(table, rays[i]);
   }
 
   /// The ray parameter t of the first surface point along `ray` that the depth maps show (see
@@ -179,6 +167,23 @@ private:
   static constexpr int kMaxCandidates = 64;
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
+
+  // When the sixteen-lane path answers for `table` (see `sample_rays`): `lanes(group, at)` for
+  // the groups of at most sixteen rays starting at rays[at], and true; else false.
+  template <std::floating_point T, class Px, class Lanes>
+  bool by_sixteen(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, const Lanes& lanes) const noexcept {
+#if defined(MPR_SIMD_X86)
+    if constexpr (std::is_same_v<T, float>) {
+      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
+        for (std::size_t at = 0; at < rays.size(); at += 16)
+          lanes(rays.subspan(at, std::min<std::size_t>(16, rays.size() - at)), at);
+        return true;
+      }
+    }
+#endif
+    (void)table, (void)rays, (void)lanes;
+    return false;
+  }
 
   template <std::floating_point T>
   struct Candidates {
