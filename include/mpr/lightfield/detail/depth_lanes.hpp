@@ -43,11 +43,17 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 sum3(__m512 a, __m512 b, __m512 c) no
   return _mm512_add_ps(a, _mm512_add_ps(b, c));
 }
 
-/// ((p[0] X + p[1] Y) + p[2] Z) + p[3] for each lane: one row of a projection matrix applied to
-/// sixteen points, added as `FrameTable::project_any` adds it.
+/// (p[0] x + p[1] y) + p[2] z for each lane: one row of a projection matrix applied to sixteen
+/// directions, added as the per-ray code adds it.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 linear_row16(const float* p, __m512 x, __m512 y, __m512 z) noexcept {
+  return _mm512_add_ps(_mm512_add_ps(mul16(_mm512_set1_ps(p[0]), x), mul16(_mm512_set1_ps(p[1]), y)),
+                       mul16(_mm512_set1_ps(p[2]), z));
+}
+
+/// `linear_row16` + p[3]: the row applied to sixteen points, added as `FrameTable::project_any`
+/// and `depth_walk` add it.
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 project_row16(const float* p, __m512 X, __m512 Y, __m512 Z) noexcept {
-  const __m512 xy = _mm512_add_ps(mul16(_mm512_set1_ps(p[0]), X), mul16(_mm512_set1_ps(p[1]), Y));
-  return _mm512_add_ps(_mm512_add_ps(xy, mul16(_mm512_set1_ps(p[2]), Z)), _mm512_set1_ps(p[3]));
+  return _mm512_add_ps(linear_row16(p, X, Y, Z), _mm512_set1_ps(p[3]));
 }
 
 /// Sixteen rays, one per lane: origins o, directions v, 1 / |v|^2 and |v|.

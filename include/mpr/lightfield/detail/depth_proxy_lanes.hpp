@@ -103,17 +103,8 @@ struct DepthProxyLanes {
         return;
       }
       cl.count = 0;
-      for (std::size_t i = 0; i < cameras; ++i) {
-        if (!(near[i] >> l & 1u)) continue;
-        const T d = distance[i][l];
-        int at = cl.count++;
-        for (; at > 0 && d < cl.distance[at - 1]; --at) {
-          cl.index[at] = cl.index[at - 1];
-          cl.distance[at] = cl.distance[at - 1];
-        }
-        cl.index[at] = static_cast<int>(i);
-        cl.distance[at] = d;
-      }
+      for (std::size_t i = 0; i < cameras; ++i)
+        if (near[i] >> l & 1u) DepthProxy::insert(cl, static_cast<int>(i), distance[i][l]);
     };
     // The surface of each ray: the rays that share their nearest camera walk its map together;
     // where that camera does not settle it, the search goes on per ray from there.

@@ -34,12 +34,6 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 walk_f16(const WalkLanes16& h, const 
   return _mm512_mask_blend_ps(front, _mm512_set1_ps(-__builtin_inff()), _mm512_sub_ps(z, depth));
 }
 
-/// (p[0] x + p[1] y) + p[2] z for each lane.
-MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 linear_row16(const float* p, __m512 x, __m512 y, __m512 z) noexcept {
-  return _mm512_add_ps(_mm512_add_ps(mul16(_mm512_set1_ps(p[0]), x), mul16(_mm512_set1_ps(p[1]), y)),
-                       mul16(_mm512_set1_ps(p[2]), z));
-}
-
 /// `depth_walk`'s clip: keeps u + s w >= 0 in [lo, hi]; lanes where w is 0 (or NaN) and u < 0
 /// leave `live`.
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void clip16(__m512 u, __m512 w, __m512& lo, __m512& hi, __mmask16& live) noexcept {
@@ -92,9 +86,9 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   const float* P = c.P;
   // a = P (o, 1), b = P (v, 0), each row summed as `depth_walk` sums it.
   WalkLanes16 h;
-  h.a0 = _mm512_add_ps(linear_row16(P, r.ox, r.oy, r.oz), _mm512_set1_ps(P[3]));
-  h.a1 = _mm512_add_ps(linear_row16(P + 4, r.ox, r.oy, r.oz), _mm512_set1_ps(P[7]));
-  h.a2 = _mm512_add_ps(linear_row16(P + 8, r.ox, r.oy, r.oz), _mm512_set1_ps(P[11]));
+  h.a0 = project_row16(P, r.ox, r.oy, r.oz);
+  h.a1 = project_row16(P + 4, r.ox, r.oy, r.oz);
+  h.a2 = project_row16(P + 8, r.ox, r.oy, r.oz);
   h.b0 = linear_row16(P, r.vx, r.vy, r.vz);
   h.b1 = linear_row16(P + 4, r.vx, r.vy, r.vz);
   h.b2 = linear_row16(P + 8, r.vx, r.vy, r.vz);
