@@ -251,9 +251,9 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
   const float smooth = 1 + 4 * tolerance;
   const __m512 keep = _mm512_set1_ps(1 - tolerance), zero = _mm512_setzero_ps(), edge = _mm512_set1_ps(-0.5f);
   const __m512 inf = _mm512_set1_ps(__builtin_inff()), one = _mm512_set1_ps(1);
-  // The cameras any lane has, nearest to the first blended lane's ray first: tried in that
+  // The cameras any lane has, nearest to the first blended lane's ray first: inserted in that
   // order, the lanes fill their slots with the best cameras early, and a camera that cannot
-  // enter a lane's full slots is not projected for it.
+  // enter a lane's full slots skips the insertion.
   int order[64];
   int cameras = 0;
   const int reference = blended != 0 ? __builtin_ctz(blended) : 0;
@@ -263,9 +263,14 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
     for (; at > 0 && distance[i][reference] < distance[order[at - 1]][reference]; --at) order[at] = order[at - 1];
     order[at] = static_cast<int>(i);
   }
+  // First every camera's cosines, pixels and visibility, each camera apart from the others (so
+  // that the depth lookups of several cameras are in flight at once), then the choice in order.
+  alignas(64) float cosine[64][16], px[64][16], py[64][16];
+  __mmask16 seen[64], above[64];
   for (int o = 0; o < cameras; ++o) {
     const std::size_t i = static_cast<std::size_t>(order[o]);
     __mmask16 m = static_cast<__mmask16>(near[i] & blended);
+    seen[o] = 0;
     const auto& cam = table.camera(i);
     // The cosine of the angle between X - centre and the ray, as `blend` computes it.
     const __m512 tx = _mm512_sub_ps(X, _mm512_set1_ps(cam.centre.x()));
@@ -275,14 +280,9 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
     const __m512 norm = _mm512_maskz_sqrt_ps(0xFFFF, sum3(mul16(tx, tx), mul16(ty, ty), mul16(tz, tz)));
     const __m512 raw = _mm512_div_ps(dot, mul16(norm, r.length));
     m &= _mm512_cmp_ps_mask(raw, zero, _CMP_GT_OQ);
-    const __m512 cs = _mm512_maskz_min_ps(0xFFFF, raw, one);
-    const __mmask16 over = _mm512_cmp_ps_mask(raw, one, _CMP_GT_OQ);
-    const __m512 d = _mm512_load_ps(distance[i]);
-    const __m512i index = _mm512_set1_epi32(static_cast<int>(i));
-    // Lanes whose slots are full of cameras that go before this one do not need it.
-    m &= static_cast<__mmask16>(_mm512_cmp_epi32_mask(best.camera[slots - 1], _mm512_set1_epi32(-1), _MM_CMPINT_EQ) |
-                                slot_before(best, slots - 1, cs, over, d, index));
     if (m == 0) continue;
+    _mm512_store_ps(cosine[o], _mm512_maskz_min_ps(0xFFFF, raw, one));
+    above[o] = _mm512_cmp_ps_mask(raw, one, _CMP_GT_OQ);
     // `FrameTable::project`: in front, finite, inside the image.
     const float* P = cam.P;
     const __m512 w = project_row16(P + 8, X, Y, Z);
@@ -295,23 +295,32 @@ MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lane
          _mm512_cmp_ps_mask(y, _mm512_set1_ps(static_cast<float>(cam.height) - 0.5f), _CMP_LT_OQ) &
          _mm512_cmp_ps_mask(_mm512_abs_ps(x), inf, _CMP_LT_OQ) & _mm512_cmp_ps_mask(_mm512_abs_ps(y), inf, _CMP_LT_OQ);
     if (m == 0) continue;
+    _mm512_store_ps(px[o], x);
+    _mm512_store_ps(py[o], y);
     // Visible unless the map shows something nearer by more than the tolerance.
     const float* map = table.frames().depth(i).data();
     const __m512 depth = depth_lookup_x16(map, cam.width, cam.height, x, y, smooth, m);
     {
       // The map rows the next sixteen rays of the row will likely read here, 16 pixels on.
       const int last = 31 - __builtin_clz(static_cast<unsigned>(m));
-      alignas(64) float xs[16], ys[16];
-      _mm512_store_ps(xs, x);
-      _mm512_store_ps(ys, y);
-      const int px = std::min(static_cast<int>(xs[last]) + 16, cam.width - 1);
-      const int py = std::clamp(static_cast<int>(ys[last]), 0, cam.height - 1);
-      const float* row = map + static_cast<std::ptrdiff_t>(py) * cam.width + px;
+      const int ax = std::min(static_cast<int>(px[o][last]) + 16, cam.width - 1);
+      const int ay = std::clamp(static_cast<int>(py[o][last]), 0, cam.height - 1);
+      const float* row = map + static_cast<std::ptrdiff_t>(ay) * cam.width + ax;
       __builtin_prefetch(row);
-      if (py + 1 < cam.height) __builtin_prefetch(row + cam.width);
+      if (ay + 1 < cam.height) __builtin_prefetch(row + cam.width);
     }
-    m &= _mm512_cmp_ps_mask(depth, mul16(w, keep), _CMP_NLT_UQ);
-    insert_slots(best, slots, m, cs, over, d, static_cast<int>(i), x, y);
+    seen[o] = m & _mm512_cmp_ps_mask(depth, mul16(w, keep), _CMP_NLT_UQ);
+  }
+  for (int o = 0; o < cameras; ++o) {
+    __mmask16 m = seen[o];
+    if (m == 0) continue;
+    const std::size_t i = static_cast<std::size_t>(order[o]);
+    const __m512 cs = _mm512_load_ps(cosine[o]), d = _mm512_load_ps(distance[i]);
+    // Lanes whose slots are full of cameras that go before this one do not need it.
+    m &= static_cast<__mmask16>(_mm512_cmp_epi32_mask(best.camera[slots - 1], _mm512_set1_epi32(-1), _MM_CMPINT_EQ) |
+                                slot_before(best, slots - 1, cs, above[o], d, _mm512_set1_epi32(static_cast<int>(i))));
+    if (m == 0) continue;
+    insert_slots(best, slots, m, cs, above[o], d, static_cast<int>(i), _mm512_load_ps(px[o]), _mm512_load_ps(py[o]));
   }
   for (int j = 0; j < slots; ++j) {
     _mm512_store_ps(out.penalty[j], unit_acos16(best.cosine[j]));
