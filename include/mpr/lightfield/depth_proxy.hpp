@@ -123,10 +123,10 @@ struct DepthProxy {
   /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On AVX-512,
   /// for float tables of at most 64 undistorted cameras and k < 8: sixteen rays at a time
   /// (detail/depth_proxy_lanes.hpp), one lane per ray, for the scan of the camera centres, the
-  /// walk through each ray's nearest camera and the blend's choice of cameras. Bit for bit the
+  /// walks through each ray's cameras and the blend's choice of cameras. Bit for bit the
   /// per-ray answer where the per-ray code is built without fused multiply-adds (no -march or
   /// -mfma); with them, a decision at a threshold that the rounding of a fused product moves
-  /// may go the other way (Chess: 7 of 1.12 million pixels; the classroom's exact z-buffers:
+  /// may go the other way (Chess: 8 of 1.12 million pixels; the classroom's exact z-buffers:
   /// 0.24%). Elsewhere, `sample` per ray.
   template <std::floating_point T, class Px>
   void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {

@@ -3,16 +3,16 @@
 /// `DepthProxy`'s batch path (lightfield/depth_proxy.hpp): sixteen rays at a time, one per lane
 /// of the AVX-512 kernels of detail/depth_lanes.hpp and detail/depth_walk_lanes.hpp. The scan of
 /// the camera centres gives each ray its candidates and its nearest camera; the rays that share
-/// a nearest camera walk its depth map together, and the rays that camera does not settle go on
-/// per ray from where it left them; the blend's visibility tests, angles and choice of the k + 1
-/// best cameras run across the lanes, and the weighing per ray. Included by depth_proxy.hpp.
+/// a nearest camera walk its depth map together, and the rays that camera does not settle walk
+/// their next candidates in turn, again together where they share one; the blend's visibility
+/// tests, angles and choice of the k + 1 best cameras run across the lanes, and the weighing per
+/// ray. Included by depth_proxy.hpp.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/detail/depth_lanes.hpp>
-#include <mpr/lightfield/detail/depth_walk.hpp>
 #include <mpr/lightfield/detail/depth_walk_lanes.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
@@ -107,39 +107,51 @@ struct DepthProxyLanes {
         if (near[i] >> l & 1u) DepthProxy::insert(cl, static_cast<int>(i), distance[i][l]);
     };
     // The surface of each ray: the rays that share their nearest camera walk its map together;
-    // where that camera does not settle it, the search goes on per ray from there.
-    alignas(64) T hit_t[16], skip_begin[16], skip_end[16];
-    unsigned hit = 0, passed = 0;
-    while (walking != 0) {
-      const int camera = first[__builtin_ctz(walking)];
-      unsigned group = 0;
-      for (unsigned m = walking; m != 0; m &= m - 1)
-        if (first[__builtin_ctz(m)] == camera) group |= 1u << __builtin_ctz(m);
-      walking &= ~group;
-      const std::size_t i = static_cast<std::size_t>(camera);
-      WalkLanesResult w;
-      walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group,
-                   p.whole_line ? -std::numeric_limits<T>::infinity() : T(0), static_cast<T>(p.tolerance), w);
-      for (unsigned m = group; m != 0; m &= m - 1) {
-        const int l = __builtin_ctz(m);
-        hit_t[l] = w.t[l];
-        skip_begin[l] = w.skip_begin[l];
-        skip_end[l] = w.skip_end[l];
-        g.escaped[l] = w.escaped >> l & 1u;
+    // where that camera does not settle it, the search goes on through each ray's next
+    // candidates in turn, the rays whose next camera is the same again together.
+    const T inf = std::numeric_limits<T>::infinity();
+    WalkLanesResult search;
+    std::fill(search.t, search.t + 16, p.whole_line ? -inf : T(0));
+    std::fill(search.skip_begin, search.skip_begin + 16, inf);
+    std::fill(search.skip_end, search.skip_end + 16, inf);
+    unsigned hit = 0;
+    const auto walk_round = [&](unsigned lanes, const auto& camera_of) {
+      unsigned passed = 0;
+      while (lanes != 0) {
+        const int camera = camera_of(__builtin_ctz(lanes));
+        unsigned group = 0;
+        for (unsigned m = lanes; m != 0; m &= m - 1)
+          if (camera_of(__builtin_ctz(m)) == camera) group |= 1u << __builtin_ctz(m);
+        lanes &= ~group;
+        const std::size_t i = static_cast<std::size_t>(camera);
+        WalkLanesResult w;
+        walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group, search,
+                     static_cast<T>(p.tolerance), w);
+        for (unsigned m = group; m != 0; m &= m - 1) {
+          const int l = __builtin_ctz(m);
+          search.t[l] = w.t[l];
+          search.skip_begin[l] = w.skip_begin[l];
+          search.skip_end[l] = w.skip_end[l];
+          g.escaped[l] = w.escaped >> l & 1u;
+        }
+        hit |= w.hit;
+        passed |= w.passed;
       }
-      hit |= w.hit;
-      passed |= w.passed;
+      return passed;
+    };
+    unsigned going = walk_round(walking, [&](int l) { return first[l]; });
+    if (going != 0 && p.march_cameras > 1) {
+      DepthProxy::Candidates<T> c[16];
+      for (unsigned m = going; m != 0; m &= m - 1) candidates(__builtin_ctz(m), c[__builtin_ctz(m)]);
+      for (int j = 1; going != 0 && j < p.march_cameras; ++j) {
+        for (unsigned m = going; m != 0; m &= m - 1)
+          if (j >= c[__builtin_ctz(m)].count) going &= ~(1u << __builtin_ctz(m));
+        going = walk_round(going, [&](int l) { return c[l].index[j]; });
+      }
     }
     for (int l = 0; l < n; ++l) {
       g.t[l].reset();
-      if (hit >> l & 1u) {
-        g.t[l] = hit_t[l];
-      } else if (passed >> l & 1u) {
-        DepthProxy::Candidates<T> c;
-        candidates(l, c);
-        g.t[l] = p.surface(table, rays[static_cast<std::size_t>(l)], c, 1,
-                           DepthSearch<T>{hit_t[l], skip_begin[l], skip_end[l]}, g.escaped[l]);
-      }
+      if (hit >> l & 1u) g.t[l] = search.t[l];
     }
   }
 

@@ -5,8 +5,8 @@
 /// together, one lane per ray, each lane stepping and narrowing the crossing as the per-ray walk
 /// does, with the same operations in the same order and no fused multiply-add, and ending as it
 /// ends: on the surface, escaped, or passed on to the next camera with the search where the
-/// per-ray walk leaves it (the caller walks the next cameras per ray). Only the first camera of
-/// a search: nothing seen free yet.
+/// per-ray walk leaves it, for the next camera. Each lane's walk starts from its own search
+/// (`DepthSearch`: where it stands, and the stretch seen free by the cameras before).
 
 #include <mpr/core/config.hpp>
 #include <mpr/lightfield/detail/depth_lanes.hpp>
@@ -51,20 +51,48 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void keep_in_view16(__m512 lo, __m512 hi, __
                                  _mm512_cmp_ps_mask(_mm512_abs_ps(lo), _mm512_set1_ps(__builtin_inff()), _CMP_LT_OQ));
 }
 
-/// The search of sixteen walks (`DepthSearch` per lane) in their first camera, which sees each
+/// The search of sixteen walks (`DepthSearch` per lane) in one camera, which sees each
 /// ray from `view` on (`gap`: the lanes where that lies beyond the search's t).
 struct SearchLanes16 {
   __m512 t, skip_begin, skip_end, view;
   __mmask16 gap;
 
-  /// `depth_walk`'s pass(at) for the lanes of m, nothing seen free before: the search moves on
-  /// to `at`, or, where the camera does not see the ray at t, records [view, at) as seen free.
+  /// `depth_walk`'s pass(at) for the lanes of m: where the camera sees the ray at t, the search
+  /// moves on to `at` (over the stretch seen free when it reaches it, which is then used up);
+  /// where it does not, [view, at) is recorded as seen free, merged with the stretch there when
+  /// they overlap.
   MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void pass(__mmask16 m, __m512 at) noexcept {
+    const __m512 inf = _mm512_set1_ps(__builtin_inff());
+    const __m512 sb = skip_begin, se = skip_end;
+    // t = at >= sb ? std::max(at, se) : at; then a t at or past sb clears the stretch.
     const __mmask16 moved = m & ~gap;
-    const __mmask16 skip = m & gap & _mm512_cmp_ps_mask(view, at, _CMP_LT_OQ);
-    t = _mm512_mask_mov_ps(t, moved, at);
-    skip_begin = _mm512_mask_mov_ps(skip_begin, skip, view);
-    skip_end = _mm512_mask_mov_ps(skip_end, skip, at);
+    const __mmask16 reached = moved & _mm512_cmp_ps_mask(at, sb, _CMP_GE_OQ);
+    const __m512 over = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(at, se, _CMP_LT_OQ), at, se);
+    t = _mm512_mask_mov_ps(t, moved, _mm512_mask_blend_ps(reached, at, over));
+    const __mmask16 used = moved & _mm512_cmp_ps_mask(t, sb, _CMP_GE_OQ);
+    // sb = none ? view : std::min(sb, view), se = none ? at : std::max(se, at).
+    const __mmask16 none = static_cast<__mmask16>(~_mm512_cmp_ps_mask(sb, se, _CMP_LT_OQ));
+    const __mmask16 overlap = _mm512_cmp_ps_mask(view, se, _CMP_LE_OQ) & _mm512_cmp_ps_mask(at, sb, _CMP_GE_OQ);
+    const __mmask16 record = m & gap & _mm512_cmp_ps_mask(view, at, _CMP_LT_OQ) & (none | overlap);
+    const __m512 begin =
+        _mm512_mask_blend_ps(none, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(view, sb, _CMP_LT_OQ), sb, view), view);
+    const __m512 end =
+        _mm512_mask_blend_ps(none, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(se, at, _CMP_LT_OQ), se, at), at);
+    skip_begin = _mm512_mask_mov_ps(_mm512_mask_mov_ps(sb, used, inf), record, begin);
+    skip_end = _mm512_mask_mov_ps(_mm512_mask_mov_ps(se, used, inf), record, end);
+  }
+
+  /// `depth_walk`'s start_behind for the lanes of m whose walk starts (or resumes) at `at` at or
+  /// behind the surface c sees (f(at) = `fat` >= 0, ray depth `zat`): the surface itself within
+  /// the tolerance (added to `hit`), else c is occluded from there (passed). Returns those lanes.
+  MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __mmask16 start_behind(__mmask16 m, __m512 at, __m512 fat, __m512 zat,
+                                                             __m512 tolerance, __mmask16& hit) noexcept {
+    const __mmask16 behind = m & ~_mm512_cmp_ps_mask(fat, _mm512_setzero_ps(), _CMP_LT_OQ);
+    const __mmask16 on = behind & _mm512_cmp_ps_mask(fat, mul16(tolerance, zat), _CMP_LE_OQ);
+    hit |= on;
+    t = _mm512_mask_mov_ps(t, on, at);
+    pass(behind & ~on, at);
+    return behind;
   }
 };
 
@@ -77,11 +105,12 @@ struct WalkLanesResult {
 };
 
 /// Walks the rays `lanes` of the lanes in `walk` through camera `c`'s depth map `d` (`near` its
-/// nearest depth), from the search {start, +inf, +inf} (start -inf for the whole line, 0 for the
-/// half-line), exactly as `depth_walk` does (see the file comment), and says how each walk ended.
+/// nearest depth), each lane l from the search {from.t[l], from.skip_begin[l], from.skip_end[l]}
+/// (a first camera: t = -inf for the whole line, 0 for the half-line, no stretch: +inf, +inf),
+/// exactly as `depth_walk` does (see the file comment), and says how each walk ended.
 template <class Camera>
 MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near, const RayLanes& lanes, unsigned walk,
-                                    float start, float tolerance, WalkLanesResult& out) noexcept {
+                                    const WalkLanesResult& from, float tolerance, WalkLanesResult& out) noexcept {
   const RayLanes16 r = load_lanes(lanes);
   const float* P = c.P;
   // a = P (o, 1), b = P (v, 0), each row summed as `depth_walk` sums it.
@@ -93,7 +122,7 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   h.b1 = linear_row16(P + 4, r.vx, r.vy, r.vz);
   h.b2 = linear_row16(P + 8, r.vx, r.vy, r.vz);
   const __m512 zero = _mm512_setzero_ps(), inf = _mm512_set1_ps(__builtin_inff());
-  const __m512 t0 = _mm512_set1_ps(start);
+  const __m512 t0 = _mm512_load_ps(from.t);
   __mmask16 hit = 0, escaped = 0;
   // The interval of s where h projects inside the image in front of c.
   __m512 lo = t0, hi = inf;
@@ -110,7 +139,7 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   keep_in_view16(lo, hi, live); // the others pass with the search unchanged
   const __m512 leave = hi, view = lo;
   const __mmask16 gap = _mm512_cmp_ps_mask(lo, t0, _CMP_GT_OQ); // c sees the ray only from beyond t
-  SearchLanes16 search{t0, inf, inf, view, gap};
+  SearchLanes16 search{t0, _mm512_load_ps(from.skip_begin), _mm512_load_ps(from.skip_end), view, gap};
   const float tol = tolerance;
   if (__builtin_isfinite(near)) {
     const __mmask16 before = live;
@@ -126,20 +155,21 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   const float smooth = 1 + 4 * tol;
   const __m512 tolerance16 = _mm512_set1_ps(tol);
   const int width = c.width, height = c.height;
+  const __mmask16 bounded = _mm512_cmp_ps_mask(hi, inf, _CMP_LT_OQ);
+  {
+    // A walk that would start inside the stretch seen free starts after it, if c still sees the
+    // ray there.
+    const __mmask16 inside = live & _mm512_cmp_ps_mask(lo, search.skip_begin, _CMP_GE_OQ) &
+                             _mm512_cmp_ps_mask(lo, search.skip_end, _CMP_LT_OQ);
+    const __mmask16 beyond = inside & ~_mm512_cmp_ps_mask(search.skip_end, hi, _CMP_LT_OQ);
+    search.pass(beyond, _mm512_mask_blend_ps(_mm512_cmp_ps_mask(leave, inf, _CMP_LT_OQ), search.skip_end, leave));
+    live &= ~beyond;
+    lo = _mm512_mask_mov_ps(lo, inside & ~beyond, search.skip_end);
+  }
   __m512 s = lo, z;
   __m512 fs = walk_f16(h, d, width, height, smooth, s, live, z);
-  {
-    // Starting at or behind the surface c sees: the surface itself within the tolerance, else
-    // c is occluded from there.
-    const __mmask16 behind = live & ~_mm512_cmp_ps_mask(fs, zero, _CMP_LT_OQ);
-    const __mmask16 on = behind & _mm512_cmp_ps_mask(fs, mul16(tolerance16, z), _CMP_LE_OQ);
-    hit |= on;
-    search.t = _mm512_mask_mov_ps(search.t, on, s);
-    search.pass(behind & ~on, s);
-    live &= ~behind;
-  }
+  live &= ~search.start_behind(live, s, fs, z, tolerance16, hit);
   // Step about a pixel at a time until f >= 0 brackets the crossing in [s, next].
-  const __mmask16 bounded = _mm512_cmp_ps_mask(hi, inf, _CMP_LT_OQ);
   const __m512 half = _mm512_set1_ps(0.5f);
   // Where a walk stops without a bracket: the end of the view, or where it stood.
   __m512 s1 = zero, f1 = zero, z0 = zero, z1 = zero;
@@ -168,9 +198,14 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
       stepping &= ~vanishing;
     }
     const __m512 ahead = _mm512_add_ps(s, _mm512_div_ps(mul16(zs, zs), m));
-    const __m512 next = _mm512_mask_blend_ps(
+    __m512 next = _mm512_mask_blend_ps(
         bounded, ahead,
         _mm512_mask_blend_ps(_mm512_cmp_ps_mask(m, zero, _CMP_GT_OQ), hi, _mm512_maskz_min_ps(0xFFFF, ahead, hi)));
+    // Up to the stretch seen free, then over it.
+    next = _mm512_mask_mov_ps(next,
+                              _mm512_cmp_ps_mask(s, search.skip_begin, _CMP_LT_OQ) &
+                                  _mm512_cmp_ps_mask(next, search.skip_begin, _CMP_GT_OQ),
+                              search.skip_begin);
     __m512 zn;
     const __m512 fn = walk_f16(h, d, width, height, smooth, next, stepping, zn);
     const __mmask16 found = stepping & _mm512_cmp_ps_mask(fn, zero, _CMP_GE_OQ);
@@ -182,6 +217,18 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
     stepping &= ~found;
     s = _mm512_mask_blend_ps(stepping, s, next);
     fs = _mm512_mask_blend_ps(stepping, fs, fn);
+    const __mmask16 skip = stepping & _mm512_cmp_ps_mask(s, search.skip_begin, _CMP_GE_OQ) &
+                           _mm512_cmp_ps_mask(s, search.skip_end, _CMP_LT_OQ);
+    if (skip != 0) {
+      const __mmask16 beyond = skip & ~_mm512_cmp_ps_mask(search.skip_end, hi, _CMP_LT_OQ);
+      search.pass(beyond, _mm512_mask_blend_ps(bounded, s, leave));
+      stepping &= ~beyond;
+      const __mmask16 jump = skip & ~beyond;
+      s = _mm512_mask_mov_ps(s, jump, search.skip_end);
+      __m512 zj;
+      fs = _mm512_mask_mov_ps(fs, jump, walk_f16(h, d, width, height, smooth, s, jump, zj));
+      stepping &= ~search.start_behind(jump, s, fs, zj, tolerance16, hit);
+    }
   }
   search.pass(stepping, _mm512_mask_blend_ps(bounded, s, leave)); // out of steps
   // Regula falsi (Illinois) in [s0, s1], as `depth_walk` narrows it.
