@@ -171,8 +171,12 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   live &= ~search.start_behind(live, s, fs, z, tolerance16, hit);
   // Step about a pixel at a time until f >= 0 brackets the crossing in [s, next].
   const __m512 half = _mm512_set1_ps(0.5f);
-  // Where a walk stops without a bracket: the end of the view, or where it stood.
-  __m512 s1 = zero, f1 = zero, z0 = zero, z1 = zero;
+  // The bracket [s0, s1] of each lane that finds one (f0 = f(s0), ray depths z0, z1). Every lane
+  // steps on and reads the map each step until all are done, the finished ones' results unused:
+  // then no step waits for the previous step's lookups (only the lanes' masks do), and the
+  // lookups of several steps are in flight at once.
+  __m512 s0 = zero, f0 = zero, s1 = zero, f1 = zero, z0 = zero, z1 = zero;
+  const __mmask16 reading = live;
   __mmask16 stepping = live, bracketed = 0;
   for (int step = 0; stepping != 0 && step < 1 << 16; ++step) {
     const __mmask16 out_of_view = stepping & _mm512_cmp_ps_mask(s, hi, _CMP_GE_OQ);
@@ -207,16 +211,18 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
                                   _mm512_cmp_ps_mask(next, search.skip_begin, _CMP_GT_OQ),
                               search.skip_begin);
     __m512 zn;
-    const __m512 fn = walk_f16(h, d, width, height, smooth, next, stepping, zn);
+    const __m512 fn = walk_f16(h, d, width, height, smooth, next, reading, zn);
     const __mmask16 found = stepping & _mm512_cmp_ps_mask(fn, zero, _CMP_GE_OQ);
+    s0 = _mm512_mask_blend_ps(found, s0, s);
+    f0 = _mm512_mask_blend_ps(found, f0, fs);
     s1 = _mm512_mask_blend_ps(found, s1, next);
     f1 = _mm512_mask_blend_ps(found, f1, fn);
     z0 = _mm512_mask_blend_ps(found, z0, zs);
     z1 = _mm512_mask_blend_ps(found, z1, zn);
     bracketed |= found;
     stepping &= ~found;
-    s = _mm512_mask_blend_ps(stepping, s, next);
-    fs = _mm512_mask_blend_ps(stepping, fs, fn);
+    s = next;
+    fs = fn;
     const __mmask16 skip = stepping & _mm512_cmp_ps_mask(s, search.skip_begin, _CMP_GE_OQ) &
                            _mm512_cmp_ps_mask(s, search.skip_end, _CMP_LT_OQ);
     if (skip != 0) {
@@ -232,7 +238,7 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   }
   search.pass(stepping, _mm512_mask_blend_ps(bounded, s, leave)); // out of steps
   // Regula falsi (Illinois) in [s0, s1], as `depth_walk` narrows it.
-  __m512 s0 = s, f0 = fs, g0 = fs, g1 = f1;
+  __m512 g0 = f0, g1 = f1;
   const __m512 resolution = mul16(_mm512_sub_ps(s1, s0), _mm512_set1_ps(1.0f / 256));
   const __m512 half_tol = _mm512_set1_ps(0.5f * tol);
   __mmask16 kept_low = 0, kept_high = 0; // the last step moved s0 / s1
