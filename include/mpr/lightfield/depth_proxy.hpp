@@ -246,23 +246,14 @@ private:
                                          bool& escaped) const noexcept {
     const T inf = std::numeric_limits<T>::infinity();
     detail::DepthSearch<T> search{whole_line ? -inf : T(0), inf, inf};
-    return surface(table, ray, c, 0, search, escaped);
-  }
-
-  // The surface search from candidate `from` on (the ones before it walked, all undistorted),
-  // with the search where their walks left it.
-  template <std::floating_point T, class Px>
-  [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray, const Candidates<T>& c,
-                                         int from, detail::DepthSearch<T> search, bool& escaped) const noexcept {
-    T& t = search.t;
-    int walked = from;
-    for (int j = from; j < c.count && walked < march_cameras; ++j) {
+    int walked = 0;
+    for (int j = 0; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
       if (table.camera(i).distorted) continue;
       ++walked;
       const detail::DepthWalk w = detail::depth_walk<T, Px>(table.camera(i), table.frames().depth(i).data(),
                                                             table.frames().depth_near(i), ray, tolerance, search);
-      if (w == detail::DepthWalk::hit) return t;
+      if (w == detail::DepthWalk::hit) return search.t;
       if (w == detail::DepthWalk::escaped) {
         escaped = true;
         return std::nullopt;
