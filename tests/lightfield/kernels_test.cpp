@@ -565,15 +565,17 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
           const bool plain512 = variant.second;
           INFO((plain512 ? "AVX-512 without VBMI" : kernel_name(k)));
           std::vector<float> h0(m + kGuard, kSentinel<float>), h1(m + kGuard, kSentinel<float>);
-          const auto lerp = [&](const std::vector<C>& row, std::vector<float>& h) {
+          // The weighted runs also ask for the other row ahead (a prefetch: the same values).
+          const auto lerp = [&](const std::vector<C>& row, std::vector<float>& h, const std::vector<C>& other) {
+            const C* ahead = weighted ? other.data() : nullptr;
 #if defined(MPR_SIMD_X86)
             if constexpr (std::is_same_v<C, std::uint8_t>)
-              if (plain512) return mpr::detail::lerp_row_codes_avx512(row.data(), lut, ax, scale, h.data(), m);
+              if (plain512) return mpr::detail::lerp_row_codes_avx512(row.data(), lut, ax, scale, h.data(), m, ahead);
 #endif
-            mpr::detail::lerp_row(row.data(), lut, ax, scale, h.data(), m, level(k));
+            mpr::detail::lerp_row(row.data(), lut, ax, scale, h.data(), m, ahead, level(k));
           };
-          lerp(a, h0);
-          lerp(b, h1);
+          lerp(a, h0, b);
+          lerp(b, h1, a);
           std::vector<float> acc = acc0;
           mpr::detail::blend_rows(h0.data(), h1.data(), 1 - ay, ay, weighted ? rw.data() : nullptr, acc.data(), n,
                                   level(k));

@@ -50,7 +50,10 @@ void check_resample() {
           const double x = n > 1 ? std::max(0.0, reach - s * static_cast<double>(n - 1)) * unit(rng)
                                  : unit(rng) * static_cast<double>(texels - 1);
           std::vector<float> h(3 * n + kGuard, kSentinel);
-          mpr::detail::resample_row(row.data(), texels, lut, x, s, scale, h.data(), n, level);
+          // Every other case asks for a next row ahead (prefetched only: the same values).
+          const std::vector<C> next(row.rbegin(), row.rend());
+          mpr::detail::resample_row(row.data(), texels, lut, x, s, scale, h.data(), n,
+                                    cases % 2 == 1 ? next.data() : nullptr, level);
           ++cases;
           for (std::size_t j = 3 * n; j < h.size(); ++j) failures += h[j] != kSentinel ? 1 : 0;
           for (std::size_t i = 0; i < n; ++i) {

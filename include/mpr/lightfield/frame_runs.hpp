@@ -83,9 +83,11 @@ public:
   /// offset `ax`, computed or kept; nullptr when memory runs out.
   /// With `stride` k > 1 (an output pixel every k camera pixels), the row holds the `m / 3`
   /// pixels 0, k, 2k, ... of the interpolated row (which reads k (m / 3 - 1) + 2 texels).
+  /// `ahead` (nullptr: none): texels of the row to be asked for next, prefetched while this one
+  /// is computed (`detail::lerp_row`).
   template <class C>
   [[nodiscard]] const float* row(const C* texels, const std::uint16_t* lut, std::size_t m, float ax, float scale,
-                                 std::size_t stride = 1) noexcept {
+                                 std::size_t stride = 1, const C* ahead = nullptr) noexcept {
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
       if (e.texels == static_cast<const void*>(texels) && e.m == m && e.stride == stride &&
@@ -103,10 +105,11 @@ public:
       e.texels = nullptr;
       return nullptr;
     }
-    detail::lerp_row(texels, lut, ax, scale, e.h.data(), wide);
+    float* h = e.h.data();
+    detail::lerp_row(texels, lut, ax, scale, h, wide, ahead);
     if (stride > 1) // keep every stride-th pixel, in place (each moves left or stays)
       for (std::size_t i = 1; i < pixels; ++i)
-        for (std::size_t k = 0; k < 3; ++k) e.h[3 * i + k] = e.h[3 * stride * i + k];
+        for (std::size_t k = 0; k < 3; ++k) h[3 * i + k] = h[3 * stride * i + k];
     e.texels = texels;
     e.m = m;
     e.stride = stride;
@@ -117,10 +120,10 @@ public:
   /// The `pixels` pixels of the camera row `texels` (of `width` texels; 8-bit codes decoded by
   /// `lut`) at positions x + s i (`detail::resample_row`), computed or kept; nullptr when memory
   /// runs out. Reuse needs the same row and length, x within 1e-4 pixel and s within 1e-4 pixel
-  /// over the row.
+  /// over the row. `ahead` as in `row` (from the next row's first texel read).
   template <class C>
   [[nodiscard]] const float* resampled(const C* texels, std::size_t width, const std::uint16_t* lut, std::size_t pixels,
-                                       double x, double s, float scale) noexcept {
+                                       double x, double s, float scale, const C* ahead = nullptr) noexcept {
     const std::size_t m = 3 * pixels;
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
@@ -138,7 +141,7 @@ public:
       e.texels = nullptr;
       return nullptr;
     }
-    detail::resample_row(texels, width, lut, x, s, scale, e.h.data(), pixels);
+    detail::resample_row(texels, width, lut, x, s, scale, e.h.data(), pixels, ahead);
     e.texels = texels;
     e.m = m;
     e.stride = 0; // marks a resampled row
@@ -164,13 +167,33 @@ private:
 };
 
 namespace detail {
+// Where camera `ahead` (nullptr: none) sees X: its texel at the pixel, clamped to the image so
+// that the texel and the one below it exist; nullptr when X is not in front of it. For
+// prefetches only.
+template <class Camera, class P>
+[[nodiscard]] auto ahead_texels(const Camera* ahead, const P& X) noexcept -> decltype(ahead->texels) {
+  using T = typename P::Scalar;
+  if (ahead == nullptr || ahead->height < 2) return nullptr;
+  const T* Pm = ahead->P;
+  const T w = Pm[8] * X.x() + Pm[9] * X.y() + Pm[10] * X.z() + Pm[11];
+  if (!(w > 0)) return nullptr;
+  const T x = (Pm[0] * X.x() + Pm[1] * X.y() + Pm[2] * X.z() + Pm[3]) / w;
+  const T y = (Pm[4] * X.x() + Pm[5] * X.y() + Pm[6] * X.z() + Pm[7]) / w;
+  const T right = static_cast<T>(ahead->width - 1), bottom = static_cast<T>(ahead->height - 2);
+  if (std::isnan(x) || std::isnan(y)) return nullptr;
+  const auto ix = static_cast<std::ptrdiff_t>(std::clamp(std::floor(x), T(0), right));
+  const auto iy = static_cast<std::ptrdiff_t>(std::clamp(std::floor(y), T(0), bottom));
+  return ahead->texels + iy * ahead->width + ix;
+}
+
 // The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy + 1 (ay the
 // vertical offset): pixels whose texel pairs lie inside the row are blended from two resampled
 // rows (`LerpRowCache::resampled`), the others go ray by ray. False when none lies inside.
 template <std::floating_point T, class Px>
 bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
                          const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
-                         float* weight, const float* ray_weight, LerpRowCache* cache) noexcept {
+                         float* weight, const float* ray_weight, LerpRowCache* cache,
+                         const typename FrameTable<T, Px>::Camera* ahead) noexcept {
   using texel_type = typename FrameTable<T, Px>::texel_type;
   // Pixels i with 0 <= x0 + step i <= width - 1: [first, last).
   const T right = static_cast<T>(c.width - 1);
@@ -194,9 +217,13 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
   const std::uint16_t* lut = texel_decode_table<texel_type>();
   const std::size_t width = static_cast<std::size_t>(c.width);
-  const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale);
-  const float* h1 =
-      h0 != nullptr ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale) : nullptr;
+  const texel_type* next = ahead_texels(ahead, points[first]);
+  const auto* next0 = next != nullptr ? next->c : nullptr;
+  const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
+  const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next0);
+  const float* h1 = h0 != nullptr
+                        ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale, next1)
+                        : nullptr;
   const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
   if (h1 == nullptr) { // out of memory
     table.add_per_ray(c, points + first, m, acc + 3 * first, weight + first, rw);
@@ -216,11 +243,13 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
 /// when given; rays of weight <= 0 are skipped) and true is returned. Pixels near the image's
 /// left and right edges go ray by ray. False (nothing added) when the run does not qualify.
 /// With a `cache`, the bilinear blend is done in its separable form on cached rows (see
-/// `LerpRowCache`). Preconditions: n >= 2, c undistorted, bilinear filtering.
+/// `LerpRowCache`). `ahead` (nullptr: none): the camera that will be asked for the same run
+/// next (a tile's next camera), whose texels for the run are prefetched while c's rows are
+/// interpolated. Preconditions: n >= 2, c undistorted, bilinear filtering.
 template <std::floating_point T, class Px>
 bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
                std::size_t n, float* acc, float* weight, const float* ray_weight = nullptr,
-               LerpRowCache* cache = nullptr) noexcept {
+               LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
   using Table = FrameTable<T, Px>;
   using texel_type = typename Table::texel_type;
   T x0, y0, x1, y1, xm, ym;
@@ -252,7 +281,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   if (iy < 0 || iy + 1 > c.height - 1) return false; // the clamped border rows: per ray
   if (resample)
     return detail::shift_add_resampled(table, c, points, n, x0, step, iy, static_cast<float>(y0 - fy), acc, weight,
-                                       ray_weight, cache);
+                                       ray_weight, cache, ahead);
   const std::size_t stride = static_cast<std::size_t>(steps);
   // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
   // and added; the others (near or past the left and right edges) go ray by ray.
@@ -283,8 +312,11 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     if (cache == nullptr) own.clear();
     const std::uint16_t* lut = texel_decode_table<texel_type>();
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
-    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride);
-    const float* h1 = h0 != nullptr ? rows.row(b[start].c, lut, 3 * m, ax, sc, stride) : nullptr;
+    const texel_type* next = detail::ahead_texels(ahead, points[i_begin]);
+    const auto* next0 = next != nullptr ? next->c : nullptr;
+    const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
+    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next0);
+    const float* h1 = h0 != nullptr ? rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next1) : nullptr;
     if (h1 != nullptr) {
       detail::blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * i_begin, m);
     } else {

@@ -102,11 +102,15 @@ private:
       scratch.even[r] = table.config().filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
     const bool all_even = std::all_of(scratch.even.begin(), scratch.even.begin() + static_cast<std::ptrdiff_t>(rows),
                                       [](unsigned char e) { return e != 0; });
-    for (const auto& c : table.cameras()) {
+    const auto& cameras = table.cameras();
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      const auto& c = cameras[k];
+      // The next camera's rows are asked for while this one's are read (`shift_add`).
+      const auto* ahead = k + 1 < cameras.size() && !cameras[k + 1].distorted ? &cameras[k + 1] : nullptr;
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
-          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o, nullptr, &scratch.rows)) continue;
+          if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o, nullptr, &scratch.rows, ahead)) continue;
           // Rows off the camera's rows (a tilted plane): the whole tile at once when it can.
           if (r == 0 && rows > 1 && all_even && add_projective_tile(table, c, points, rows, w, acc, weight)) break;
           if (add_projective(table, c, points + o, w, acc + 3 * o, weight + o)) continue;

@@ -97,15 +97,17 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void decode_floats64(const DecodeBytes&
 /// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v the table value of the
 /// code (`lerp_row_portable` for 8-bit codes), 64 channels a step; each code decoded once, the
 /// values one pixel to the right taken from the decoded block and the next by a lane shift.
-/// Reads a[0, m + 3).
+/// Reads a[0, m + 3); `ahead` (nullptr: none) as in `lerp_row_portable`.
 MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
-                                                       float scale, float* h, std::size_t m) noexcept {
+                                                       float scale, float* h, std::size_t m,
+                                                       const std::uint8_t* ahead = nullptr) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
   const __m512 w0 = _mm512_set1_ps((1 - ax) * scale), w1 = _mm512_set1_ps(ax * scale);
   const std::size_t codes = m + 3; // readable codes
   __m512 cur[4];
   decode_floats64(d, a, std::min<std::size_t>(64, codes), cur);
   for (std::size_t j = 0; j < m; j += 64) {
+    if (ahead != nullptr) __builtin_prefetch(ahead + j, 0, 2);
     __m512 next[4] = {cur[0], cur[1], cur[2], cur[3]};
     if (j + 64 < codes) decode_floats64(d, a + j + 64, std::min<std::size_t>(64, codes - j - 64), next);
     const std::size_t count = std::min<std::size_t>(64, m - j);

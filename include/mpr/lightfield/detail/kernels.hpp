@@ -64,14 +64,33 @@ MPR_ALWAYS_INLINE float channel_value(C c, const std::uint16_t* lut) noexcept {
     return static_cast<float>(c);
 }
 
+/// Asks for the cache line at p, to arrive in L2 (GCC and Clang; nothing elsewhere): for rows read
+/// a while later, so that they do not displace the rows being read from L1.
+MPR_ALWAYS_INLINE void prefetch_l2(const void* p) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p, 0, 2);
+#else
+  (void)p;
+#endif
+}
+
 /// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v = `channel_value`: one
 /// camera row interpolated horizontally at a fixed sub-pixel offset, over flat RGB channels
-/// (the first half of a separable bilinear shift-and-add). Reads a[0, m + 3).
+/// (the first half of a separable bilinear shift-and-add). Reads a[0, m + 3). With `ahead`
+/// (nullptr: none), the row to be interpolated next (the next camera's) is asked of the cache
+/// along the way, a line per 64 channels: rows taken camera after camera are not followed by the
+/// hardware prefetcher (docs/performance.md). Its addresses are only prefetched, never read.
 template <class C>
 MPR_ALWAYS_INLINE void lerp_row_portable(const C* MPR_RESTRICT a, const std::uint16_t* MPR_RESTRICT lut, float ax,
-                                         float scale, float* MPR_RESTRICT h, std::size_t m) noexcept {
+                                         float scale, float* MPR_RESTRICT h, std::size_t m,
+                                         const C* ahead = nullptr) noexcept {
   const float w0 = (1 - ax) * scale, w1 = ax * scale;
-  for (std::size_t j = 0; j < m; ++j) h[j] = w0 * channel_value(a[j], lut) + w1 * channel_value(a[j + 3], lut);
+  constexpr std::size_t kLine = 64 / sizeof(C);
+  for (std::size_t j0 = 0; j0 < m; j0 += kLine) {
+    if (ahead != nullptr) prefetch_l2(ahead + j0);
+    const std::size_t j1 = std::min(m, j0 + kLine);
+    for (std::size_t j = j0; j < j1; ++j) h[j] = w0 * channel_value(a[j], lut) + w1 * channel_value(a[j + 3], lut);
+  }
 }
 
 #if defined(MPR_SIMD_X86)
@@ -125,13 +144,15 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void decode_codes32(const Decode16x512& d, c
 // values three channels on (one pixel to the right) come from the decoded block and the next by
 // a lane shift.
 MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const std::uint16_t* lut, float ax,
-                                                    float scale, float* h, std::size_t m) noexcept {
+                                                    float scale, float* h, std::size_t m,
+                                                    const std::uint8_t* ahead = nullptr) noexcept {
   const Decode16x512 d = load_decode16(lut);
   const __m512 w0 = _mm512_set1_ps((1 - ax) * scale), w1 = _mm512_set1_ps(ax * scale);
   const std::size_t codes = m + 3; // readable codes
   __m512 lo, hi;
   decode_codes32(d, a, std::min<std::size_t>(32, codes), lo, hi);
   for (std::size_t j = 0; j < m; j += 32) {
+    if (ahead != nullptr && j % 64 == 0) prefetch_l2(ahead + j);
     __m512 next_lo = lo, next_hi = hi;
     if (j + 32 < codes) decode_codes32(d, a + j + 32, std::min<std::size_t>(32, codes - j - 32), next_lo, next_hi);
     const __m512 right_lo =
@@ -160,14 +181,14 @@ MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const
 /// form where the CPU has it).
 template <class C>
 inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale, float* h, std::size_t m,
-                     SimdLevel level = simd_level()) noexcept {
+                     const C* ahead = nullptr, SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m);
-    if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m);
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m, ahead);
+    if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m, ahead);
   }
 #endif
-  run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m); });
+  run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m, ahead); });
 }
 
 /// acc[3 i + k] += rw[i] (w0 h0[3 i + k] + w1 h1[3 i + k]) for pixels i in [0, n) (rw nullptr:

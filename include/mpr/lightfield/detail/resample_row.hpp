@@ -27,15 +27,22 @@ inline constexpr double kResampleMaxStep = 2.5;
 /// h[3 i + k] = scale ((1 - f) v(row[3 j + k]) + f v(row[3 j + 3 + k])) for pixels i in [0, n),
 /// where x_i = x + s i (camera pixels, texel centres at integers), j = floor(x_i) clamped to
 /// [0, texels - 2] and f = x_i - j clamped to [0, 1]; v = `channel_value`. `row` holds `texels`
-/// flat RGB texels (3 texels channels). Preconditions: texels >= 2, x >= 0, 0 < s.
+/// flat RGB texels (3 texels channels). With `ahead` (nullptr: none), the texels of the row to be
+/// resampled next (the next camera's, from where its first pixel falls) are prefetched along the
+/// way, over the span this row reads (see `lerp_row_portable`). Preconditions: texels >= 2,
+/// x >= 0, 0 < s.
 template <class C>
 MPR_ALWAYS_INLINE void resample_row_portable(const C* MPR_RESTRICT row, std::size_t texels,
                                              const std::uint16_t* MPR_RESTRICT lut, double x, double s, float scale,
-                                             float* MPR_RESTRICT h, std::size_t n) noexcept {
+                                             float* MPR_RESTRICT h, std::size_t n, const C* ahead = nullptr) noexcept {
   const double last_pair = static_cast<double>(texels) - 2;
+  const double j_first = std::clamp(std::floor(x), 0.0, last_pair);
   for (std::size_t i = 0; i < n; ++i) {
     const double xi = x + s * static_cast<double>(i);
     const double j = std::clamp(std::floor(xi), 0.0, last_pair);
+    if (ahead != nullptr && i % 16 == 0) // the next 16 pixels' texels in the next row
+      for (std::size_t b = 0; b < 48 * sizeof(C) * static_cast<std::size_t>(std::ceil(s)) + 6 * sizeof(C); b += 64)
+        prefetch_l2(reinterpret_cast<const char*>(ahead + 3 * static_cast<std::size_t>(j - j_first)) + b);
     const float f = static_cast<float>(std::clamp(xi - j, 0.0, 1.0));
     const C* a = row + 3 * static_cast<std::size_t>(j);
     for (int k = 0; k < 3; ++k)
@@ -85,7 +92,8 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512i load_window64(const std::uint8_
 // `resample_row_portable` for 8-bit codes, 16 pixels a step. Precondition: s <= kResampleMaxStep.
 MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* row, std::size_t texels,
                                                            const std::uint16_t* lut, double x, double s, float scale,
-                                                           float* h, std::size_t n) noexcept {
+                                                           float* h, std::size_t n,
+                                                           const std::uint8_t* ahead = nullptr) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
   __m512i pixel[2], offset[2], lane_pixel[3];
   for (int k = 0; k < 2; ++k) {
@@ -98,10 +106,16 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
   const long last_pair = static_cast<long>(texels) - 2;
   const std::size_t bytes = 3 * texels;
+  const long j_first = std::clamp(static_cast<long>(std::floor(x)), 0L, last_pair);
   for (std::size_t i = 0; i < n; i += 16) {
     // The group's first texel j0 in double; the lanes' offsets from it in float (below 40).
     const double xg = x + s * static_cast<double>(i);
     const long j0 = std::clamp(static_cast<long>(std::floor(xg)), 0L, last_pair);
+    if (ahead != nullptr) { // the group's 16 s + 1 texels (at most 123 bytes) in the next row
+      const std::uint8_t* p = ahead + 3 * (j0 - j_first);
+      __builtin_prefetch(p, 0, 2);
+      __builtin_prefetch(p + 64, 0, 2);
+    }
     const __m512 xl = _mm512_fmadd_ps(step, lanes, _mm512_set1_ps(static_cast<float>(xg - static_cast<double>(j0))));
     __m512i jl = _mm512_maskz_cvttps_epi32(0xFFFF, _mm512_maskz_max_ps(0xFFFF, xl, zero));
     jl = _mm512_maskz_min_epi32(0xFFFF, jl, _mm512_set1_epi32(static_cast<int>(std::min(last_pair - j0, 40L))));
@@ -137,14 +151,14 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
 /// has VBMI and s <= `kResampleMaxStep`.
 template <class C>
 inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* lut, double x, double s, float scale,
-                         float* h, std::size_t n, SimdLevel level = simd_level()) noexcept {
+                         float* h, std::size_t n, const C* ahead = nullptr, SimdLevel level = simd_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>)
     if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep)
-      return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n);
+      return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n, ahead);
 #endif
   (void)level;
-  resample_row_portable(row, texels, lut, x, s, scale, h, n);
+  resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead);
 }
 
 } // namespace mpr::detail
