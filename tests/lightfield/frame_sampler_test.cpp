@@ -485,8 +485,15 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   const mpr::PlanarSurface<T> plane = straight.image_plane(T(12));
   const mpr::GlcSelector<T> glc = mpr::pinhole_glc(straight, plane);
   const mpr::Region region(3, 1, 300, 19);
-  const auto compare = [&](const auto& sampler) {
-    const mpr::Renderer renderer(plane, glc, sampler);
+  // And a GLC whose rays sweep across the array (origins from u = -0.8 to 0.8 along a row, v =
+  // -0.4 to 0.4 down the image): a narrow cylinder then weighs each camera on a stretch of each
+  // row that changes from row to row and from 64-ray segment to segment.
+  const auto d = [&](T u, T v) {
+    return mpr::Vec3<T>(plane.point_at({u, v}) - mpr::Vec3<T>(T(-0.8) + T(1.6) * u, T(-0.4) + T(0.8) * v, 0));
+  };
+  const mpr::GlcSelector<T> sweep(plane, d(0, 0), d(1, 0), d(0, 1));
+  const auto compare = [&](const auto& sampler, const mpr::GlcSelector<T>& selector) {
+    const mpr::Renderer renderer(plane, selector, sampler);
     mpr::Image<mpr::Rgb8> one(305, 22, mpr::Rgb8{1, 2, 3}), two(305, 22, mpr::Rgb8{1, 2, 3});
     renderer.render(one.view(), region, mpr::RenderOptions{1});
     renderer.render(two.view(), region, mpr::RenderOptions{2});
@@ -506,9 +513,11 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
     CHECK(worst <= 1);
     CHECK(untouched == 305 * 22 - 300 * 19);
   };
-  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
-  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
-  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
+  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames), glc);
+  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames), glc);
+  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}), glc);
+  compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.35}), sweep);
+  compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames), sweep);
 }
 
 TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,

@@ -106,6 +106,9 @@ MUTATIONS = [
       [(SA, SA_LOOP,
         SA_LOOP + " if (table.size() < 2 || &c != &table.cameras()[table.size() / 2])")],
       ["lightfield", "tools"], "every path forgets the middle camera (invisible with symmetric fixtures)"),
+    M("cylinder_group_keeps_stale_weights", "lightfield",
+      [(CYL, "std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);", "")],
+      ["lightfield"], "a camera's span in a row group keeps another camera's weights left of the row's own rays"),
     # --- more, across the library ---
     M("nearest_tie_to_highest_index", "lightfield",
       [("include/mpr/lightfield/camera_index.hpp", "(d2 == best && i < best_index)", "(d2 == best && i > best_index)")],

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <limits>
 #include <span>
+#include <vector>
 
 namespace mpr {
 
@@ -26,9 +27,10 @@ namespace mpr {
 /// is never NaN.
 ///
 /// Batch, on a planar array: the cameras that can reach a run are collected once from the run's
-/// plane crossings. Tile, on a planar array: a row at a time, cameras outer, each tried only on
-/// the 64-ray segments it can reach, weights vectorised (`detail::cylinder_weights`), weighted
-/// shift-and-add. Equal to `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
+/// plane crossings. Tile, on a planar array: eight rows at a time, cameras outer, each tried only
+/// on the 64-ray segments it can reach, weights vectorised (`detail::cylinder_weights`), weighted
+/// shift-and-add over the rows' common span, each camera row interpolated once. Equal to
+/// `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
 struct CylinderAperture {
   /// Radius of the aperture around the ray line, world units, positive and finite.
   double radius = 1.0;
@@ -143,87 +145,168 @@ private:
                              : table.camera_color(table.index().nearest(rays[i].origin, rays[i].direction), points[i]);
   }
 
-  // A row at a time on a planar array, cameras in the outer loop. A camera can weigh only rays
-  // whose plane crossing lies within radius / cos_min of its centre, so each camera is tried
-  // only on the segments whose crossings' bounding box is that close; there its weights are
-  // computed for all rays at once, and the rays it weighs are added by a weighted shift-and-add
-  // (or per ray). Rays that no camera weighs get the nearest camera, as in `sample`. A row with a
-  // ray that does not cross the plane goes through `sample_rays`.
+  // Rows taken together by `row_path` (the renderer's tiles have kTileRows).
+  static constexpr std::size_t kGroupRows = 8;
+
+  // Per-thread working memory of `row_path`: each row's crossings and sums, the bounding boxes
+  // of its segments' crossings, the cameras within reach of the group.
+  template <std::floating_point T>
+  struct GroupScratch {
+    PlaneRowScratch<T> row[kGroupRows];
+    T lo_u[kGroupRows][kMaxSegments], hi_u[kGroupRows][kMaxSegments];
+    T lo_v[kGroupRows][kMaxSegments], hi_v[kGroupRows][kMaxSegments];
+    T reach[kGroupRows];
+    bool crosses[kGroupRows], even[kGroupRows];
+    std::size_t lo[kGroupRows], hi[kGroupRows]; // the rays a camera weighs, [lo, hi) per row
+    std::vector<int> cameras;
+    LerpRowCache rows; // camera rows interpolated once for the two output rows that read them
+
+    [[nodiscard]] bool reserve(std::size_t w, std::size_t cameras_in_table) noexcept {
+      for (PlaneRowScratch<T>& r : row)
+        if (!r.reserve(w)) return false;
+      try {
+        cameras.reserve(cameras_in_table);
+      } catch (...) {
+        return false;
+      }
+      return true;
+    }
+  };
+
+  // Up to kGroupRows rows at a time on a planar array, cameras outer. A camera can weigh only
+  // rays whose plane crossing lies within radius / cos_min of its centre, so each camera is tried
+  // only on the 64-ray segments whose crossings' bounding box is that close; there its weights
+  // are computed for all rays at once (`detail::cylinder_weights`). The rays it weighs in any row
+  // of the group give one span, added in every such row by a weighted shift-and-add (weight 0
+  // outside the row's own rays): each camera row is then interpolated once for the two output
+  // rows that read it, and the next camera's texels are fetched meanwhile. Rays that no camera
+  // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the plane
+  // goes through `sample_rays`.
   template <std::floating_point T, class Px>
   bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::span<const Ray<T>> rays, std::size_t w,
                 std::span<Color> out) const noexcept {
     const std::size_t nrows = rays.size() / w;
-    thread_local PlaneRowScratch<T> scratch;
-    if (!scratch.reserve(w)) return false;
-    const T r = static_cast<T>(radius), inv_radius = T(1) / r;
-    const T margin = T(1e-4) * plane.extent;
-    const std::size_t segments = (w + kSegment - 1) / kSegment;
-    if (segments > kMaxSegments) return false;
-    T lo_u[kMaxSegments], hi_u[kMaxSegments], lo_v[kMaxSegments], hi_v[kMaxSegments];
-    for (std::size_t row_index = 0; row_index < nrows; ++row_index) {
-      const Ray<T>* row = rays.data() + row_index * w;
-      Color* o = out.data() + row_index * w;
-      bool all_cross = true, even = false;
-      const T cos_min = prepare_plane_row(table, plane, row, w, scratch, all_cross, even);
-      if (!all_cross) {
-        sample_rays(table, std::span<const Ray<T>>(row, w), std::span<Color>(o, w));
-        continue;
-      }
-      for (std::size_t i = 0; i < w; ++i) scratch.inv_dd[i] = T(1) / scratch.dd[i];
-      for (std::size_t g = 0; g < segments; ++g) {
-        lo_u[g] = lo_v[g] = std::numeric_limits<T>::infinity();
-        hi_u[g] = hi_v[g] = -std::numeric_limits<T>::infinity();
-        for (std::size_t i = g * kSegment; i < std::min(w, (g + 1) * kSegment); ++i) {
-          lo_u[g] = std::min(lo_u[g], scratch.xu[i]);
-          hi_u[g] = std::max(hi_u[g], scratch.xu[i]);
-          lo_v[g] = std::min(lo_v[g], scratch.xv[i]);
-          hi_v[g] = std::max(hi_v[g], scratch.xv[i]);
-        }
-      }
-      const T reach = r / cos_min * T(1.001) + margin;
-      const Vec3<T>* points = scratch.points.data();
-      float* acc = scratch.acc.data();
-      float* weight = scratch.weight.data();
-      float* ray_weight = scratch.ray_weight.data();
-      std::fill(acc, acc + 3 * w, 0.0f);
-      std::fill(weight, weight + w, 0.0f);
-      T row_lo_u = lo_u[0], row_hi_u = hi_u[0], row_lo_v = lo_v[0], row_hi_v = hi_v[0];
-      for (std::size_t g = 1; g < segments; ++g) {
-        row_lo_u = std::min(row_lo_u, lo_u[g]);
-        row_hi_u = std::max(row_hi_u, hi_u[g]);
-        row_lo_v = std::min(row_lo_v, lo_v[g]);
-        row_hi_v = std::max(row_hi_v, hi_v[g]);
-      }
-      for (std::size_t k = 0; k < table.size(); ++k) {
-        const T cu = plane.centre_u[k], cv = plane.centre_v[k];
-        // Most cameras are out of reach of the whole row.
-        if (cu < row_lo_u - reach || cu > row_hi_u + reach || cv < row_lo_v - reach || cv > row_hi_v + reach) continue;
-        std::size_t first = segments, last = 0;
-        for (std::size_t g = 0; g < segments; ++g) {
-          const T gu = std::max({lo_u[g] - cu, cu - hi_u[g], T(0)}), gv = std::max({lo_v[g] - cv, cv - hi_v[g], T(0)});
-          if (gu * gu + gv * gv < reach * reach) {
-            first = std::min(first, g);
-            last = g + 1;
-          }
-        }
-        if (first >= last) continue;
-        const std::size_t b0 = first * kSegment, b1 = std::min(w, last * kSegment);
-        detail::cylinder_weights(scratch.xu.data() + b0, scratch.xv.data() + b0, scratch.du.data() + b0,
-                                 scratch.dv.data() + b0, scratch.inv_dd.data() + b0, b1 - b0, cu, cv, inv_radius,
-                                 ray_weight + b0);
-        // The rays the camera weighs: from the first to the last positive weight (a scan from
-        // each end, which stops at the cylinder's edge).
-        std::size_t lo = b0, hi = b1;
-        while (lo < hi && !(ray_weight[lo] > 0)) ++lo;
-        while (hi > lo && !(ray_weight[hi - 1] > 0)) --hi;
-        if (lo >= hi) continue;
-        add_run(table, table.camera(k), points + lo, hi - lo, even, acc + 3 * lo, weight + lo, ray_weight + lo);
-      }
-      for (std::size_t i = 0; i < w; ++i)
-        o[i] = weight[i] > 0 ? table.finish(acc + 3 * i, weight[i])
-                             : table.camera_color(table.index().nearest(row[i].origin, row[i].direction), points[i]);
+    thread_local GroupScratch<T> scratch;
+    if ((w + kSegment - 1) / kSegment > kMaxSegments || !scratch.reserve(w, table.size())) return false;
+    for (std::size_t r0 = 0; r0 < nrows; r0 += kGroupRows) {
+      const std::size_t rows = std::min(kGroupRows, nrows - r0);
+      group(table, plane, rays.subspan(r0 * w, rows * w), w, out.subspan(r0 * w, rows * w), scratch);
     }
     return true;
+  }
+
+  // `row_path` for at most kGroupRows rows: the rows' crossings, then each camera in reach.
+  template <std::floating_point T, class Px>
+  void group(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::span<const Ray<T>> rays, std::size_t w,
+             std::span<Color> out, GroupScratch<T>& s) const noexcept {
+    const std::size_t nrows = rays.size() / w;
+    const T r = static_cast<T>(radius), margin = T(1e-4) * plane.extent;
+    constexpr T kInf = std::numeric_limits<T>::infinity();
+    T box[4] = {kInf, -kInf, kInf, -kInf}; // the group's crossings: u from, to; v from, to
+    T reach_max = 0;
+    for (std::size_t q = 0; q < nrows; ++q) {
+      PlaneRowScratch<T>& row = s.row[q];
+      bool all_cross = true, even = false;
+      const T cos_min = prepare_plane_row(table, plane, rays.data() + q * w, w, row, all_cross, even);
+      s.crosses[q] = all_cross;
+      s.even[q] = even;
+      if (!all_cross) {
+        sample_rays(table, rays.subspan(q * w, w), out.subspan(q * w, w));
+        continue;
+      }
+      for (std::size_t i = 0; i < w; ++i) row.inv_dd[i] = T(1) / row.dd[i];
+      for (std::size_t g = 0; g * kSegment < w; ++g) {
+        T lu = kInf, hu = -kInf, lv = kInf, hv = -kInf;
+        for (std::size_t i = g * kSegment; i < std::min(w, (g + 1) * kSegment); ++i) {
+          lu = std::min(lu, row.xu[i]);
+          hu = std::max(hu, row.xu[i]);
+          lv = std::min(lv, row.xv[i]);
+          hv = std::max(hv, row.xv[i]);
+        }
+        s.lo_u[q][g] = lu;
+        s.hi_u[q][g] = hu;
+        s.lo_v[q][g] = lv;
+        s.hi_v[q][g] = hv;
+        box[0] = std::min(box[0], lu);
+        box[1] = std::max(box[1], hu);
+        box[2] = std::min(box[2], lv);
+        box[3] = std::max(box[3], hv);
+      }
+      s.reach[q] = r / cos_min * T(1.001) + margin;
+      reach_max = std::max(reach_max, s.reach[q]);
+      std::fill(row.acc.begin(), row.acc.begin() + static_cast<std::ptrdiff_t>(3 * w), 0.0f);
+      std::fill(row.weight.begin(), row.weight.begin() + static_cast<std::ptrdiff_t>(w), 0.0f);
+    }
+    // Most cameras are out of reach of the whole group.
+    s.cameras.clear();
+    for (std::size_t k = 0; k < table.size(); ++k) {
+      const T cu = plane.centre_u[k], cv = plane.centre_v[k];
+      if (cu >= box[0] - reach_max && cu <= box[1] + reach_max && cv >= box[2] - reach_max && cv <= box[3] + reach_max)
+        s.cameras.push_back(static_cast<int>(k));
+    }
+    s.rows.clear(); // rows kept from another group may belong to frames since freed
+    for (std::size_t j = 0; j < s.cameras.size(); ++j) {
+      const std::size_t k = static_cast<std::size_t>(s.cameras[j]);
+      const auto* ahead =
+          j + 1 < s.cameras.size() ? &table.camera(static_cast<std::size_t>(s.cameras[j + 1])) : nullptr;
+      std::size_t span_lo = w, span_hi = 0;
+      for (std::size_t q = 0; q < nrows; ++q) {
+        weigh(plane, k, w, q, s);
+        if (s.lo[q] < s.hi[q]) {
+          span_lo = std::min(span_lo, s.lo[q]);
+          span_hi = std::max(span_hi, s.hi[q]);
+        }
+      }
+      for (std::size_t q = 0; q < nrows; ++q) {
+        if (s.lo[q] >= s.hi[q]) continue;
+        PlaneRowScratch<T>& row = s.row[q];
+        float* ray_weight = row.ray_weight.data();
+        std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
+        std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
+        add_run(table, table.camera(k), row.points.data() + span_lo, span_hi - span_lo, s.even[q],
+                row.acc.data() + 3 * span_lo, row.weight.data() + span_lo, ray_weight + span_lo, &s.rows, ahead);
+      }
+    }
+    for (std::size_t q = 0; q < nrows; ++q) {
+      if (!s.crosses[q]) continue;
+      const PlaneRowScratch<T>& row = s.row[q];
+      const Ray<T>* ray = rays.data() + q * w;
+      Color* o = out.data() + q * w;
+      for (std::size_t i = 0; i < w; ++i)
+        o[i] = row.weight[i] > 0
+                   ? table.finish(row.acc.data() + 3 * i, row.weight[i])
+                   : table.camera_color(table.index().nearest(ray[i].origin, ray[i].direction), row.points[i]);
+    }
+  }
+
+  // Camera k's weights for row q of the group, on the segments within the row's reach of its
+  // centre (`ray_weight` there; elsewhere untouched), and the rays it weighs, [s.lo[q], s.hi[q])
+  // (empty: none). A scan from each end of the segments, which stops at the cylinder's edge.
+  template <std::floating_point T>
+  void weigh(const ArrayPlane<T>& plane, std::size_t k, std::size_t w, std::size_t q,
+             GroupScratch<T>& s) const noexcept {
+    s.lo[q] = s.hi[q] = 0;
+    if (!s.crosses[q]) return;
+    const T cu = plane.centre_u[k], cv = plane.centre_v[k], reach = s.reach[q];
+    std::size_t first = w, last = 0;
+    for (std::size_t g = 0; g * kSegment < w; ++g) {
+      const T gu = std::max({s.lo_u[q][g] - cu, cu - s.hi_u[q][g], T(0)});
+      const T gv = std::max({s.lo_v[q][g] - cv, cv - s.hi_v[q][g], T(0)});
+      if (gu * gu + gv * gv < reach * reach) {
+        first = std::min(first, g * kSegment);
+        last = std::min(w, (g + 1) * kSegment);
+      }
+    }
+    if (first >= last) return;
+    PlaneRowScratch<T>& row = s.row[q];
+    float* ray_weight = row.ray_weight.data();
+    detail::cylinder_weights(row.xu.data() + first, row.xv.data() + first, row.du.data() + first, row.dv.data() + first,
+                             row.inv_dd.data() + first, last - first, cu, cv, T(1) / static_cast<T>(radius),
+                             ray_weight + first);
+    while (first < last && !(ray_weight[first] > 0)) ++first;
+    while (last > first && !(ray_weight[last - 1] > 0)) --last;
+    s.lo[q] = first;
+    s.hi[q] = last;
   }
 };
 

@@ -417,12 +417,13 @@ bool add_projective_tile(const FrameTable<T, Px>& /*table*/, const typename Fram
 /// Camera c's (weighted) contribution to a run of n points: shift-and-add when the run
 /// qualifies (`even`: its points are evenly spaced, see `evenly_spaced`; bilinear filtering
 /// assumed by the caller), else the projective row (`add_projective`), else ray by ray.
-/// `ray_weight` as in `FrameTable::add_per_ray`.
+/// `ray_weight` as in `FrameTable::add_per_ray`; `cache` and `ahead` as in `shift_add`.
 template <std::floating_point T, class Px>
 void add_run(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
-             std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr) noexcept {
+             std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr,
+             LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
   if (even && !c.distorted && n >= 8 &&
-      (shift_add(table, c, points, n, acc, weight, ray_weight) ||
+      (shift_add(table, c, points, n, acc, weight, ray_weight, cache, ahead) ||
        add_projective(table, c, points, n, acc, weight, ray_weight)))
     return;
   table.add_per_ray(c, points, n, acc, weight, ray_weight);

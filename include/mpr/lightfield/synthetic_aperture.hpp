@@ -102,11 +102,9 @@ private:
       scratch.even[r] = table.config().filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
     const bool all_even = std::all_of(scratch.even.begin(), scratch.even.begin() + static_cast<std::ptrdiff_t>(rows),
                                       [](unsigned char e) { return e != 0; });
-    const auto& cameras = table.cameras();
-    for (std::size_t k = 0; k < cameras.size(); ++k) {
-      const auto& c = cameras[k];
+    for (const auto& c : table.cameras()) {
       // The next camera's rows are asked for while this one's are read (`shift_add`).
-      const auto* ahead = k + 1 < cameras.size() && !cameras[k + 1].distorted ? &cameras[k + 1] : nullptr;
+      const auto* ahead = &c != &table.cameras().back() && !(&c + 1)->distorted ? &c + 1 : nullptr;
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
