@@ -173,10 +173,13 @@ inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
                                                   " exceeds neighbours (" + std::to_string(c.neighbours) +
                                                   "): give best=1.." + std::to_string(c.neighbours));
   }
-  // Finite by parse_number; mpr::PlaneSweepConfig's ranges (a truncation above 3 acts as 3).
-  if (!(c.truncation > 0)) throw mpr::argument_error("--sweep truncation", "must be positive");
-  if (!(c.spatial >= 0)) throw mpr::argument_error("--sweep spatial", "must be >= 0 (0: no aggregation)");
-  if (!(c.range > 0)) throw mpr::argument_error("--sweep range", "must be positive");
+  // Every other rule is mpr::validate's (a truncation above 3 acts as 3), under the option's name.
+  try {
+    mpr::validate(c);
+  } catch (const mpr::argument_error& e) {
+    const bool key = std::find(given.begin(), given.end(), e.parameter()) != given.end();
+    throw mpr::argument_error((key ? "--sweep " : "--depth-maps ") + e.parameter(), e.reason());
+  }
 }
 
 /// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.

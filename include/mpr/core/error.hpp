@@ -16,15 +16,20 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// A bad argument or configuration value. `parameter()` names it (e.g. "d10", "width_vector").
+/// A bad argument or configuration value. `parameter()` names it (e.g. "d10", "width_vector"),
+/// `reason()` says what is wrong with it; `what()` is "mpr: invalid PARAMETER: REASON". A program
+/// that maps configuration fields to its own option names (mpr-render's `--sweep KEY`) rethrows
+/// with its name and the same reason.
 class argument_error : public error {
 public:
-  argument_error(std::string parameter, const std::string& reason)
-      : error("mpr: invalid " + parameter + ": " + reason), parameter_(std::move(parameter)) {}
+  argument_error(std::string parameter, std::string reason)
+      : error("mpr: invalid " + parameter + ": " + reason), parameter_(std::move(parameter)),
+        reason_(std::move(reason)) {}
   [[nodiscard]] const std::string& parameter() const noexcept { return parameter_; }
+  [[nodiscard]] const std::string& reason() const noexcept { return reason_; }
 
 private:
-  std::string parameter_;
+  std::string parameter_, reason_;
 };
 
 /// A file that cannot be read, written or parsed. `path()` names the file; `line()` is the
