@@ -8,6 +8,7 @@
 /// decodes (`decode16x32`, eighteen with the widening). And the horizontal row interpolation of
 /// the separable shift-and-add on top of it (`lerp_row_codes_vbmi`).
 
+#include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 
 #include <algorithm>
@@ -107,7 +108,7 @@ MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, co
   __m512 cur[4];
   decode_floats64(d, a, std::min<std::size_t>(64, codes), cur);
   for (std::size_t j = 0; j < m; j += 64) {
-    if (ahead != nullptr) __builtin_prefetch(ahead + j, 0, 2);
+    if (ahead != nullptr) prefetch_l2(ahead, j);
     __m512 next[4] = {cur[0], cur[1], cur[2], cur[3]};
     if (j + 64 < codes) decode_floats64(d, a + j + 64, std::min<std::size_t>(64, codes - j - 64), next);
     const std::size_t count = std::min<std::size_t>(64, m - j);

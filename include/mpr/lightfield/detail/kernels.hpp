@@ -17,6 +17,7 @@
 #include <limits>
 #include <type_traits>
 
+#include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/geometry/detail/plane_kernels.hpp>
 #include <mpr/lightfield/detail/decode_vbmi.hpp>
@@ -64,16 +65,6 @@ MPR_ALWAYS_INLINE float channel_value(C c, const std::uint16_t* lut) noexcept {
     return static_cast<float>(c);
 }
 
-/// Asks for the cache line at p, to arrive in L2 (GCC and Clang; nothing elsewhere): for rows read
-/// a while later, so that they do not displace the rows being read from L1.
-MPR_ALWAYS_INLINE void prefetch_l2(const void* p) noexcept {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p, 0, 2);
-#else
-  (void)p;
-#endif
-}
-
 /// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v = `channel_value`: one
 /// camera row interpolated horizontally at a fixed sub-pixel offset, over flat RGB channels
 /// (the first half of a separable bilinear shift-and-add). Reads a[0, m + 3). With `ahead`
@@ -87,7 +78,7 @@ MPR_ALWAYS_INLINE void lerp_row_portable(const C* MPR_RESTRICT a, const std::uin
   const float w0 = (1 - ax) * scale, w1 = ax * scale;
   constexpr std::size_t kLine = 64 / sizeof(C);
   for (std::size_t j0 = 0; j0 < m; j0 += kLine) {
-    if (ahead != nullptr) prefetch_l2(ahead + j0);
+    if (ahead != nullptr) prefetch_l2(ahead, j0 * sizeof(C));
     const std::size_t j1 = std::min(m, j0 + kLine);
     for (std::size_t j = j0; j < j1; ++j) h[j] = w0 * channel_value(a[j], lut) + w1 * channel_value(a[j + 3], lut);
   }
@@ -152,7 +143,7 @@ MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const
   __m512 lo, hi;
   decode_codes32(d, a, std::min<std::size_t>(32, codes), lo, hi);
   for (std::size_t j = 0; j < m; j += 32) {
-    if (ahead != nullptr && j % 64 == 0) prefetch_l2(ahead + j);
+    if (ahead != nullptr && j % 64 == 0) prefetch_l2(ahead, j);
     __m512 next_lo = lo, next_hi = hi;
     if (j + 32 < codes) decode_codes32(d, a + j + 32, std::min<std::size_t>(32, codes - j - 32), next_lo, next_hi);
     const __m512 right_lo =

@@ -42,7 +42,7 @@ MPR_ALWAYS_INLINE void resample_row_portable(const C* MPR_RESTRICT row, std::siz
     const double j = std::clamp(std::floor(xi), 0.0, last_pair);
     if (ahead != nullptr && i % 16 == 0) // the next 16 pixels' texels in the next row
       for (std::size_t b = 0; b < 48 * sizeof(C) * static_cast<std::size_t>(std::ceil(s)) + 6 * sizeof(C); b += 64)
-        prefetch_l2(reinterpret_cast<const char*>(ahead + 3 * static_cast<std::size_t>(j - j_first)) + b);
+        prefetch_l2(ahead, 3 * static_cast<std::size_t>(j - j_first) * sizeof(C) + b);
     const float f = static_cast<float>(std::clamp(xi - j, 0.0, 1.0));
     const C* a = row + 3 * static_cast<std::size_t>(j);
     for (int k = 0; k < 3; ++k)
@@ -112,9 +112,9 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
     const double xg = x + s * static_cast<double>(i);
     const long j0 = std::clamp(static_cast<long>(std::floor(xg)), 0L, last_pair);
     if (ahead != nullptr) { // the group's 16 s + 1 texels (at most 123 bytes) in the next row
-      const std::uint8_t* p = ahead + 3 * (j0 - j_first);
-      __builtin_prefetch(p, 0, 2);
-      __builtin_prefetch(p + 64, 0, 2);
+      const std::size_t at = 3 * static_cast<std::size_t>(j0 - j_first);
+      prefetch_l2(ahead, at);
+      prefetch_l2(ahead, at + 64);
     }
     const __m512 xl = _mm512_fmadd_ps(step, lanes, _mm512_set1_ps(static_cast<float>(xg - static_cast<double>(j0))));
     __m512i jl = _mm512_maskz_cvttps_epi32(0xFFFF, _mm512_maskz_max_ps(0xFFFF, xl, zero));
