@@ -170,19 +170,13 @@ namespace detail {
 // Where camera `ahead` (nullptr: none) sees X: its texel at the pixel, clamped to the image so
 // that the texel and the one below it exist; nullptr when X is not in front of it. For
 // prefetches only.
-template <class Camera, class P>
-[[nodiscard]] auto ahead_texels(const Camera* ahead, const P& X) noexcept -> decltype(ahead->texels) {
-  using T = typename P::Scalar;
-  if (ahead == nullptr || ahead->height < 2) return nullptr;
-  const T* Pm = ahead->P;
-  const T w = Pm[8] * X.x() + Pm[9] * X.y() + Pm[10] * X.z() + Pm[11];
-  if (!(w > 0)) return nullptr;
-  const T x = (Pm[0] * X.x() + Pm[1] * X.y() + Pm[2] * X.z() + Pm[3]) / w;
-  const T y = (Pm[4] * X.x() + Pm[5] * X.y() + Pm[6] * X.z() + Pm[7]) / w;
-  const T right = static_cast<T>(ahead->width - 1), bottom = static_cast<T>(ahead->height - 2);
-  if (std::isnan(x) || std::isnan(y)) return nullptr;
-  const auto ix = static_cast<std::ptrdiff_t>(std::clamp(std::floor(x), T(0), right));
-  const auto iy = static_cast<std::ptrdiff_t>(std::clamp(std::floor(y), T(0), bottom));
+template <std::floating_point T, class Px>
+[[nodiscard]] const typename FrameTable<T, Px>::texel_type*
+ahead_texels(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) noexcept {
+  T x, y;
+  if (ahead == nullptr || ahead->height < 2 || !FrameTable<T, Px>::project_any(*ahead, X, x, y)) return nullptr;
+  const auto ix = static_cast<std::ptrdiff_t>(std::clamp(std::floor(x), T(0), static_cast<T>(ahead->width - 1)));
+  const auto iy = static_cast<std::ptrdiff_t>(std::clamp(std::floor(y), T(0), static_cast<T>(ahead->height - 2)));
   return ahead->texels + iy * ahead->width + ix;
 }
 
@@ -217,7 +211,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
   const std::uint16_t* lut = texel_decode_table<texel_type>();
   const std::size_t width = static_cast<std::size_t>(c.width);
-  const texel_type* next = ahead_texels(ahead, points[first]);
+  const texel_type* next = ahead_texels<T, Px>(ahead, points[first]);
   const auto* next0 = next != nullptr ? next->c : nullptr;
   const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
   const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next0);
@@ -312,7 +306,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     if (cache == nullptr) own.clear();
     const std::uint16_t* lut = texel_decode_table<texel_type>();
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
-    const texel_type* next = detail::ahead_texels(ahead, points[i_begin]);
+    const texel_type* next = detail::ahead_texels<T, Px>(ahead, points[i_begin]);
     const auto* next0 = next != nullptr ? next->c : nullptr;
     const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
     const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next0);
