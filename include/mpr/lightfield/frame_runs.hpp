@@ -14,6 +14,7 @@
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -105,11 +106,10 @@ public:
       e.texels = nullptr;
       return nullptr;
     }
-    float* h = e.h.data();
-    detail::lerp_row(texels, lut, ax, scale, h, wide, ahead);
+    detail::lerp_row(texels, lut, ax, scale, e.h.data(), wide, ahead);
     if (stride > 1) // keep every stride-th pixel, in place (each moves left or stays)
       for (std::size_t i = 1; i < pixels; ++i)
-        for (std::size_t k = 0; k < 3; ++k) h[3 * i + k] = h[3 * stride * i + k];
+        for (std::size_t k = 0; k < 3; ++k) e.h[3 * i + k] = e.h[3 * stride * i + k];
     e.texels = texels;
     e.m = m;
     e.stride = stride;
@@ -167,17 +167,18 @@ private:
 };
 
 namespace detail {
-// Where camera `ahead` (nullptr: none) sees X: its texel at the pixel, clamped to the image so
-// that the texel and the one below it exist; nullptr when X is not in front of it. For
-// prefetches only.
+// Where camera `ahead` (nullptr: none) sees X: the channels of its texel at the pixel and of the
+// one below it, the pixel clamped to the image so that both exist; {nullptr, nullptr} when there
+// is no camera or X is not in front of it. For prefetches only.
 template <std::floating_point T, class Px>
-[[nodiscard]] const typename FrameTable<T, Px>::texel_type*
-ahead_texels(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) noexcept {
+[[nodiscard]] std::array<const typename FrameTable<T, Px>::texel_type::channel_type*, 2>
+ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) noexcept {
   T x, y;
-  if (ahead == nullptr || ahead->height < 2 || !FrameTable<T, Px>::project_any(*ahead, X, x, y)) return nullptr;
+  if (ahead == nullptr || ahead->height < 2 || !FrameTable<T, Px>::project_any(*ahead, X, x, y)) return {};
   const auto ix = static_cast<std::ptrdiff_t>(std::clamp(std::floor(x), T(0), static_cast<T>(ahead->width - 1)));
   const auto iy = static_cast<std::ptrdiff_t>(std::clamp(std::floor(y), T(0), static_cast<T>(ahead->height - 2)));
-  return ahead->texels + iy * ahead->width + ix;
+  const auto* texel = ahead->texels + iy * ahead->width + ix;
+  return {texel->c, texel[ahead->width].c};
 }
 
 // The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy + 1 (ay the
@@ -211,12 +212,10 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
   const std::uint16_t* lut = texel_decode_table<texel_type>();
   const std::size_t width = static_cast<std::size_t>(c.width);
-  const texel_type* next = ahead_texels<T, Px>(ahead, points[first]);
-  const auto* next0 = next != nullptr ? next->c : nullptr;
-  const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
-  const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next0);
+  const auto next = ahead_rows<T, Px>(ahead, points[first]);
+  const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[0]);
   const float* h1 = h0 != nullptr
-                        ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale, next1)
+                        ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[1])
                         : nullptr;
   const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
   if (h1 == nullptr) { // out of memory
@@ -306,11 +305,9 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     if (cache == nullptr) own.clear();
     const std::uint16_t* lut = texel_decode_table<texel_type>();
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
-    const texel_type* next = detail::ahead_texels<T, Px>(ahead, points[i_begin]);
-    const auto* next0 = next != nullptr ? next->c : nullptr;
-    const auto* next1 = next != nullptr ? next[ahead->width].c : nullptr;
-    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next0);
-    const float* h1 = h0 != nullptr ? rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next1) : nullptr;
+    const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin]);
+    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next[0]);
+    const float* h1 = h0 != nullptr ? rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next[1]) : nullptr;
     if (h1 != nullptr) {
       detail::blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * i_begin, m);
     } else {
