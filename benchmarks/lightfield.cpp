@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
   const mpr::CameraFrameSampler<mpr::NearestCamera, T> chess_nearest(lf);
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> chess_cylinder(lf, mpr::CylinderAperture{10.0});
   // The peer, side by side: the same refocus in 8-bit code space, one thread.
-  {
+  if (g_only.empty() || std::string("peer: 8-bit code-space shift-add").find(g_only) != std::string::npos) {
     mpr::Image<mpr::Rgb8> peer(centre.width(), centre.height()), ours(centre.width(), centre.height());
     const double peer_ms = peer_code_space_refocus(*lf, centre, T(1000), peer, repeats);
     const mpr::PlanarSurface<T> p = centre.image_plane(T(1000));
