@@ -23,8 +23,7 @@ std::size_t step_at(SimdLevel level, const float* in, std::uint8_t* out, std::si
   std::size_t done = 0;
   mpr::detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
     const auto& t = mpr::detail::srgb_tables;
-    done = mpr::detail::linear_to_srgb8_step(tag, in, out, m, t.bin_start.data(), t.threshold.data(),
-                                             mpr::detail::SrgbTables::kBins);
+    done = mpr::detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), mpr::detail::SrgbTables::kBins);
   });
   return done;
 }
@@ -48,11 +47,15 @@ TEST_CASE("run_at compiles a body for the level it is asked for and tells it whi
 TEST_CASE("sRGB row step: a multiple of 16 channels at AVX-512, none elsewhere, codes bit for bit", "[color][simd]") {
   std::vector<float> in;
   for (int i = 0; i <= 4000; ++i) in.push_back(static_cast<float>(i) / 3000.0f - 0.1f);
-  for (int k = 0; k < 255; ++k) {
-    const float t = mpr::detail::srgb_tables.threshold[static_cast<std::size_t>(k)];
-    in.push_back(std::nextafter(t, 0.0f));
-    in.push_back(t);
-  }
+  // Four floats either side of every threshold and of every bin edge: where the one-gather
+  // step's split of a bin (SrgbTables::bin_entry) would first go wrong.
+  const auto around = [&](float v) {
+    for (int s = 0; s < 4; ++s) v = std::nextafter(v, 0.0f);
+    for (int s = 0; s < 9; ++s, v = std::nextafter(v, 2.0f)) in.push_back(v);
+  };
+  for (int k = 0; k < 255; ++k) around(mpr::detail::srgb_tables.threshold[static_cast<std::size_t>(k)]);
+  for (int i = 1; i < mpr::detail::SrgbTables::kBins; ++i)
+    around(static_cast<float>(i) / static_cast<float>(mpr::detail::SrgbTables::kBins));
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   for (const float v : {nan, -inf, inf, -0.0f, 1.0f, 2.0f}) in.push_back(v);
   mpr_test::for_each_simd_level([&](SimdLevel level) {

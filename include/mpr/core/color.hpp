@@ -57,6 +57,13 @@ struct SrgbTables {
   /// end (255) let a SIMD gather read four bytes at any bin.
   static constexpr int kBins = 8192;
   std::array<std::uint8_t, kBins + 3> bin_start{};
+  /// bin_entry[i]: bin i's code at its lower edge (bits 0-7) and, in bits 8-31, where in the bin
+  /// its threshold lies as a fraction f of the bin in units of 2^-23 (2^23 when the bin holds
+  /// none): x of bin i is above the threshold exactly when trunc((x kBins - i) 2^23) >= f. Exact
+  /// because x kBins - i is computed without rounding and, for i >= 1 (x >= 2^-13, so x has no
+  /// bits below 2^-36), is a multiple of 2^-23; bin 0 holds no threshold (the first is 1.5e-4).
+  /// One 32-bit gather per 16 channels for the AVX-512 encoder, instead of two.
+  std::array<std::uint32_t, kBins> bin_entry{};
 
   SrgbTables() noexcept {
     for (int k = 0; k < 256; ++k) decoded[k] = static_cast<float>(srgb_decode(k / 255.0));
@@ -78,6 +85,14 @@ struct SrgbTables {
       bin_start[i] = static_cast<std::uint8_t>(k);
     }
     for (int i = kBins; i < kBins + 3; ++i) bin_start[static_cast<std::size_t>(i)] = 255;
+    for (int i = 0; i < kBins; ++i) {
+      const int code = bin_start[static_cast<std::size_t>(i)];
+      const float t = threshold[static_cast<std::size_t>(code)];
+      std::uint32_t split = 1u << 23;
+      if (t < static_cast<float>(i + 1) / kBins) // the threshold lies in bin i (exact products)
+        split = static_cast<std::uint32_t>((t * kBins - static_cast<float>(i)) * 0x1p23f);
+      bin_entry[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(code) | (split << 8);
+    }
   }
 };
 
@@ -102,8 +117,7 @@ inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t 
                                 detail::SimdLevel level = detail::simd_level()) noexcept {
   detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
     const auto& t = detail::srgb_tables;
-    std::size_t j = detail::linear_to_srgb8_step(tag, in, out, m, t.bin_start.data(), t.threshold.data(),
-                                                 detail::SrgbTables::kBins);
+    std::size_t j = detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), detail::SrgbTables::kBins);
     for (; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
   });
 }

@@ -21,24 +21,25 @@ namespace mpr::detail {
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 /// `linear_to_srgb8` (core/color.hpp) on the channels [0, m - m % 16) of `in`, 16 at a time
-/// with two AVX-512 gathers from its tables (`bin_start`: 8-bit code at the lower edge of each
-/// of `bins` bins, readable 3 bytes past the end; `threshold[k]`: least value encoded above k);
-/// the same codes bit for bit. NaN and values <= 0 clamp to 0, values >= 1 to the last bin,
-/// whose code is 255. Returns m - m % 16.
+/// with one AVX-512 gather from `bin_entry` (`SrgbTables::bin_entry`: per bin of `bins`, the
+/// code at its lower edge and where its threshold lies); the same codes bit for bit. NaN and
+/// values <= 0 clamp to 0, values >= 1 to the last bin, whose code is 255. Returns m - m % 16.
 MPR_TARGET_AVX512 inline std::size_t linear_to_srgb8_avx512(const float* in, std::uint8_t* out, std::size_t m,
-                                                            const std::uint8_t* bin_start, const float* threshold,
-                                                            int bins) noexcept {
+                                                            const std::uint32_t* bin_entry, int bins) noexcept {
   const __m512 zero = _mm512_setzero_ps(), below_one = _mm512_set1_ps(0x1.fffffep-1f);
-  const __m512 scale = _mm512_set1_ps(static_cast<float>(bins));
+  const __m512 scale = _mm512_set1_ps(static_cast<float>(bins)), fraction = _mm512_set1_ps(0x1p23f);
   const __m512i byte = _mm512_set1_epi32(0xff), one = _mm512_set1_epi32(1);
   std::size_t j = 0;
   for (; j + 16 <= m; j += 16) {
     // max(x, 0) returns 0 for NaN (the second operand).
     const __m512 x = _mm512_min_ps(_mm512_max_ps(_mm512_loadu_ps(in + j), zero), below_one);
-    const __m512i bin = _mm512_cvttps_epi32(_mm512_mul_ps(x, scale));
-    const __m512i k = _mm512_and_si512(_mm512_i32gather_epi32(bin, bin_start, 1), byte);
-    const __m512 t = _mm512_i32gather_ps(k, threshold, 4);
-    const __mmask16 up = _mm512_cmp_ps_mask(x, t, _CMP_GE_OQ);
+    const __m512 scaled = _mm512_mul_ps(x, scale); // exact: a power of two
+    const __m512i bin = _mm512_cvttps_epi32(scaled);
+    const __m512i entry = _mm512_i32gather_epi32(bin, bin_entry, 4);
+    // Where x lies in its bin, in units of 2^-23 (both steps exact, see `SrgbTables::bin_entry`).
+    const __m512i at = _mm512_cvttps_epi32(_mm512_mul_ps(_mm512_sub_ps(scaled, _mm512_cvtepi32_ps(bin)), fraction));
+    const __mmask16 up = _mm512_cmp_epi32_mask(at, _mm512_srli_epi32(entry, 8), _MM_CMPINT_NLT);
+    const __m512i k = _mm512_and_si512(entry, byte);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm512_cvtepi32_epi8(_mm512_mask_add_epi32(k, up, k, one)));
   }
   return j;
@@ -51,12 +52,11 @@ MPR_TARGET_AVX512 inline std::size_t linear_to_srgb8_avx512(const float* in, std
 /// The step of the sRGB row encoder at level `L` (see `linear_to_srgb8_avx512`): AVX-512 only.
 template <SimdLevel L>
 MPR_ALWAYS_INLINE std::size_t linear_to_srgb8_step(SimdTag<L>, const float* in, std::uint8_t* out, std::size_t m,
-                                                   const std::uint8_t* bin_start, const float* threshold,
-                                                   int bins) noexcept {
+                                                   const std::uint32_t* bin_entry, int bins) noexcept {
 #if defined(MPR_SIMD_X86)
-  if constexpr (L == SimdLevel::avx512) return linear_to_srgb8_avx512(in, out, m, bin_start, threshold, bins);
+  if constexpr (L == SimdLevel::avx512) return linear_to_srgb8_avx512(in, out, m, bin_entry, bins);
 #endif
-  (void)in, (void)out, (void)m, (void)bin_start, (void)threshold, (void)bins;
+  (void)in, (void)out, (void)m, (void)bin_entry, (void)bins;
   return 0;
 }
 
