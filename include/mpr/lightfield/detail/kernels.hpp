@@ -227,6 +227,10 @@ MPR_ALWAYS_INLINE void prefetch_range(const P* begin, const P* end) noexcept {
 /// the in-plane centres of its listed neighbours, and rho2: rays crossing the plane within
 /// sqrt(rho2) of the centre are farther from every unlisted camera (see
 /// `CameraFrameSampler::tile_nearest`); margin2 is the absolute slack on squared distances.
+/// Neighbour lists up to this length take the proof's unrolled form (`ArrayPlane` lists at most
+/// 8: a square grid's ring).
+inline constexpr int kProofNeighbours = 8;
+
 template <class T>
 struct NearestCandidate {
   T cu, cv, rho2, margin2;
@@ -251,6 +255,28 @@ MPR_ALWAYS_INLINE void prove_nearest_body(const PlaneRays<T>& rays, std::size_t 
   const T* MPR_RESTRICT dv = rays.dv;
   const T* MPR_RESTRICT dd = rays.dd;
   const Flag* MPR_RESTRICT ok = rays.ok;
+  if (k.neighbours >= 1 && k.neighbours <= kProofNeighbours) {
+    // A fixed count of neighbours (the list padded with its first, a test that changes nothing),
+    // so that the neighbour loop unrolls and each ray's flag stays in a register.
+    T nu[kProofNeighbours], nv[kProofNeighbours];
+    for (int j = 0; j < kProofNeighbours; ++j) {
+      nu[j] = k.nu[j < k.neighbours ? j : 0];
+      nv[j] = k.nv[j < k.neighbours ? j : 0];
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const T eu = k.cu - xu[i], ev = k.cv - xv[i];
+      const T r2 = eu * eu + ev * ev, ed = eu * du[i] + ev * dv[i];
+      const T own = (r2 * dd[i] - ed * ed) * T(1.0001) + k.margin2 * dd[i];
+      Flag f = ok[i] & (r2 < k.rho2 ? Flag(-1) : Flag(0));
+      for (int j = 0; j < kProofNeighbours; ++j) {
+        const T fu = nu[j] - xu[i], fv = nv[j] - xv[i];
+        const T f2 = fu * fu + fv * fv, fd = fu * du[i] + fv * dv[i];
+        f &= (f2 * dd[i] - fd * fd) > own ? Flag(-1) : Flag(0);
+      }
+      pass[i] = f;
+    }
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const T eu = k.cu - xu[i], ev = k.cv - xv[i];
     const T r2 = eu * eu + ev * ev, ed = eu * du[i] + ev * dv[i];
