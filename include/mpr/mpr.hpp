@@ -11,6 +11,7 @@
 #include <mpr/core/image_metrics.hpp>
 #include <mpr/core/pixel.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/core/region.hpp>
 #include <mpr/core/renderer.hpp>
 #include <mpr/core/vec.hpp>

@@ -132,6 +132,25 @@ struct BlackTiles : Black<T> {
   }
 };
 template <class T>
+struct BlackGrids : BlackTiles<T> {
+  template <class ExactRay>
+  bool sample_grid(const mpr::RayGrid<T, ExactRay>&, std::span<mpr::Color>) const noexcept {
+    return false;
+  }
+};
+template <class T>
+struct GridWithoutTiles : Black<T> { // a grid path needs the tile path to fall back on
+  template <class ExactRay>
+  bool sample_grid(const mpr::RayGrid<T, ExactRay>&, std::span<mpr::Color>) const noexcept {
+    return false;
+  }
+};
+template <class T>
+struct GridReturnsVoid : BlackTiles<T> {
+  template <class ExactRay>
+  void sample_grid(const mpr::RayGrid<T, ExactRay>&, std::span<mpr::Color>) const noexcept {}
+};
+template <class T>
 struct ThrowingRows : Black<T> { // not noexcept: not a batch sampler
   void sample_rays(std::span<const mpr::Ray<T>>, std::span<mpr::Color>) const {}
 };
@@ -147,6 +166,16 @@ TEMPLATE_TEST_CASE("optional batch and tile interfaces are detected from core/co
   STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<Black<T>>);
   STATIC_REQUIRE_FALSE(mpr::BatchRaySampler<ThrowingRows<T>>);
   STATIC_REQUIRE_FALSE(mpr::TileRaySampler<Depth<T>>);
+  STATIC_REQUIRE(mpr::GridRaySampler<BlackGrids<T>>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<BlackTiles<T>>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<GridWithoutTiles<T>>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<GridReturnsVoid<T>>);
+  // Affine surfaces and selectors: the plane and the GLC; a curved or projective surface is not.
+  STATIC_REQUIRE(mpr::AffineSurface<mpr::PlanarSurface<T>>);
+  STATIC_REQUIRE_FALSE(mpr::AffineSurface<ConstantSurface<T>>);
+  STATIC_REQUIRE_FALSE(mpr::AffineSurface<mpr::HomographySurface<T>>);
+  STATIC_REQUIRE(mpr::AffineSelector<mpr::GlcSelector<T>>);
+  STATIC_REQUIRE_FALSE(mpr::AffineSelector<AlongZ<T>>);
   STATIC_REQUIRE(mpr::kBatchRays == 256);
   STATIC_REQUIRE(mpr::kTileRows == 8);
 }

@@ -33,6 +33,29 @@ struct RayHashTiles : RayHash {
   }
 };
 
+/// RayHashTiles with a grid path: each pixel's ray evaluated from the grid's affine form (so the
+/// image shows a wrong origin or step), and `grid.ray` checked against it: the largest
+/// difference is kept in `gap`. Declines every tile when `decline` is set.
+struct RayHashGrid : RayHashTiles {
+  std::atomic<int>* grids = nullptr;
+  double* gap = nullptr;
+  bool decline = false;
+  template <class ExactRay>
+  bool sample_grid(const mpr::RayGrid<T, ExactRay>& grid, std::span<mpr::Color> out) const noexcept {
+    if (decline) return false;
+    ++*grids;
+    for (int j = 0; j < grid.rows; ++j)
+      for (int i = 0; i < grid.width; ++i) {
+        const mpr::Ray<T> affine{mpr::Vec3<T>(grid.origin + i * grid.origin_dx + j * grid.origin_dy),
+                                 mpr::Vec3<T>(grid.direction + i * grid.direction_dx + j * grid.direction_dy)};
+        const mpr::Ray<T> exact = grid.ray(i, j);
+        *gap = std::max({*gap, (affine.origin - exact.origin).norm(), (affine.direction - exact.direction).norm()});
+        out[static_cast<std::size_t>(j * grid.width + i)] = sample(affine);
+      }
+    return true;
+  }
+};
+
 /// A sampler that reports the constant it was given (to tell views apart).
 struct Constant {
   using scalar_type = float;
@@ -138,6 +161,42 @@ TEST_CASE("the image is identical for 1, 2, 3 and 7 threads, by rows and by tile
     CHECK(rows_std == reference);
     CHECK(tiles_std == reference);
   }
+}
+
+TEST_CASE("a grid sampler gets each tile's rays in affine form, or the rays when it declines", "[renderer]") {
+  STATIC_REQUIRE(mpr::GridRaySampler<RayHashGrid>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<RayHashTiles>);
+  // A region offset inside a larger image, tiles that do not start at the region's first row.
+  const mpr::Region region(5, 3, 61, 29);
+  const auto renderer = make_renderer();
+  std::atomic<int> grids{0}, tiles{0};
+  double gap = 0;
+  const auto gridded = make_renderer(RayHashGrid{{{}, &tiles}, &grids, &gap, false});
+  const auto declining = make_renderer(RayHashGrid{{{}, &tiles}, &grids, &gap, true});
+  mpr::Image<mpr::Color> image(70, 40, mpr::Color(9, 9, 9)), fallback(70, 40, mpr::Color(9, 9, 9));
+  gridded.render(image.view(), region, {2});
+  CHECK(grids.load() == (29 + mpr::kTileRows - 1) / mpr::kTileRows);
+  CHECK(tiles.load() == 0);
+  CHECK(gap < 1e-14); // grid.ray(i, j) is the renderer's ray; the affine form differs by rounding
+  float worst = 0;
+  int untouched = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 70; ++x) {
+      if (!region.contains({x, y})) {
+        untouched += (image(x, y) == mpr::Color(9, 9, 9)).all() ? 1 : 0;
+        continue;
+      }
+      worst = std::max(worst, (image(x, y) - renderer.shade({x, y}, region)).abs().maxCoeff());
+    }
+  CHECK(worst < 1e-5f);
+  CHECK(untouched == 70 * 40 - 61 * 29);
+  grids = 0;
+  declining.render(fallback.view(), region, {2});
+  CHECK(grids.load() == 0);
+  CHECK(tiles.load() == (29 + mpr::kTileRows - 1) / mpr::kTileRows);
+  for (int y = region.y; y < region.y + region.height; ++y)
+    for (int x = region.x; x < region.x + region.width; ++x)
+      REQUIRE((fallback(x, y) == renderer.shade({x, y}, region)).all());
 }
 
 TEST_CASE("a region offset inside a larger image renders the same pixels", "[renderer]") {

@@ -66,6 +66,9 @@ TEST_CASE("camera frame samplers satisfy the sampler concepts", "[camera_frame_s
   STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
   STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::CylinderAperture, double, mpr::Color>>);
   STATIC_REQUIRE_FALSE(mpr::TileRaySampler<mpr::CheckerboardPlane<float>>);
+  // The grid path: the nearest camera has one, the apertures not (yet).
+  STATIC_REQUIRE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
   STATIC_REQUIRE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
                                          mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
   STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
@@ -518,6 +521,48 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}), glc);
   compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.35}), sweep);
   compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames), sweep);
+  compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames), sweep);
+
+  // The nearest camera's grid path (what the renderer takes under a plane and a GLC) against its
+  // tile path on the same tile's rays; and a non-planar array, where the grid path declines.
+  const mpr::Renderer renderer(plane, sweep, mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+  const mpr::AffineRays<T> field = sweep.affine_rays(plane.affine_points());
+  const T u0 = region.column_to_u<T>(3), v0 = region.row_to_v<T>(9), su = T(1) / 300, sv = T(1) / 19;
+  const auto exact = [&](int i, int j) noexcept { return renderer.ray_at({3 + i, 9 + j}, region); };
+  const mpr::RayGrid<T, decltype(exact)> grid{300,
+                                              8,
+                                              field.origin.value(u0, v0),
+                                              mpr::Vec3<T>(su * field.origin.du),
+                                              mpr::Vec3<T>(sv * field.origin.dv),
+                                              field.direction.value(u0, v0),
+                                              mpr::Vec3<T>(su * field.direction.du),
+                                              mpr::Vec3<T>(sv * field.direction.dv),
+                                              exact};
+  std::vector<mpr::Ray<T>> rays;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 300; ++i) rays.push_back(exact(i, j));
+  std::vector<mpr::Color> by_grid(rays.size(), mpr::Color(-1, -1, -1)), by_tile(rays.size());
+  REQUIRE(renderer.sampler().sample_grid(grid, by_grid));
+  renderer.sampler().sample_tile(rays, 300, by_tile);
+  int worst = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const mpr::Rgb8 g = mpr::to_rgb8(by_grid[i]), t = mpr::to_rgb8(by_tile[i]);
+    worst = std::max({worst, std::abs(g.r - t.r), std::abs(g.g - t.g), std::abs(g.b - t.b)});
+  }
+  CHECK(worst <= 1);
+  std::vector<mpr::PinholeCamera<T>> ring;
+  for (int c = 0; c < 6; ++c) {
+    const T angle = T(0.3) * static_cast<T>(c - 3);
+    ring.push_back(mpr::PinholeCamera<T>::look_at(
+        mpr::Vec3<T>(12 * std::sin(angle), T(0.4) * static_cast<T>(c % 2), 12 - 12 * std::cos(angle)),
+        mpr::Vec3<T>(0, 0, 12), mpr::Vec3<T>(0, -1, 0), T(1), 320, 21));
+  }
+  const mpr::CameraFrameSampler<mpr::NearestCamera, T> ring_sampler(
+      std::make_shared<const mpr::CameraFrameSet<T>>(ring, images));
+  REQUIRE_FALSE(ring_sampler.planar_array());
+  std::vector<mpr::Color> declined(rays.size(), mpr::Color(-1, -1, -1));
+  CHECK_FALSE(ring_sampler.sample_grid(grid, declined));
+  CHECK(std::all_of(declined.begin(), declined.end(), [](const mpr::Color& c) { return (c == -1).all(); }));
 }
 
 TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,

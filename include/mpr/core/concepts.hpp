@@ -7,6 +7,7 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/pixel.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/core/vec.hpp>
 
 #include <concepts>
@@ -38,6 +39,20 @@ template <class R>
 concept RaySelector = HasScalar<R> && requires(const R& r, Pixel px, const Vec2<typename R::scalar_type>& uv,
                                                const Vec3<typename R::scalar_type>& point) {
   { r.ray_at(px, uv, point) } noexcept -> std::same_as<Ray<typename R::scalar_type>>;
+};
+
+/// Optional interface of an image surface whose points are affine in uv (a plane):
+/// `affine_points()` gives `point_at` as an `AffineField3`.
+template <class S>
+concept AffineSurface = ImageSurface<S> && requires(const S& s) {
+  { s.affine_points() } noexcept -> std::same_as<AffineField3<typename S::scalar_type>>;
+};
+
+/// Optional interface of a ray selector whose rays are affine in uv whenever the surface points
+/// are: `affine_rays(points)` gives the rays `ray_at` returns over the surface `points`.
+template <class R>
+concept AffineSelector = RaySelector<R> && requires(const R& r, const AffineField3<typename R::scalar_type>& points) {
+  { r.affine_rays(points) } noexcept -> std::same_as<AffineRays<typename R::scalar_type>>;
 };
 
 namespace detail {
@@ -84,6 +99,20 @@ template <class M>
 concept TileRaySampler = RaySampler<M> && requires(const M& m, std::span<const Ray<typename M::scalar_type>> rays,
                                                    int width, std::span<sampler_color_t<M>> out) {
   { m.sample_tile(rays, width, out) } noexcept;
+};
+
+/// Optional grid interface of a tile sampler: `sample_grid(grid, out)` gets a tile whose rays are
+/// affine in the pixel (`RayGrid`: the tile's first ray, its steps per column and per row, and
+/// the renderer's exact ray of any pixel) and writes the colour of every pixel, row-major, the
+/// same colours as `sample_tile` would (to rounding), without the renderer building one ray per
+/// pixel. It returns false, writing nothing, when it has no grid path for this tile (the
+/// renderer then hands it the rays). `Renderer::render_tile` uses it when the surface models
+/// `AffineSurface` and the selector `AffineSelector`; `sample(ray)` stays the contract.
+template <class M>
+concept GridRaySampler = TileRaySampler<M> &&
+    requires(const M& m, const RayGrid<typename M::scalar_type, detail::ExactRayProbe<typename M::scalar_type>>& grid,
+             std::span<sampler_color_t<M>> out) {
+  { m.sample_grid(grid, out) } noexcept -> std::same_as<bool>;
 };
 
 /// Rays per call of a `BatchRaySampler`'s `sample_rays` from the renderer (at most), and the

@@ -104,9 +104,10 @@ public:
   }
 
   /// Renders pixels [x_begin, x_end) of rows [y_begin, y_end) into `out`. A sampler that models
-  /// `TileRaySampler` gets all their rays in one call (the rays are kept in a per-thread buffer
-  /// that grows to the largest tile seen; if it cannot grow, the rows are rendered one by one).
-  /// Preconditions: the rectangle lies inside both `out` and `region`.
+  /// `GridRaySampler`, under an `AffineSurface` and an `AffineSelector`, gets the tile as a
+  /// `RayGrid` (no ray per pixel) and may decline it; a `TileRaySampler` gets all their rays in one call (the rays are
+  /// kept in a per-thread buffer that grows to the largest tile seen; if it cannot grow, the rows are rendered one by
+  /// one). Preconditions: the rectangle lies inside both `out` and `region`.
   template <class Px>
   requires StorableAs<Px, color_type>
   void render_tile(ImageView<Px> out, const Region& region, int y_begin, int y_end, int x_begin,
@@ -129,6 +130,14 @@ public:
         room = false;
       }
       if (room) {
+        if constexpr (GridRaySampler<Sampler> && AffineSurface<Surface> && AffineSelector<Selector>) {
+          if (sample_grid(region, y_begin, x_begin, width, rows, std::span<color_type>(colors.data(), n))) {
+            for (int y = y_begin; y < y_end; ++y)
+              store_row(out.row(y) + x_begin,
+                        colors.data() + static_cast<std::size_t>(y - y_begin) * static_cast<std::size_t>(width), width);
+            return;
+          }
+        }
         // u depends on the column only: one division per column for the whole tile.
         for (int x = x_begin; x < x_end; ++x)
           u_of_column[static_cast<std::size_t>(x - x_begin)] = region.column_to_u<scalar_type>(x);
@@ -156,6 +165,31 @@ public:
   }
 
 private:
+  // The tile's rays as a `RayGrid` for a `GridRaySampler`: the affine rays of surface and
+  // selector stepped per pixel (u and v grow by 1 / width and 1 / height per column and row),
+  // with `ray_at`'s own ray for the pixels the sampler asks for exactly.
+  bool sample_grid(const Region& region, int y_begin, int x_begin, int width, int rows,
+                   std::span<color_type> colors) const noexcept {
+    using T = scalar_type;
+    const AffineRays<T> field = selector_.affine_rays(surface_.affine_points());
+    const T u0 = region.column_to_u<T>(x_begin), v0 = region.row_to_v<T>(y_begin);
+    const T su = T(1) / static_cast<T>(region.width), sv = T(1) / static_cast<T>(region.height);
+    const auto exact = [this, &region, x_begin, y_begin](int i, int j) noexcept {
+      const Vec2<T> uv(region.column_to_u<T>(x_begin + i), region.row_to_v<T>(y_begin + j));
+      return selector_.ray_at(Pixel{x_begin + i, y_begin + j}, uv, surface_.point_at(uv));
+    };
+    const RayGrid<T, decltype(exact)> grid{width,
+                                           rows,
+                                           field.origin.value(u0, v0),
+                                           Vec3<T>(su * field.origin.du),
+                                           Vec3<T>(sv * field.origin.dv),
+                                           field.direction.value(u0, v0),
+                                           Vec3<T>(su * field.direction.du),
+                                           Vec3<T>(sv * field.direction.dv),
+                                           exact};
+    return sampler_.sample_grid(grid, colors);
+  }
+
   // rays[i] = the ray of pixel (x_begin + i, y): the same rays as `ray_at`, with the row's v
   // computed once and u taken from `u` (u[i] = region.column_to_u(x_begin + i)) when given.
   MPR_FLATTEN void rays_of_row(const Region& region, int y, int x_begin, int x_end, const scalar_type* u,

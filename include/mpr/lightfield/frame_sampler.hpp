@@ -34,7 +34,8 @@ namespace mpr {
 ///
 /// The sampler shares its `FrameTable` through a `shared_ptr`, so copies are cheap, threads
 /// share one set of images, and samplers of several interpolations can share one table. It
-/// models `BatchRaySampler` / `TileRaySampler` exactly when the interpolation has those paths.
+/// models `BatchRaySampler` / `TileRaySampler` / `GridRaySampler` exactly when the interpolation
+/// has those paths.
 template <class Interpolation, std::floating_point T = float, class Px = Rgb8>
 requires FrameInterpolation<Interpolation, T, Px>
 class CameraFrameSampler {
@@ -87,6 +88,15 @@ public:
   void sample_tile(std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept requires TileFrameInterpolation<Interpolation, T, Px> {
     interpolation_.sample_tile(*table_, rays, width, out);
+  }
+
+  /// The colours of a tile whose rays are affine in the pixel (the renderer's grid interface,
+  /// `GridRaySampler`), by the interpolation's grid path; false when it has none for this tile.
+  template <class ExactRay>
+  [[nodiscard]] bool
+  sample_grid(const RayGrid<T, ExactRay>& grid,
+              std::span<Color> out) const noexcept requires GridFrameInterpolation<Interpolation, T, Px> {
+    return interpolation_.sample_grid(*table_, grid, out);
   }
 
 private:

@@ -3,7 +3,7 @@
 /// The contract of a light-field interpolation: which cameras of a `FrameTable` answer a ray and
 /// with what weights. An interpolation is a type of its own (`NearestCamera`,
 /// `SyntheticAperture`, `CylinderAperture`, or one of the user's) with a per-ray `sample` and,
-/// optionally, a batch `sample_rays` and a tile `sample_tile` that fall back to its own per-ray
+/// optionally, a batch `sample_rays`, a tile `sample_tile` and a grid `sample_grid` that fall back to its own per-ray
 /// function; `CameraFrameSampler<Interpolation>` offers to the renderer exactly the interfaces
 /// the interpolation has. An optional `validate()` const member throws `argument_error` for bad
 /// parameters, and an optional `validate(table)` for frames it cannot use (e.g. `DepthProxy`
@@ -11,6 +11,7 @@
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
@@ -46,6 +47,16 @@ concept TileFrameInterpolation = FrameInterpolation<I, T, Px> &&
     requires(const I& i, const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
              std::span<Color> out) {
   { i.sample_tile(table, rays, width, out) } noexcept;
+};
+
+/// Optional grid path: `sample_grid(table, grid, out)` for a tile whose rays are affine in the
+/// pixel (`RayGrid`, the preconditions of `GridRaySampler`); returns false, writing nothing,
+/// where it has no such path (the renderer then hands `sample_tile` the rays).
+template <class I, class T, class Px>
+concept GridFrameInterpolation = TileFrameInterpolation<I, T, Px> &&
+    requires(const I& i, const FrameTable<T, Px>& table, const RayGrid<T, detail::ExactRayProbe<T>>& grid,
+             std::span<Color> out) {
+  { i.sample_grid(table, grid, out) } noexcept -> std::same_as<bool>;
 };
 
 // clang-format on

@@ -5,6 +5,7 @@
 /// the nearest-neighbour reconstruction used for General Linear Cameras by Yu & McMillan 2004).
 
 #include <mpr/core/concepts.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
@@ -23,8 +24,9 @@ namespace mpr {
 ///
 /// Batch: each ray first tries the previous ray's camera with a proof (below). Tile, on a planar
 /// array: a row at a time, the choice proved for blocks of 32 rays by a vectorised test, and
-/// each run of pixels with one camera added by one shift-and-add. Equal to `sample` up to the
-/// shift-and-add's 1e-3 pixel.
+/// each run of pixels with one camera added by one shift-and-add; from a `RayGrid` (rays affine in
+/// the pixel) the same without a ray per pixel. Equal to `sample` up to the shift-and-add's 1e-3
+/// pixel.
 struct NearestCamera {
   template <std::floating_point T, class Px>
   [[nodiscard]] Color sample(const FrameTable<T, Px>& table, const Ray<T>& ray) const noexcept {
@@ -46,8 +48,33 @@ struct NearestCamera {
   void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept {
     const std::size_t w = tile_width(rays.size(), width);
-    if (w > 0 && table.plane() && row_path(table, *table.plane(), rays, w, out)) return;
+    if (w > 0 && table.plane()) {
+      const ArrayPlane<T>& plane = *table.plane();
+      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+        return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
+      };
+      const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
+      if (row_path(table, plane, rays.size() / w, w, out, prepare, ray_of)) return;
+    }
     for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
+  }
+
+  /// The tile path for a tile whose rays are affine in the pixel (`GridRaySampler`): the same
+  /// row path, its crossings computed from the grid instead of from one ray per pixel. False on
+  /// a non-planar array.
+  template <std::floating_point T, class Px, class ExactRay>
+  [[nodiscard]] bool sample_grid(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid,
+                                 std::span<Color> out) const noexcept {
+    if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
+    const ArrayPlane<T>& plane = *table.plane();
+    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even);
+    };
+    const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
+      return grid.ray(static_cast<int>(i), static_cast<int>(r));
+    };
+    return row_path(table, plane, static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width), out,
+                    prepare, ray_of);
   }
 
   /// The nearest camera to the ray line, trying `hint` first. On a planar array, camera k is
@@ -110,22 +137,48 @@ private:
   // r < rho = (cos_min sep_k - margin) / (cos_min + 1.001), cos_min the least cosine of the row.
   // Each run of pixels with one camera is a shift-and-add of one camera row when the run's
   // points are evenly spaced, else per ray.
-  template <std::floating_point T, class Px>
-  static bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::span<const Ray<T>> rays,
-                       std::size_t w, std::span<Color> out) noexcept {
+  // `prepare(r, scratch, all_cross, even)` fills the scratch for row r (`prepare_plane_row` or
+  // `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray of pixel i of row r.
+  template <std::floating_point T, class Px, class Prepare, class RayOf>
+  static bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t rows, std::size_t w,
+                       std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) noexcept {
     using Flag = typename PlaneRowScratch<T>::Flag;
-    const std::size_t rows = rays.size() / w;
     thread_local PlaneRowScratch<T> scratch;
     if (!scratch.reserve(w)) return false;
     const T margin = T(1e-4) * plane.extent;
     Flag pass[kProofBlock];
     T threshold[kProofBlock];
     for (std::size_t r = 0; r < rows; ++r) {
-      const Ray<T>* row = rays.data() + r * w;
       bool all_cross = true, even = false;
-      const T cos_min = prepare_plane_row(table, plane, row, w, scratch, all_cross, even);
-      int* camera = scratch.camera.data();
+      const T cos_min = prepare(r, scratch, all_cross, even);
+      const Vec3<T>* points = scratch.points.data();
+      Color* o = out.data() + r * w;
+      // Pixels [s0, e) of camera kk: one shift-and-add when the points are evenly spaced.
+      const auto emit = [&](std::size_t s0, std::size_t e, int kk) noexcept {
+        bool copied = false;
+        if (even && kk >= 0 && e - s0 >= 8 && !table.camera(static_cast<std::size_t>(kk)).distorted) {
+          // Added straight into the output (packed channel triples, as `PixelTraits<Rgb8>` reads them).
+          static_assert(sizeof(Color) == 3 * sizeof(float));
+          float* acc = o[s0].data();
+          float* weight = scratch.weight.data() + s0;
+          const std::size_t n = e - s0;
+          std::fill(acc, acc + 3 * n, 0.0f);
+          std::fill(weight, weight + n, 0.0f);
+          copied = shift_add(table, table.camera(static_cast<std::size_t>(kk)), points + s0, n, acc, weight);
+          // One camera: weight is exactly 1 where it added its pixel, 0 where it sees nothing.
+          if (copied) {
+            unsigned unseen = 0;
+            for (std::size_t i = 0; i < n; ++i) unseen += weight[i] > 0 ? 0u : 1u;
+            if (unseen > 0)
+              for (std::size_t i = 0; i < n; ++i)
+                if (!(weight[i] > 0)) o[s0 + i] = table.config().background;
+          }
+        }
+        if (!copied)
+          for (std::size_t i = s0; i < e; ++i) o[i] = table.camera_color(kk, points[i]);
+      };
       int k = -1, prepared = -1;
+      std::size_t run = 0; // the first pixel of camera k's run
       detail::NearestCandidate<T> candidate{};
       for (std::size_t i = 0; i < w;) {
         if (k >= 0) {
@@ -145,37 +198,19 @@ private:
           const std::size_t m = std::min(kProofBlock, w - i);
           detail::prove_nearest(scratch.plane_rays(i), m, candidate, pass, threshold);
           std::size_t p = 0;
-          while (p < m && pass[p] != 0) camera[i + p++] = k;
+          while (p < m && pass[p] != 0) ++p;
           i += p;
           if (p == m) continue;
         }
-        k = nearest_with_hint(table, row[i], k);
-        camera[i++] = k;
-      }
-      const Vec3<T>* points = scratch.points.data();
-      Color* o = out.data() + r * w;
-      for (std::size_t s0 = 0; s0 < w;) {
-        const int kk = camera[s0];
-        std::size_t e = s0 + 1;
-        while (e < w && camera[e] == kk) ++e;
-        bool copied = false;
-        if (even && kk >= 0 && e - s0 >= 8 && !table.camera(static_cast<std::size_t>(kk)).distorted) {
-          float* acc = scratch.acc.data() + 3 * s0;
-          float* weight = scratch.weight.data() + s0;
-          std::fill(acc, acc + 3 * (e - s0), 0.0f);
-          std::fill(weight, weight + (e - s0), 0.0f);
-          copied = shift_add(table, table.camera(static_cast<std::size_t>(kk)), points + s0, e - s0, acc, weight);
-          // One camera: weight is exactly 1 where it added its pixel, 0 where it sees nothing.
-          if (copied)
-            for (std::size_t i = s0; i < e; ++i) {
-              const float* a = acc + 3 * (i - s0);
-              o[i] = weight[i - s0] > 0 ? Color(a[0], a[1], a[2]) : table.config().background;
-            }
+        const int next = nearest_with_hint(table, ray_of(r, i), k);
+        if (next != k) {
+          if (i > run) emit(run, i, k);
+          run = i;
+          k = next;
         }
-        if (!copied)
-          for (std::size_t i = s0; i < e; ++i) o[i] = table.camera_color(kk, points[i]);
-        s0 = e;
+        ++i;
       }
+      emit(run, w, k);
     }
     return true;
   }

@@ -3,8 +3,9 @@
 /// One output row of rays seen from the plane of a planar camera array: where each ray crosses
 /// the plane (in-plane coordinates, structure of arrays, vectorised), the least cosine to the
 /// normal, and whether the row's points are evenly spaced. The row paths of `NearestCamera` and
-/// `CylinderAperture` start here.
+/// `CylinderAperture` start here, from the rays of a row or from a `RayGrid`.
 
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/array_plane.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace mpr {
@@ -94,6 +96,50 @@ T prepare_plane_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, 
     }
     even = evenly_spaced(scratch.points.data(), p, w);
   }
+  return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
+}
+
+/// `prepare_plane_row` for row `j` of a tile whose rays are affine in the pixel: the origins,
+/// directions and points of the row's `grid.width` pixels are evaluated from the grid (no ray
+/// per pixel, no transposition), so they are evenly spaced by construction (`even` is true for
+/// bilinear filtering and rows of at least 8 pixels). Precondition: `scratch.reserve(grid.width)`
+/// succeeded, 0 <= j < grid.rows.
+template <std::floating_point T, class Px, class ExactRay>
+T prepare_plane_grid_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, const RayGrid<T, ExactRay>& grid,
+                         int j, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+  const std::size_t w = static_cast<std::size_t>(grid.width);
+  const T row = static_cast<T>(j);
+  const Vec3<T> o = grid.origin + row * grid.origin_dy;
+  const Vec3<T> d = grid.direction + row * grid.direction_dy;
+  const Vec3<T> rel = o - plane.point;
+  const T first[6] = {rel.x(), rel.y(), rel.z(), d.x(), d.y(), d.z()};
+  const T step[6] = {grid.origin_dx.x(),    grid.origin_dx.y(),    grid.origin_dx.z(),
+                     grid.direction_dx.x(), grid.direction_dx.y(), grid.direction_dx.z()};
+  // (int indices: their conversion to T vectorises, a size_t's does not.)
+  const int n = grid.width;
+  for (int k = 0; k < 6; ++k) {
+    T* q = scratch.soa[k].data();
+    const T a = first[k], b = step[k];
+    for (int i = 0; i < n; ++i) q[i] = a + static_cast<T>(i) * b;
+  }
+  const std::optional<T>& depth = table.config().depth;
+  const Vec3<T> p = depth ? Vec3<T>(o + *depth * d) : o;
+  const Vec3<T> dp = depth ? Vec3<T>(grid.origin_dx + *depth * grid.direction_dx) : grid.origin_dx;
+  Vec3<T>* points = scratch.points.data();
+  for (int i = 0; i < n; ++i) {
+    const T t = static_cast<T>(i);
+    points[i] = Vec3<T>(p.x() + t * dp.x(), p.y() + t * dp.y(), p.z() + t * dp.z());
+  }
+  const detail::PlaneAxes<T> frame{plane.point.x(),  plane.point.y(),  plane.point.z(),  plane.normal.x(),
+                                   plane.normal.y(), plane.normal.z(), plane.axis_u.x(), plane.axis_u.y(),
+                                   plane.axis_u.z(), plane.axis_v.x(), plane.axis_v.y(), plane.axis_v.z()};
+  const T* const soa_in[6] = {scratch.soa[0].data(), scratch.soa[1].data(), scratch.soa[2].data(),
+                              scratch.soa[3].data(), scratch.soa[4].data(), scratch.soa[5].data()};
+  detail::plane_rays(soa_in, w, frame, scratch.plane_rays(), scratch.cos2.data());
+  unsigned crossing = 1;
+  for (int i = 0; i < n; ++i) crossing &= scratch.ok[static_cast<std::size_t>(i)] != 0 ? 1u : 0u;
+  all_cross = crossing != 0;
+  even = table.config().filter == PixelFilter::bilinear && w >= 8;
   return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
 }
 

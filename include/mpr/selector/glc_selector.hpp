@@ -6,6 +6,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/pixel.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/surface/planar_surface.hpp>
 
@@ -51,6 +52,12 @@ public:
   /// The ray of the GLC at `uv`, starting at `point` (the surface point of `uv`).
   [[nodiscard]] Ray<T> ray_at(Pixel, const Vec2<T>& uv, const Vec3<T>& point) const noexcept {
     return {point, direction_at(uv)};
+  }
+
+  /// The rays `ray_at` returns over a surface whose points are `points` (`AffineSelector`): they
+  /// start at the points and their directions are `direction_at`.
+  [[nodiscard]] AffineRays<T> affine_rays(const AffineField3<T>& points) const noexcept {
+    return {points, {d00_, du_, dv_}};
   }
 
   /// The scaled direction at `uv` (component +-1 along the plane normal).

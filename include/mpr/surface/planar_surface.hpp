@@ -3,6 +3,7 @@
 /// `mpr::PlanarSurface`: an image plane, the most common image surface.
 
 #include <mpr/core/error.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/geometry/plane.hpp>
 
@@ -57,6 +58,9 @@ public:
     return Vec3<T>(origin_.x() + u * width_.x() + v * height_.x(), origin_.y() + u * width_.y() + v * height_.y(),
                    origin_.z() + u * width_.z() + v * height_.z());
   }
+
+  /// `point_at` as an affine field (`AffineSurface`).
+  [[nodiscard]] AffineField3<T> affine_points() const noexcept { return {origin_, width_, height_}; }
 
   /// The inverse of `point_at`: the uv of a point on the plane (a point off the plane is
   /// projected along the normal), uv outside [0, 1]^2 for points outside the rectangle. Solved
