@@ -184,6 +184,24 @@ ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) no
 // The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy + 1 (ay the
 // vertical offset): pixels whose texel pairs lie inside the row are blended from two resampled
 // rows (`LerpRowCache::resampled`), the others go ray by ray. False when none lies inside.
+// Pixels [0, first) and [last, n) of a run that camera c sees at x = x0 + step i (step > 0),
+// around the part added by shift-and-add: those whose x lies within 0.01 pixel of the image's
+// columns [-0.5, width - 0.5) go ray by ray; those beyond are outside c's image (the run's affine
+// model holds within 1e-3 pixel), so c adds nothing to them and they are skipped.
+template <std::floating_point T, class Px>
+void add_run_edges(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
+                   std::size_t n, std::size_t first, std::size_t last, T x0, T step, float* acc, float* weight,
+                   const float* ray_weight) noexcept {
+  const T lo = T(-0.51), hi = static_cast<T>(c.width) - T(0.49);
+  std::size_t begin = 0, end = n;
+  while (begin < first && x0 + step * static_cast<T>(begin) < lo) ++begin;
+  while (end > last && x0 + step * static_cast<T>(end - 1) >= hi) --end;
+  table.add_per_ray(c, points + begin, first - begin, acc + 3 * begin, weight + begin,
+                    ray_weight != nullptr ? ray_weight + begin : nullptr);
+  table.add_per_ray(c, points + last, end - last, acc + 3 * last, weight + last,
+                    ray_weight != nullptr ? ray_weight + last : nullptr);
+}
+
 template <std::floating_point T, class Px>
 bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
                          const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
@@ -200,9 +218,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   while (last > first && x0 + step * static_cast<T>(last - 1) > right) --last;
   while (last < n && x0 + step * static_cast<T>(last) <= right) ++last;
   if (first >= last) return false;
-  table.add_per_ray(c, points, first, acc, weight, ray_weight);
-  table.add_per_ray(c, points + last, n - last, acc + 3 * last, weight + last,
-                    ray_weight != nullptr ? ray_weight + last : nullptr);
+  add_run_edges(table, c, points, n, first, last, x0, step, acc, weight, ray_weight);
   thread_local LerpRowCache own;
   LerpRowCache& rows = cache != nullptr ? *cache : own;
   if (cache == nullptr) own.clear();
@@ -284,9 +300,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   const long last = room < 0 ? 0L : std::min(static_cast<long>(n), room / k + 1);
   if (first >= last) return false;
   const std::size_t i_begin = static_cast<std::size_t>(first), i_end = static_cast<std::size_t>(last);
-  table.add_per_ray(c, points, i_begin, acc, weight, ray_weight);
-  table.add_per_ray(c, points + i_end, n - i_end, acc + 3 * i_end, weight + i_end,
-                    ray_weight != nullptr ? ray_weight + i_end : nullptr);
+  detail::add_run_edges(table, c, points, n, i_begin, i_end, x0, steps, acc, weight, ray_weight);
   const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
   const float sc = texel_type::scale;
   const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
