@@ -66,9 +66,11 @@ TEST_CASE("camera frame samplers satisfy the sampler concepts", "[camera_frame_s
   STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
   STATIC_REQUIRE(mpr::TileRaySampler<mpr::CameraFrameSampler<mpr::CylinderAperture, double, mpr::Color>>);
   STATIC_REQUIRE_FALSE(mpr::TileRaySampler<mpr::CheckerboardPlane<float>>);
-  // The grid path: the nearest camera has one, the apertures not (yet).
+  // The grid path: the three interpolations of a frame set have one; a batch-only one does not.
   STATIC_REQUIRE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
-  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
+  STATIC_REQUIRE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::SyntheticAperture>>);
+  STATIC_REQUIRE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::CylinderAperture, float, mpr::Color>>);
+  STATIC_REQUIRE_FALSE(mpr::GridRaySampler<mpr::CameraFrameSampler<mpr::DepthProxy>>);
   STATIC_REQUIRE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
                                          mpr::CameraFrameSampler<mpr::NearestCamera, double>>);
   STATIC_REQUIRE_FALSE(mpr::ComposablePolicies<mpr::PlanarSurface<double>, mpr::GlcSelector<double>,
@@ -523,12 +525,13 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames), sweep);
   compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames), sweep);
 
-  // The nearest camera's grid path (what the renderer takes under a plane and a GLC) against its
-  // tile path on the same tile's rays; and a non-planar array, where the grid path declines.
-  const mpr::Renderer renderer(plane, sweep, mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+  // Each interpolation's grid path (what the renderer takes under a plane and a GLC) against its
+  // tile path on the same tile's rays; on a non-planar array the nearest camera and the cylinder
+  // decline the grid, the synthetic aperture (which needs no plane) takes it there too.
   const mpr::AffineRays<T> field = sweep.affine_rays(plane.affine_points());
   const T u0 = region.column_to_u<T>(3), v0 = region.row_to_v<T>(9), su = T(1) / 300, sv = T(1) / 19;
-  const auto exact = [&](int i, int j) noexcept { return renderer.ray_at({3 + i, 9 + j}, region); };
+  const mpr::Renderer rays_of(plane, sweep, mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+  const auto exact = [&](int i, int j) noexcept { return rays_of.ray_at({3 + i, 9 + j}, region); };
   const mpr::RayGrid<T, decltype(exact)> grid{300,
                                               8,
                                               field.origin.value(u0, v0),
@@ -541,15 +544,25 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   std::vector<mpr::Ray<T>> rays;
   for (int j = 0; j < 8; ++j)
     for (int i = 0; i < 300; ++i) rays.push_back(exact(i, j));
-  std::vector<mpr::Color> by_grid(rays.size(), mpr::Color(-1, -1, -1)), by_tile(rays.size());
-  REQUIRE(renderer.sampler().sample_grid(grid, by_grid));
-  renderer.sampler().sample_tile(rays, 300, by_tile);
-  int worst = 0;
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    const mpr::Rgb8 g = mpr::to_rgb8(by_grid[i]), t = mpr::to_rgb8(by_tile[i]);
-    worst = std::max({worst, std::abs(g.r - t.r), std::abs(g.g - t.g), std::abs(g.b - t.b)});
-  }
-  CHECK(worst <= 1);
+  const auto grid_against_tile = [&](const auto& sampler, bool declines) {
+    std::vector<mpr::Color> by_grid(rays.size(), mpr::Color(-1, -1, -1)), by_tile(rays.size());
+    if (declines) {
+      CHECK_FALSE(sampler.sample_grid(grid, by_grid));
+      CHECK(std::all_of(by_grid.begin(), by_grid.end(), [](const mpr::Color& c) { return (c == -1).all(); }));
+      return;
+    }
+    REQUIRE(sampler.sample_grid(grid, by_grid));
+    sampler.sample_tile(rays, 300, by_tile);
+    int worst = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const mpr::Rgb8 g = mpr::to_rgb8(by_grid[i]), t = mpr::to_rgb8(by_tile[i]);
+      worst = std::max({worst, std::abs(g.r - t.r), std::abs(g.g - t.g), std::abs(g.b - t.b)});
+    }
+    CHECK(worst <= 1);
+  };
+  grid_against_tile(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames), false);
+  grid_against_tile(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames), false);
+  grid_against_tile(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.35}), false);
   std::vector<mpr::PinholeCamera<T>> ring;
   for (int c = 0; c < 6; ++c) {
     const T angle = T(0.3) * static_cast<T>(c - 3);
@@ -557,12 +570,11 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
         mpr::Vec3<T>(12 * std::sin(angle), T(0.4) * static_cast<T>(c % 2), 12 - 12 * std::cos(angle)),
         mpr::Vec3<T>(0, 0, 12), mpr::Vec3<T>(0, -1, 0), T(1), 320, 21));
   }
-  const mpr::CameraFrameSampler<mpr::NearestCamera, T> ring_sampler(
-      std::make_shared<const mpr::CameraFrameSet<T>>(ring, images));
-  REQUIRE_FALSE(ring_sampler.planar_array());
-  std::vector<mpr::Color> declined(rays.size(), mpr::Color(-1, -1, -1));
-  CHECK_FALSE(ring_sampler.sample_grid(grid, declined));
-  CHECK(std::all_of(declined.begin(), declined.end(), [](const mpr::Color& c) { return (c == -1).all(); }));
+  const auto ring_frames = std::make_shared<const mpr::CameraFrameSet<T>>(ring, images);
+  REQUIRE_FALSE(mpr::CameraFrameSampler<mpr::NearestCamera, T>(ring_frames).planar_array());
+  grid_against_tile(mpr::CameraFrameSampler<mpr::NearestCamera, T>(ring_frames), true);
+  grid_against_tile(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(ring_frames, mpr::CylinderAperture{3}), true);
+  grid_against_tile(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(ring_frames), false);
 }
 
 TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,

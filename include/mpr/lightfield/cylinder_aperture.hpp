@@ -6,6 +6,7 @@
 
 #include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -63,8 +64,32 @@ struct CylinderAperture {
   void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept {
     const std::size_t w = tile_width(rays.size(), width);
-    if (table.plane() && w > 0 && row_path(table, *table.plane(), rays, w, out)) return;
+    if (table.plane() && w > 0) {
+      const ArrayPlane<T>& plane = *table.plane();
+      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+        return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
+      };
+      const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
+      if (row_path(table, plane, rays.size() / w, w, out, prepare, ray_of)) return;
+    }
     for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
+  }
+
+  /// The tile path for a tile whose rays are affine in the pixel (`GridRaySampler`): the same row
+  /// groups, their crossings from the grid. False on a non-planar array.
+  template <std::floating_point T, class Px, class ExactRay>
+  [[nodiscard]] bool sample_grid(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid,
+                                 std::span<Color> out) const noexcept {
+    if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
+    const ArrayPlane<T>& plane = *table.plane();
+    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even);
+    };
+    const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
+      return grid.ray(static_cast<int>(i), static_cast<int>(r));
+    };
+    return row_path(table, plane, static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width), out,
+                    prepare, ray_of);
   }
 
 private:
@@ -181,25 +206,30 @@ private:
   // outside the row's own rays): each camera row is then interpolated once for the two output
   // rows that read it, and the next camera's texels are fetched meanwhile. Rays that no camera
   // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the plane
-  // goes through `sample_rays`.
-  template <std::floating_point T, class Px>
-  bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::span<const Ray<T>> rays, std::size_t w,
-                std::span<Color> out) const noexcept {
-    const std::size_t nrows = rays.size() / w;
+  // goes ray by ray through `sample`.
+  //
+  // `prepare(r, scratch, all_cross, even)` fills the crossings of row r (`prepare_plane_row` or
+  // `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray of pixel i of row r.
+  template <std::floating_point T, class Px, class Prepare, class RayOf>
+  bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t nrows, std::size_t w,
+                std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) const noexcept {
     thread_local GroupScratch<T> scratch;
     if ((w + kSegment - 1) / kSegment > kMaxSegments || !scratch.reserve(w, table.size())) return false;
     for (std::size_t r0 = 0; r0 < nrows; r0 += kGroupRows) {
       const std::size_t rows = std::min(kGroupRows, nrows - r0);
-      group(table, plane, rays.subspan(r0 * w, rows * w), w, out.subspan(r0 * w, rows * w), scratch);
+      const auto prepare_q = [&](std::size_t q, PlaneRowScratch<T>& row, bool& all_cross, bool& even) noexcept {
+        return prepare(r0 + q, row, all_cross, even);
+      };
+      const auto ray_q = [&](std::size_t q, std::size_t i) noexcept -> Ray<T> { return ray_of(r0 + q, i); };
+      group(table, plane, rows, w, out.subspan(r0 * w, rows * w), scratch, prepare_q, ray_q);
     }
     return true;
   }
 
   // `row_path` for at most kGroupRows rows: the rows' crossings, then each camera in reach.
-  template <std::floating_point T, class Px>
-  void group(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::span<const Ray<T>> rays, std::size_t w,
-             std::span<Color> out, GroupScratch<T>& s) const noexcept {
-    const std::size_t nrows = rays.size() / w;
+  template <std::floating_point T, class Px, class Prepare, class RayOf>
+  void group(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t nrows, std::size_t w,
+             std::span<Color> out, GroupScratch<T>& s, const Prepare& prepare, const RayOf& ray_of) const noexcept {
     const T r = static_cast<T>(radius), margin = T(1e-4) * plane.extent;
     constexpr T kInf = std::numeric_limits<T>::infinity();
     T box[4] = {kInf, -kInf, kInf, -kInf}; // the group's crossings: u from, to; v from, to
@@ -207,11 +237,11 @@ private:
     for (std::size_t q = 0; q < nrows; ++q) {
       PlaneRowScratch<T>& row = s.row[q];
       bool all_cross = true, even = false;
-      const T cos_min = prepare_plane_row(table, plane, rays.data() + q * w, w, row, all_cross, even);
+      const T cos_min = prepare(q, row, all_cross, even);
       s.crosses[q] = all_cross;
       s.even[q] = even;
       if (!all_cross) {
-        sample_rays(table, rays.subspan(q * w, w), out.subspan(q * w, w));
+        for (std::size_t i = 0; i < w; ++i) out[q * w + i] = sample(table, ray_of(q, i));
         continue;
       }
       for (std::size_t i = 0; i < w; ++i) row.inv_dd[i] = T(1) / row.dd[i];
@@ -270,12 +300,15 @@ private:
     for (std::size_t q = 0; q < nrows; ++q) {
       if (!s.crosses[q]) continue;
       const PlaneRowScratch<T>& row = s.row[q];
-      const Ray<T>* ray = rays.data() + q * w;
       Color* o = out.data() + q * w;
-      for (std::size_t i = 0; i < w; ++i)
-        o[i] = row.weight[i] > 0
-                   ? table.finish(row.acc.data() + 3 * i, row.weight[i])
-                   : table.camera_color(table.index().nearest(ray[i].origin, ray[i].direction), row.points[i]);
+      for (std::size_t i = 0; i < w; ++i) {
+        if (row.weight[i] > 0) {
+          o[i] = table.finish(row.acc.data() + 3 * i, row.weight[i]);
+        } else {
+          const Ray<T> ray = ray_of(q, i);
+          o[i] = table.camera_color(table.index().nearest(ray.origin, ray.direction), row.points[i]);
+        }
+      }
     }
   }
 

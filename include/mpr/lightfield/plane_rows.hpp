@@ -99,6 +99,25 @@ T prepare_plane_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, 
   return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
 }
 
+/// The points (`FrameTable::point_of`) of every pixel of a `RayGrid`, row-major, from the grid's
+/// affine form: `ray.at(depth)` or the origin, evenly spaced along each row.
+template <std::floating_point T, class Px, class ExactRay>
+void fill_grid_points(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid, Vec3<T>* points) noexcept {
+  const std::optional<T>& depth = table.config().depth;
+  const Vec3<T> dx = depth ? Vec3<T>(grid.origin_dx + *depth * grid.direction_dx) : grid.origin_dx;
+  const Vec3<T> dy = depth ? Vec3<T>(grid.origin_dy + *depth * grid.direction_dy) : grid.origin_dy;
+  const Vec3<T> p0 = depth ? Vec3<T>(grid.origin + *depth * grid.direction) : grid.origin;
+  for (int j = 0; j < grid.rows; ++j) {
+    const T row = static_cast<T>(j);
+    const Vec3<T> p(p0.x() + row * dy.x(), p0.y() + row * dy.y(), p0.z() + row * dy.z());
+    Vec3<T>* q = points + static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width);
+    for (int i = 0; i < grid.width; ++i) {
+      const T t = static_cast<T>(i);
+      q[i] = Vec3<T>(p.x() + t * dx.x(), p.y() + t * dx.y(), p.z() + t * dx.z());
+    }
+  }
+}
+
 /// `prepare_plane_row` for row `j` of a tile whose rays are affine in the pixel: the origins,
 /// directions and points of the row's `grid.width` pixels are evaluated from the grid (no ray
 /// per pixel, no transposition), so they are evenly spaced by construction (`even` is true for

@@ -6,9 +6,11 @@
 /// photography, Vaish et al. 2004).
 
 #include <mpr/core/concepts.hpp>
+#include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/plane_rows.hpp>
 
 #include <algorithm>
 #include <cstddef>
@@ -43,8 +45,27 @@ struct SyntheticAperture {
   void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept {
     const std::size_t w = tile_width(rays.size(), width);
-    if (w > 0 && tile(table, rays, w, out)) return;
+    const auto fill = [&](Vec3<T>* points, unsigned char* even) noexcept {
+      for (std::size_t i = 0; i < rays.size(); ++i) points[i] = table.point_of(rays[i]);
+      for (std::size_t r = 0; r < rays.size() / w; ++r)
+        even[r] = table.config().filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
+    };
+    if (w > 0 && tile(table, rays.size(), w, out, fill)) return;
     for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
+  }
+
+  /// The tile path for a tile whose rays are affine in the pixel (`GridRaySampler`): the points
+  /// come from the grid, evenly spaced along each row by construction.
+  template <std::floating_point T, class Px, class ExactRay>
+  [[nodiscard]] bool sample_grid(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid,
+                                 std::span<Color> out) const noexcept {
+    if (grid.width <= 0 || grid.rows <= 0) return false;
+    const std::size_t w = static_cast<std::size_t>(grid.width), rows = static_cast<std::size_t>(grid.rows);
+    const auto fill = [&](Vec3<T>* points, unsigned char* even) noexcept {
+      fill_grid_points(table, grid, points);
+      std::fill(even, even + rows, table.config().filter == PixelFilter::bilinear && w >= 8 ? 1 : 0);
+    };
+    return tile(table, w * rows, w, out, fill);
   }
 
 private:
@@ -75,11 +96,12 @@ private:
     LerpRowCache rows;
   };
 
-  // Every camera once per tile; false when working memory cannot grow.
-  template <std::floating_point T, class Px>
-  static bool tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::size_t w,
-                   std::span<Color> out) noexcept {
-    const std::size_t n = rays.size(), rows = n / w;
+  // Every camera once per tile of n points in rows of w; `fill(points, even)` gives the points
+  // and tells per row whether they are evenly spaced. False when working memory cannot grow.
+  template <std::floating_point T, class Px, class Fill>
+  static bool tile(const FrameTable<T, Px>& table, std::size_t n, std::size_t w, std::span<Color> out,
+                   const Fill& fill) noexcept {
+    const std::size_t rows = n / w;
     thread_local TileScratch<T> scratch;
     try {
       if (scratch.points.size() < n) scratch.points.resize(n);
@@ -93,13 +115,9 @@ private:
     Vec3<T>* points = scratch.points.data();
     float* acc = scratch.acc.data();
     float* weight = scratch.weight.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      points[i] = table.point_of(rays[i]);
-      weight[i] = 0;
-    }
+    fill(points, scratch.even.data());
+    std::fill(weight, weight + n, 0.0f);
     std::fill(acc, acc + 3 * n, 0.0f);
-    for (std::size_t r = 0; r < rows; ++r)
-      scratch.even[r] = table.config().filter == PixelFilter::bilinear && w >= 8 && evenly_spaced(points + r * w, w);
     const bool all_even = std::all_of(scratch.even.begin(), scratch.even.begin() + static_cast<std::ptrdiff_t>(rows),
                                       [](unsigned char e) { return e != 0; });
     for (const auto& c : table.cameras()) {
