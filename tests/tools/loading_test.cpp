@@ -1,19 +1,36 @@
-// mpr-render's loading (tools/mpr-render/loading.hpp): the default framing of an OBJ scene.
+// mpr-render's loading (tools/mpr-render/loading.hpp): the default framing of an OBJ scene, and
+// the camera a _par.txt light field is viewed from.
 #include "mpr-render/render_job.hpp"
 #include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
 
-#ifdef MPR_HAVE_TINYOBJLOADER
-
 namespace {
 using mpr_tools_test::job_of;
 } // namespace
+
+TEST_CASE("mpr-render: a _par.txt light field is viewed from its middle camera, or from --camera", "[tools][loading]") {
+  // Three cameras on the x axis, centres at x = -0.1, 0, 0.1 (file order).
+  const std::filesystem::path dir = mpr_tools_test::plane_light_field("loading_reference", 2.0f);
+  const std::string par = (dir / "tiny_par.txt").string();
+  const mpr_cli::Loaded<float> middle = mpr_cli::load<float>(job_of({"--par", par, "--focal-depth", "2"}));
+  REQUIRE(middle.frames);
+  REQUIRE(middle.reference);
+  CHECK(middle.reference->centre().isApprox(middle.frames->camera(1).centre()));
+  CHECK(middle.reference->centre().x() == Approx(0).margin(1e-6));
+  const mpr_cli::Loaded<float> last =
+      mpr_cli::load<float>(job_of({"--par", par, "--focal-depth", "2", "--camera", "2"}));
+  REQUIRE(last.reference);
+  CHECK(last.reference->centre().x() == Approx(0.1).margin(1e-6));
+}
+
+#ifdef MPR_HAVE_TINYOBJLOADER
 
 TEST_CASE("mpr-render: an OBJ is framed from above at an angle by default", "[tools][loading]") {
   // examples/boxes.obj: an 8 x 8 ground square at y = 0 and three boxes up to 2 high.
