@@ -105,9 +105,10 @@ public:
 
   /// Renders pixels [x_begin, x_end) of rows [y_begin, y_end) into `out`. A sampler that models
   /// `GridRaySampler`, under an `AffineSurface` and an `AffineSelector`, gets the tile as a
-  /// `RayGrid` (no ray per pixel) and may decline it; a `TileRaySampler` gets all their rays in one call (the rays are
-  /// kept in a per-thread buffer that grows to the largest tile seen; if it cannot grow, the rows are rendered one by
-  /// one). Preconditions: the rectangle lies inside both `out` and `region`.
+  /// `RayGrid` (no ray per pixel) and may decline it; a `TileRaySampler` gets all their rays in
+  /// one call (the rays are kept in a per-thread buffer that grows to the largest tile seen; if
+  /// it cannot grow, the rows are rendered one by one). Preconditions: the rectangle lies inside
+  /// both `out` and `region`.
   template <class Px>
   requires StorableAs<Px, color_type>
   void render_tile(ImageView<Px> out, const Region& region, int y_begin, int y_end, int x_begin,

@@ -25,7 +25,6 @@ struct PlaneRowScratch {
   using Flag = typename detail::PlaneRays<T>::Flag;
   std::vector<Vec3<T>> points;
   std::vector<float> acc, weight, ray_weight;
-  std::vector<int> camera;
   std::vector<T> soa[6]; // ray origins relative to the plane point, then directions
   std::vector<T> at[3];  // the points relative to the plane point, when a focal depth is set
   std::vector<T> xu, xv, du, dv, dd, cos2, inv_dd;
@@ -37,7 +36,6 @@ struct PlaneRowScratch {
       if (points.size() < w) {
         points.resize(w);
         for (std::vector<float>* v : {&acc, &weight, &ray_weight}) v->resize(v == &acc ? 3 * w : w);
-        camera.resize(w);
         for (std::vector<T>& v : soa) v.resize(w);
         for (std::vector<T>& v : at) v.resize(w);
         for (std::vector<T>* v : {&xu, &xv, &du, &dv, &dd, &cos2, &inv_dd}) v->resize(w);
