@@ -53,16 +53,15 @@ struct SrgbTables {
   std::array<float, 256> decoded{};
   /// threshold[k]: the smallest float x with round(255 * encode(x)) > k; +inf for k = 255.
   std::array<float, 256> threshold{};
-  /// bin_start[i]: the 8-bit code of the lower edge i / kBins of bin i. Three entries past the
-  /// end (255) let a SIMD gather read four bytes at any bin.
+  /// bin_start[i]: the 8-bit code of the lower edge i / kBins of bin i.
   static constexpr int kBins = 8192;
-  std::array<std::uint8_t, kBins + 3> bin_start{};
+  std::array<std::uint8_t, kBins> bin_start{};
   /// bin_entry[i]: bin i's code at its lower edge (bits 0-7) and, in bits 8-31, where in the bin
   /// its threshold lies as a fraction f of the bin in units of 2^-23 (2^23 when the bin holds
   /// none): x of bin i is above the threshold exactly when trunc((x kBins - i) 2^23) >= f. Exact
   /// because x kBins - i is computed without rounding and, for i >= 1 (x >= 2^-13, so x has no
   /// bits below 2^-36), is a multiple of 2^-23; bin 0 holds no threshold (the first is 1.5e-4).
-  /// One 32-bit gather per 16 channels for the AVX-512 encoder, instead of two.
+  /// The AVX-512 encoder reads one such entry (one gather) per channel.
   std::array<std::uint32_t, kBins> bin_entry{};
 
   SrgbTables() noexcept {
@@ -84,7 +83,6 @@ struct SrgbTables {
       while (edge >= threshold[k]) ++k;
       bin_start[i] = static_cast<std::uint8_t>(k);
     }
-    for (int i = kBins; i < kBins + 3; ++i) bin_start[static_cast<std::size_t>(i)] = 255;
     for (int i = 0; i < kBins; ++i) {
       const int code = bin_start[static_cast<std::size_t>(i)];
       const float t = threshold[static_cast<std::size_t>(code)];
