@@ -49,6 +49,12 @@ struct RayHashGrid : RayHashTiles {
         const mpr::Ray<T> affine{mpr::Vec3<T>(grid.origin + i * grid.origin_dx + j * grid.origin_dy),
                                  mpr::Vec3<T>(grid.direction + i * grid.direction_dx + j * grid.direction_dy)};
         const mpr::Ray<T> exact = grid.ray(i, j);
+        // Within the grid's stated rounding of the affine form (and this evaluation's own).
+        const T origin_gap = (affine.origin - exact.origin).cwiseAbs().maxCoeff();
+        const T direction_gap = (affine.direction - exact.direction).cwiseAbs().maxCoeff();
+        if (!(grid.origin_error > 0 && origin_gap <= 2 * grid.origin_error &&
+              direction_gap <= 2 * grid.direction_error))
+          *gap = 1;
         *gap = std::max({*gap, (affine.origin - exact.origin).norm(), (affine.direction - exact.direction).norm()});
         out[static_cast<std::size_t>(j * grid.width + i)] = sample(affine);
       }

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -540,6 +541,8 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
                                               field.direction.value(u0, v0),
                                               mpr::Vec3<T>(su * field.direction.du),
                                               mpr::Vec3<T>(sv * field.direction.dv),
+                                              field.origin.rounding(),
+                                              field.direction.rounding(),
                                               exact};
   std::vector<mpr::Ray<T>> rays;
   for (int j = 0; j < 8; ++j)
@@ -575,6 +578,72 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   grid_against_tile(mpr::CameraFrameSampler<mpr::NearestCamera, T>(ring_frames), true);
   grid_against_tile(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(ring_frames, mpr::CylinderAperture{3}), true);
   grid_against_tile(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(ring_frames), false);
+}
+
+TEMPLATE_TEST_CASE("far from the world origin the grid paths still give the per-pixel image", "[camera_frame_sampler]",
+                   float, double) {
+  using T = TestType;
+  // The set-up of the test above (3x2 cameras of 320x21, a GLC sweeping across the array),
+  // moved as a whole by D: the images stay the same, only the coordinates grow. In float at D =
+  // 1000 the renderer's rays carry rounding of 1e-4 units (a tenth of the proof's margin): a row
+  // evaluated from the affine grid chose other cameras than the per-pixel path near their
+  // boundaries (44 levels apart). At D = 1e5 the rounding is a fifth of a pixel and the rows go
+  // through the exact rays (the tile path's image, which the per-pixel path itself no longer
+  // matches to one level there).
+  auto base = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 21, 320.0);
+  const auto linear = mpr_test::plane_images(base, 12.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(9);
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        px(x, y) = mpr::to_rgb8(img(x, y));
+        px(x, y).g = static_cast<std::uint8_t>(px(x, y).g ^ (rng() & 63));
+      }
+    images.push_back(std::move(px));
+  }
+  for (const double D : {1e3, 1e5}) {
+    INFO("moved by " << D);
+    const mpr::Vec3<T> off(static_cast<T>(D), static_cast<T>(0.7 * D), static_cast<T>(0.3 * D));
+    std::vector<mpr::PinholeCamera<T>> cams;
+    for (const auto& c : base) cams.emplace_back(c.K(), c.R(), mpr::Vec3<T>(c.t() - c.R() * off), 320, 21);
+    auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
+    const mpr::PinholeCamera<T> view(base[0].K(), mpr::Mat3<T>::Identity(),
+                                     mpr::Vec3<T>(mpr::Vec3<T>(T(0.05), T(-0.1), 0) - off), 300, 19);
+    const mpr::PlanarSurface<T> plane = view.image_plane(T(12));
+    const auto d = [&](T u, T v) {
+      return mpr::Vec3<T>(plane.point_at({u, v}) - (mpr::Vec3<T>(T(-0.8) + T(1.6) * u, T(-0.4) + T(0.8) * v, 0) + off));
+    };
+    const mpr::GlcSelector<T> sweep(plane, d(0, 0), d(1, 0), d(0, 1));
+    const mpr::Region region(0, 0, 300, 19);
+    const auto compare = [&](const auto& sampler) {
+      const mpr::Renderer renderer(plane, sweep, sampler);
+      mpr::Image<mpr::Rgb8> image(300, 19);
+      renderer.render(image.view(), region, mpr::RenderOptions{1});
+      std::vector<mpr::Ray<T>> rays;
+      for (int y = 0; y < 19; ++y)
+        for (int x = 0; x < 300; ++x) rays.push_back(renderer.ray_at({x, y}, region));
+      std::vector<mpr::Color> tile(rays.size());
+      for (std::size_t t = 0; t < rays.size(); t += 8 * 300) {
+        const std::size_t n = std::min<std::size_t>(8 * 300, rays.size() - t);
+        sampler.sample_tile(std::span<const mpr::Ray<T>>(rays.data() + t, n), 300,
+                            std::span<mpr::Color>(tile.data() + t, n));
+      }
+      int worst = 0;
+      for (int y = 0; y < 19; ++y)
+        for (int x = 0; x < 300; ++x) {
+          const mpr::Rgb8 p = D < 1e4 ? mpr::to_rgb8(renderer.shade({x, y}, region))
+                                      : mpr::to_rgb8(tile[static_cast<std::size_t>(y * 300 + x)]);
+          const mpr::Rgb8 b = image(x, y);
+          worst = std::max({worst, std::abs(p.r - b.r), std::abs(p.g - b.g), std::abs(p.b - b.b)});
+        }
+      CHECK(worst <= 1);
+    };
+    compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+    compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.35}));
+    compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+  }
 }
 
 TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,

@@ -187,6 +187,8 @@ private:
                                            field.direction.value(u0, v0),
                                            Vec3<T>(su * field.direction.du),
                                            Vec3<T>(sv * field.direction.dv),
+                                           field.origin.rounding(),
+                                           field.direction.rounding(),
                                            exact};
     return sampler_.sample_grid(grid, colors);
   }

@@ -66,7 +66,9 @@ struct CylinderAperture {
     const std::size_t w = tile_width(rays.size(), width);
     if (table.plane() && w > 0) {
       const ArrayPlane<T>& plane = *table.plane();
-      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
+                               T& slack) noexcept {
+        slack = 0; // the crossings are the exact rays' own
         return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
       };
       const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
@@ -82,8 +84,9 @@ struct CylinderAperture {
                                  std::span<Color> out) const noexcept {
     if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
     const ArrayPlane<T>& plane = *table.plane();
-    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
-      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even);
+    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
+                             T& slack) noexcept {
+      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even, slack);
     };
     const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
       return grid.ray(static_cast<int>(i), static_cast<int>(r));
@@ -208,8 +211,9 @@ private:
   // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the plane
   // goes ray by ray through `sample`.
   //
-  // `prepare(r, scratch, all_cross, even)` fills the crossings of row r (`prepare_plane_row` or
-  // `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray of pixel i of row r.
+  // `prepare(r, scratch, all_cross, even, slack)` fills the crossings of row r
+  // (`prepare_plane_row`, slack 0, or `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray
+  // of pixel i of row r.
   template <std::floating_point T, class Px, class Prepare, class RayOf>
   bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t nrows, std::size_t w,
                 std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) const noexcept {
@@ -217,9 +221,8 @@ private:
     if ((w + kSegment - 1) / kSegment > kMaxSegments || !scratch.reserve(w, table.size())) return false;
     for (std::size_t r0 = 0; r0 < nrows; r0 += kGroupRows) {
       const std::size_t rows = std::min(kGroupRows, nrows - r0);
-      const auto prepare_q = [&](std::size_t q, PlaneRowScratch<T>& row, bool& all_cross, bool& even) noexcept {
-        return prepare(r0 + q, row, all_cross, even);
-      };
+      const auto prepare_q = [&](std::size_t q, PlaneRowScratch<T>& row, bool& all_cross, bool& even,
+                                 T& slack) noexcept { return prepare(r0 + q, row, all_cross, even, slack); };
       const auto ray_q = [&](std::size_t q, std::size_t i) noexcept -> Ray<T> { return ray_of(r0 + q, i); };
       group(table, plane, rows, w, out.subspan(r0 * w, rows * w), scratch, prepare_q, ray_q);
     }
@@ -237,7 +240,8 @@ private:
     for (std::size_t q = 0; q < nrows; ++q) {
       PlaneRowScratch<T>& row = s.row[q];
       bool all_cross = true, even = false;
-      const T cos_min = prepare(q, row, all_cross, even);
+      T slack = 0;
+      const T cos_min = prepare(q, row, all_cross, even, slack);
       s.crosses[q] = all_cross;
       s.even[q] = even;
       if (!all_cross) {
@@ -262,7 +266,7 @@ private:
         box[2] = std::min(box[2], lv);
         box[3] = std::max(box[3], hv);
       }
-      s.reach[q] = r / cos_min * T(1.001) + margin;
+      s.reach[q] = r / cos_min * T(1.001) + margin + 2 * slack;
       reach_max = std::max(reach_max, s.reach[q]);
       std::fill(row.acc.begin(), row.acc.begin() + static_cast<std::ptrdiff_t>(3 * w), 0.0f);
       std::fill(row.weight.begin(), row.weight.begin() + static_cast<std::ptrdiff_t>(w), 0.0f);

@@ -50,7 +50,9 @@ struct NearestCamera {
     const std::size_t w = tile_width(rays.size(), width);
     if (w > 0 && table.plane()) {
       const ArrayPlane<T>& plane = *table.plane();
-      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
+                               T& slack) noexcept {
+        slack = 0; // the crossings are the exact rays' own
         return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
       };
       const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
@@ -67,8 +69,9 @@ struct NearestCamera {
                                  std::span<Color> out) const noexcept {
     if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
     const ArrayPlane<T>& plane = *table.plane();
-    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
-      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even);
+    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
+                             T& slack) noexcept {
+      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even, slack);
     };
     const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
       return grid.ray(static_cast<int>(i), static_cast<int>(r));
@@ -137,8 +140,9 @@ private:
   // r < rho = (cos_min sep_k - margin) / (cos_min + 1.001), cos_min the least cosine of the row.
   // Each run of pixels with one camera is a shift-and-add of one camera row when the run's
   // points are evenly spaced, else per ray.
-  // `prepare(r, scratch, all_cross, even)` fills the scratch for row r (`prepare_plane_row` or
-  // `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray of pixel i of row r.
+  // `prepare(r, scratch, all_cross, even, slack)` fills the scratch for row r
+  // (`prepare_plane_row`, slack 0, or `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray
+  // of pixel i of row r.
   template <std::floating_point T, class Px, class Prepare, class RayOf>
   static bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t rows, std::size_t w,
                        std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) noexcept {
@@ -150,7 +154,8 @@ private:
     T threshold[kProofBlock];
     for (std::size_t r = 0; r < rows; ++r) {
       bool all_cross = true, even = false;
-      const T cos_min = prepare(r, scratch, all_cross, even);
+      T slack = 0;
+      const T cos_min = prepare(r, scratch, all_cross, even, slack);
       const Vec3<T>* points = scratch.points.data();
       Color* o = out.data() + r * w;
       // Pixels [s0, e) of camera kk: one shift-and-add when the points are evenly spaced.
@@ -177,30 +182,40 @@ private:
         if (!copied)
           for (std::size_t i = s0; i < e; ++i) o[i] = table.camera_color(kk, points[i]);
       };
-      int k = -1, prepared = -1;
-      std::size_t run = 0; // the first pixel of camera k's run
+      int k = -1, prepared = -1, block_k = -1;
+      std::size_t run = 0;                   // the first pixel of camera k's run
+      std::size_t block = 0, block_size = 0; // the pixels whose proof flags `pass` holds, for block_k
       detail::NearestCandidate<T> candidate{};
       for (std::size_t i = 0; i < w;) {
         if (k >= 0) {
           if (prepared != k) {
+            // With crossings up to `slack` from the exact rays' (a grid row), rho shrinks by
+            // slack and the neighbours must be farther by 2 slack: (d_k + 2 slack)^2 <= d_k^2 +
+            // 4 slack (rho + slack), since d_k <= r < rho.
             const std::size_t ks = static_cast<std::size_t>(k);
-            const T reach = cos_min * plane.separation[ks] - margin;
+            const T reach = cos_min * plane.separation[ks] - margin - slack * (cos_min + T(1.001));
             const T rho = reach > 0 ? reach / (cos_min + T(1.001)) : T(0);
             candidate = {plane.centre_u[ks],
                          plane.centre_v[ks],
                          rho * rho,
-                         margin * margin,
+                         margin * margin + 4 * slack * (rho + slack),
                          plane.neighbour_u.data() + plane.neighbours_begin[ks],
                          plane.neighbour_v.data() + plane.neighbours_begin[ks],
                          plane.neighbours_end[ks] - plane.neighbours_begin[ks]};
             prepared = k;
           }
-          const std::size_t m = std::min(kProofBlock, w - i);
-          detail::prove_nearest(scratch.plane_rays(i), m, candidate, pass, threshold);
-          std::size_t p = 0;
-          while (p < m && pass[p] != 0) ++p;
-          i += p;
-          if (p == m) continue;
+          // A block's flags stay valid for its camera: after a fallback that kept k, the scan
+          // goes on in the same block.
+          if (block_k != k || i >= block + block_size) {
+            block = i;
+            block_size = std::min(kProofBlock, w - i);
+            block_k = k;
+            detail::prove_nearest(scratch.plane_rays(i), block_size, candidate, pass, threshold);
+          }
+          std::size_t p = i - block;
+          while (p < block_size && pass[p] != 0) ++p;
+          i = block + p;
+          if (p == block_size) continue;
         }
         const int next = nearest_with_hint(table, ray_of(r, i), k);
         if (next != k) {

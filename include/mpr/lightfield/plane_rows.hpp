@@ -97,56 +97,112 @@ T prepare_plane_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, 
   return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
 }
 
-/// The points (`FrameTable::point_of`) of every pixel of a `RayGrid`, row-major, from the grid's
-/// affine form: `ray.at(depth)` or the origin, evenly spaced along each row.
+namespace detail {
+/// Row `j` of a `RayGrid` as the samplers use it: anchored at the renderer's exact rays of the
+/// row's first and last pixels (so that the grid's own rounding, large far from the world
+/// origin, does not move the row), with the steps per pixel between them (zero for one pixel).
+template <std::floating_point T>
+struct GridRow {
+  Ray<T> first;
+  Vec3<T> origin_step = Vec3<T>::Zero(), direction_step = Vec3<T>::Zero();
+  Vec3<T> point, point_step = Vec3<T>::Zero(); ///< `FrameTable::point_of` of the first ray, and its step
+  /// The exact rays may lie off the row's line by more than 1/100 of a pixel step (far from the
+  /// world origin in float): the row's points and crossings must come from the exact rays.
+  bool rough = false;
+};
+
 template <std::floating_point T, class Px, class ExactRay>
-void fill_grid_points(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid, Vec3<T>* points) noexcept {
+[[nodiscard]] GridRow<T> grid_row(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid, int j) noexcept {
+  GridRow<T> row;
+  row.first = grid.ray(0, j);
+  row.point = table.point_of(row.first);
+  if (grid.width < 2) return row;
+  const Ray<T> last = grid.ray(grid.width - 1, j);
+  const T inv = T(1) / static_cast<T>(grid.width - 1);
+  row.origin_step = (last.origin - row.first.origin) * inv;
+  row.direction_step = (last.direction - row.first.direction) * inv;
+  row.point_step = (table.point_of(last) - row.point) * inv;
   const std::optional<T>& depth = table.config().depth;
-  const Vec3<T> dx = depth ? Vec3<T>(grid.origin_dx + *depth * grid.direction_dx) : grid.origin_dx;
-  const Vec3<T> dy = depth ? Vec3<T>(grid.origin_dy + *depth * grid.direction_dy) : grid.origin_dy;
-  const Vec3<T> p0 = depth ? Vec3<T>(grid.origin + *depth * grid.direction) : grid.origin;
+  const T off = grid.origin_error + (depth ? std::abs(*depth) * grid.direction_error : T(0));
+  row.rough = !(2 * off <= T(0.01) * row.point_step.cwiseAbs().maxCoeff());
+  return row;
+}
+
+/// points[i] = p + i step for i in [0, n).
+template <std::floating_point T>
+void affine_points(const Vec3<T>& p, const Vec3<T>& step, int n, Vec3<T>* points) noexcept {
+  // (int indices: their conversion to T vectorises, a size_t's does not.)
+  for (int i = 0; i < n; ++i) {
+    const T t = static_cast<T>(i);
+    points[i] = Vec3<T>(p.x() + t * step.x(), p.y() + t * step.y(), p.z() + t * step.z());
+  }
+}
+} // namespace detail
+
+/// The points (`FrameTable::point_of`) of every pixel of a `RayGrid`, row-major: each row evenly
+/// spaced between the points of its first and last pixels' exact rays (`even[j]` true for
+/// bilinear filtering and rows of at least 8 pixels), or, on a rough row (`detail::GridRow`),
+/// the exact rays' points, `even[j]` telling whether they are evenly spaced (`evenly_spaced`).
+template <std::floating_point T, class Px, class ExactRay>
+void fill_grid_points(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid, Vec3<T>* points,
+                      unsigned char* even) noexcept {
+  const std::size_t w = static_cast<std::size_t>(grid.width);
+  const bool bilinear = table.config().filter == PixelFilter::bilinear && w >= 8;
   for (int j = 0; j < grid.rows; ++j) {
-    const T row = static_cast<T>(j);
-    const Vec3<T> p(p0.x() + row * dy.x(), p0.y() + row * dy.y(), p0.z() + row * dy.z());
-    Vec3<T>* q = points + static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width);
-    for (int i = 0; i < grid.width; ++i) {
-      const T t = static_cast<T>(i);
-      q[i] = Vec3<T>(p.x() + t * dx.x(), p.y() + t * dx.y(), p.z() + t * dx.z());
+    Vec3<T>* p = points + static_cast<std::size_t>(j) * w;
+    const detail::GridRow<T> row = detail::grid_row(table, grid, j);
+    if (!row.rough) {
+      detail::affine_points(row.point, row.point_step, grid.width, p);
+      even[j] = bilinear ? 1 : 0;
+      continue;
     }
+    for (int i = 0; i < grid.width; ++i) p[i] = table.point_of(grid.ray(i, j));
+    even[j] = bilinear && evenly_spaced(p, w) ? 1 : 0;
   }
 }
 
 /// `prepare_plane_row` for row `j` of a tile whose rays are affine in the pixel: the origins,
-/// directions and points of the row's `grid.width` pixels are evaluated from the grid (no ray
-/// per pixel, no transposition), so they are evenly spaced by construction (`even` is true for
-/// bilinear filtering and rows of at least 8 pixels). Precondition: `scratch.reserve(grid.width)`
-/// succeeded, 0 <= j < grid.rows.
+/// directions and points of the row's `grid.width` pixels are evaluated between the exact rays of
+/// its first and last pixels (no ray per pixel, no transposition), so they are evenly spaced by
+/// construction (`even` is true for bilinear filtering and rows of at least 8 pixels). `slack`:
+/// a bound on how far a crossing computed here may lie from the one of the pixel's exact ray
+/// (in-plane world units; the rays' rounding, magnified by the distance to the array plane and
+/// the slant), for proofs that must hold for the exact rays. A rough row (`detail::GridRow`) is
+/// prepared from its exact rays by `prepare_plane_row` (slack 0). Precondition:
+/// `scratch.reserve(grid.width)` succeeded, 0 <= j < grid.rows.
 template <std::floating_point T, class Px, class ExactRay>
 T prepare_plane_grid_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, const RayGrid<T, ExactRay>& grid,
-                         int j, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even) noexcept {
+                         int j, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even, T& slack) noexcept {
   const std::size_t w = static_cast<std::size_t>(grid.width);
-  const T row = static_cast<T>(j);
-  const Vec3<T> o = grid.origin + row * grid.origin_dy;
-  const Vec3<T> d = grid.direction + row * grid.direction_dy;
-  const Vec3<T> rel = o - plane.point;
-  const T first[6] = {rel.x(), rel.y(), rel.z(), d.x(), d.y(), d.z()};
-  const T step[6] = {grid.origin_dx.x(),    grid.origin_dx.y(),    grid.origin_dx.z(),
-                     grid.direction_dx.x(), grid.direction_dx.y(), grid.direction_dx.z()};
-  // (int indices: their conversion to T vectorises, a size_t's does not.)
   const int n = grid.width;
+  const detail::GridRow<T> row = detail::grid_row(table, grid, j);
+  if (row.rough) { // the exact rays, as `prepare_plane_row` takes them
+    thread_local std::vector<Ray<T>> rays;
+    try {
+      if (rays.size() < w) rays.resize(w);
+    } catch (...) {
+      all_cross = false; // the caller then takes the row ray by ray
+      even = false;
+      slack = std::numeric_limits<T>::infinity();
+      return 0;
+    }
+    for (int i = 0; i < n; ++i) rays[static_cast<std::size_t>(i)] = grid.ray(i, j);
+    slack = 0;
+    return prepare_plane_row(table, plane, rays.data(), w, scratch, all_cross, even);
+  }
+  const Vec3<T> rel = row.first.origin - plane.point;
+  const Vec3<T>& d = row.first.direction;
+  const T first[6] = {rel.x(), rel.y(), rel.z(), d.x(), d.y(), d.z()};
+  const T step[6] = {row.origin_step.x(),    row.origin_step.y(),    row.origin_step.z(),
+                     row.direction_step.x(), row.direction_step.y(), row.direction_step.z()};
+  T reach[6]; // the largest magnitude of each stream over the row (affine: at one of its ends)
   for (int k = 0; k < 6; ++k) {
     T* q = scratch.soa[k].data();
     const T a = first[k], b = step[k];
     for (int i = 0; i < n; ++i) q[i] = a + static_cast<T>(i) * b;
+    reach[k] = std::max(std::abs(a), std::abs(a + static_cast<T>(n - 1) * b));
   }
-  const std::optional<T>& depth = table.config().depth;
-  const Vec3<T> p = depth ? Vec3<T>(o + *depth * d) : o;
-  const Vec3<T> dp = depth ? Vec3<T>(grid.origin_dx + *depth * grid.direction_dx) : grid.origin_dx;
-  Vec3<T>* points = scratch.points.data();
-  for (int i = 0; i < n; ++i) {
-    const T t = static_cast<T>(i);
-    points[i] = Vec3<T>(p.x() + t * dp.x(), p.y() + t * dp.y(), p.z() + t * dp.z());
-  }
+  detail::affine_points(row.point, row.point_step, n, scratch.points.data());
   const detail::PlaneAxes<T> frame{plane.point.x(),  plane.point.y(),  plane.point.z(),  plane.normal.x(),
                                    plane.normal.y(), plane.normal.z(), plane.axis_u.x(), plane.axis_u.y(),
                                    plane.axis_u.z(), plane.axis_v.x(), plane.axis_v.y(), plane.axis_v.z()};
@@ -156,8 +212,30 @@ T prepare_plane_grid_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& pl
   unsigned crossing = 1;
   for (int i = 0; i < n; ++i) crossing &= scratch.ok[static_cast<std::size_t>(i)] != 0 ? 1u : 0u;
   all_cross = crossing != 0;
+  // The crossings' largest in-plane coordinate: when every ray crosses, the crossings of an
+  // evenly spaced row lie on a segment between those of its ends (a projective image of one).
+  const std::size_t end = w - 1;
+  const T span = std::max(
+      {std::abs(scratch.xu[0]), std::abs(scratch.xv[0]), std::abs(scratch.xu[end]), std::abs(scratch.xv[end])});
   even = table.config().filter == PixelFilter::bilinear && w >= 8;
-  return std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
+  const T cos_min = std::sqrt(std::min(T(1), detail::min_of(scratch.cos2.data(), w)));
+  // How far an exact ray may lie from its evaluation here, per coordinate: its own rounding
+  // against the grid's affine form, and that of the two anchors the row interpolates (2x the
+  // grid's bound); this evaluation and the subtraction of the plane point (4 eps of the
+  // magnitudes). A ray moved by e_o at its origin and e_d in its direction crosses the plane up
+  // to (|e_o| + t |e_d|) / cos away (t |d| the distance to the crossing; 2-norms, sqrt(3) of the
+  // per-coordinate bounds).
+  constexpr T eps = std::numeric_limits<T>::epsilon();
+  const T o_mag = std::max({reach[0], reach[1], reach[2]}), d_mag = std::max({reach[3], reach[4], reach[5]});
+  const T e_origin = 2 * grid.origin_error + 4 * eps * (o_mag + plane.point.cwiseAbs().maxCoeff());
+  const T e_direction = 2 * grid.direction_error + 4 * eps * d_mag;
+  const T d_min =
+      std::min(row.first.direction.cwiseAbs().maxCoeff(),
+               Vec3<T>(row.first.direction + static_cast<T>(n - 1) * row.direction_step).cwiseAbs().maxCoeff());
+  const T distance = T(1.5) * span + T(1.8) * o_mag; // from a ray's origin to its crossing, at most
+  slack = d_min > 0 && cos_min > 0 ? T(1.8) * (e_origin + distance * e_direction / d_min) / cos_min
+                                   : std::numeric_limits<T>::infinity();
+  return cos_min;
 }
 
 } // namespace mpr

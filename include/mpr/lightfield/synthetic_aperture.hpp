@@ -62,8 +62,7 @@ struct SyntheticAperture {
     if (grid.width <= 0 || grid.rows <= 0) return false;
     const std::size_t w = static_cast<std::size_t>(grid.width), rows = static_cast<std::size_t>(grid.rows);
     const auto fill = [&](Vec3<T>* points, unsigned char* even) noexcept {
-      fill_grid_points(table, grid, points);
-      std::fill(even, even + rows, table.config().filter == PixelFilter::bilinear && w >= 8 ? 1 : 0);
+      fill_grid_points(table, grid, points, even);
     };
     return tile(table, w * rows, w, out, fill);
   }
