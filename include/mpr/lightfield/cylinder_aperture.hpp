@@ -64,16 +64,10 @@ struct CylinderAperture {
   void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept {
     const std::size_t w = tile_width(rays.size(), width);
-    if (table.plane() && w > 0) {
-      const ArrayPlane<T>& plane = *table.plane();
-      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
-                               T& slack) noexcept {
-        slack = 0; // the crossings are the exact rays' own
-        return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
-      };
-      const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
-      if (row_path(table, plane, rays.size() / w, w, out, prepare, ray_of)) return;
-    }
+    if (table.plane() && w > 0 &&
+        row_path(table, *table.plane(), rays.size() / w, w, out,
+                 TileRows<T, Px>{table, *table.plane(), rays.data(), w}))
+      return;
     for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
   }
 
@@ -83,16 +77,8 @@ struct CylinderAperture {
   [[nodiscard]] bool sample_grid(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid,
                                  std::span<Color> out) const noexcept {
     if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
-    const ArrayPlane<T>& plane = *table.plane();
-    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
-                             T& slack) noexcept {
-      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even, slack);
-    };
-    const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
-      return grid.ray(static_cast<int>(i), static_cast<int>(r));
-    };
-    return row_path(table, plane, static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width), out,
-                    prepare, ray_of);
+    return row_path(table, *table.plane(), static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width),
+                    out, GridRows<T, Px, ExactRay>{table, *table.plane(), grid});
   }
 
 private:
@@ -211,28 +197,24 @@ private:
   // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the plane
   // goes ray by ray through `sample`.
   //
-  // `prepare(r, scratch, all_cross, even, slack)` fills the crossings of row r
-  // (`prepare_plane_row`, slack 0, or `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray
-  // of pixel i of row r.
-  template <std::floating_point T, class Px, class Prepare, class RayOf>
+  // `source` gives the rows (`TileRows` or `GridRows`).
+  template <std::floating_point T, class Px, class Rows>
   bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t nrows, std::size_t w,
-                std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) const noexcept {
+                std::span<Color> out, const Rows& source) const noexcept {
     thread_local GroupScratch<T> scratch;
     if ((w + kSegment - 1) / kSegment > kMaxSegments || !scratch.reserve(w, table.size())) return false;
     for (std::size_t r0 = 0; r0 < nrows; r0 += kGroupRows) {
       const std::size_t rows = std::min(kGroupRows, nrows - r0);
-      const auto prepare_q = [&](std::size_t q, PlaneRowScratch<T>& row, bool& all_cross, bool& even,
-                                 T& slack) noexcept { return prepare(r0 + q, row, all_cross, even, slack); };
-      const auto ray_q = [&](std::size_t q, std::size_t i) noexcept -> Ray<T> { return ray_of(r0 + q, i); };
-      group(table, plane, rows, w, out.subspan(r0 * w, rows * w), scratch, prepare_q, ray_q);
+      group(table, plane, r0, rows, w, out.subspan(r0 * w, rows * w), scratch, source);
     }
     return true;
   }
 
-  // `row_path` for at most kGroupRows rows: the rows' crossings, then each camera in reach.
-  template <std::floating_point T, class Px, class Prepare, class RayOf>
-  void group(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t nrows, std::size_t w,
-             std::span<Color> out, GroupScratch<T>& s, const Prepare& prepare, const RayOf& ray_of) const noexcept {
+  // `row_path` for at most kGroupRows rows from row r0 of `source`: the rows' crossings, then
+  // each camera in reach.
+  template <std::floating_point T, class Px, class Rows>
+  void group(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t r0, std::size_t nrows,
+             std::size_t w, std::span<Color> out, GroupScratch<T>& s, const Rows& source) const noexcept {
     const T r = static_cast<T>(radius), margin = T(1e-4) * plane.extent;
     constexpr T kInf = std::numeric_limits<T>::infinity();
     T box[4] = {kInf, -kInf, kInf, -kInf}; // the group's crossings: u from, to; v from, to
@@ -241,11 +223,11 @@ private:
       PlaneRowScratch<T>& row = s.row[q];
       bool all_cross = true, even = false;
       T slack = 0;
-      const T cos_min = prepare(q, row, all_cross, even, slack);
+      const T cos_min = source.prepare(r0 + q, row, all_cross, even, slack);
       s.crosses[q] = all_cross;
       s.even[q] = even;
       if (!all_cross) {
-        for (std::size_t i = 0; i < w; ++i) out[q * w + i] = sample(table, ray_of(q, i));
+        for (std::size_t i = 0; i < w; ++i) out[q * w + i] = sample(table, source.ray(r0 + q, i));
         continue;
       }
       for (std::size_t i = 0; i < w; ++i) row.inv_dd[i] = T(1) / row.dd[i];
@@ -309,7 +291,7 @@ private:
         if (row.weight[i] > 0) {
           o[i] = table.finish(row.acc.data() + 3 * i, row.weight[i]);
         } else {
-          const Ray<T> ray = ray_of(q, i);
+          const Ray<T> ray = source.ray(r0 + q, i);
           o[i] = table.camera_color(table.index().nearest(ray.origin, ray.direction), row.points[i]);
         }
       }

@@ -48,16 +48,10 @@ struct NearestCamera {
   void sample_tile(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, int width,
                    std::span<Color> out) const noexcept {
     const std::size_t w = tile_width(rays.size(), width);
-    if (w > 0 && table.plane()) {
-      const ArrayPlane<T>& plane = *table.plane();
-      const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
-                               T& slack) noexcept {
-        slack = 0; // the crossings are the exact rays' own
-        return prepare_plane_row(table, plane, rays.data() + r * w, w, scratch, all_cross, even);
-      };
-      const auto ray_of = [&](std::size_t r, std::size_t i) noexcept -> const Ray<T>& { return rays[r * w + i]; };
-      if (row_path(table, plane, rays.size() / w, w, out, prepare, ray_of)) return;
-    }
+    if (w > 0 && table.plane() &&
+        row_path(table, *table.plane(), rays.size() / w, w, out,
+                 TileRows<T, Px>{table, *table.plane(), rays.data(), w}))
+      return;
     for_each_row(rays, w, out, [&](std::span<const Ray<T>> r, std::span<Color> o) { sample_rays(table, r, o); });
   }
 
@@ -68,16 +62,8 @@ struct NearestCamera {
   [[nodiscard]] bool sample_grid(const FrameTable<T, Px>& table, const RayGrid<T, ExactRay>& grid,
                                  std::span<Color> out) const noexcept {
     if (!table.plane() || grid.width <= 0 || grid.rows <= 0) return false;
-    const ArrayPlane<T>& plane = *table.plane();
-    const auto prepare = [&](std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even,
-                             T& slack) noexcept {
-      return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even, slack);
-    };
-    const auto ray_of = [&](std::size_t r, std::size_t i) noexcept {
-      return grid.ray(static_cast<int>(i), static_cast<int>(r));
-    };
-    return row_path(table, plane, static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width), out,
-                    prepare, ray_of);
+    return row_path(table, *table.plane(), static_cast<std::size_t>(grid.rows), static_cast<std::size_t>(grid.width),
+                    out, GridRows<T, Px, ExactRay>{table, *table.plane(), grid});
   }
 
   /// The nearest camera to the ray line, trying `hint` first. On a planar array, camera k is
@@ -140,12 +126,10 @@ private:
   // r < rho = (cos_min sep_k - margin) / (cos_min + 1.001), cos_min the least cosine of the row.
   // Each run of pixels with one camera is a shift-and-add of one camera row when the run's
   // points are evenly spaced, else per ray.
-  // `prepare(r, scratch, all_cross, even, slack)` fills the scratch for row r
-  // (`prepare_plane_row`, slack 0, or `prepare_plane_grid_row`); `ray_of(r, i)` is the exact ray
-  // of pixel i of row r.
-  template <std::floating_point T, class Px, class Prepare, class RayOf>
+  // `source` gives the rows (`TileRows` or `GridRows`).
+  template <std::floating_point T, class Px, class Rows>
   static bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t rows, std::size_t w,
-                       std::span<Color> out, const Prepare& prepare, const RayOf& ray_of) noexcept {
+                       std::span<Color> out, const Rows& source) noexcept {
     using Flag = typename PlaneRowScratch<T>::Flag;
     thread_local PlaneRowScratch<T> scratch;
     if (!scratch.reserve(w)) return false;
@@ -155,7 +139,7 @@ private:
     for (std::size_t r = 0; r < rows; ++r) {
       bool all_cross = true, even = false;
       T slack = 0;
-      const T cos_min = prepare(r, scratch, all_cross, even, slack);
+      const T cos_min = source.prepare(r, scratch, all_cross, even, slack);
       const Vec3<T>* points = scratch.points.data();
       Color* o = out.data() + r * w;
       // Pixels [s0, e) of camera kk: one shift-and-add when the points are evenly spaced.
@@ -217,7 +201,7 @@ private:
           i = block + p;
           if (p == block_size) continue;
         }
-        const int next = nearest_with_hint(table, ray_of(r, i), k);
+        const int next = nearest_with_hint(table, source.ray(r, i), k);
         if (next != k) {
           if (i > run) emit(run, i, k);
           run = i;

@@ -238,4 +238,37 @@ T prepare_plane_grid_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& pl
   return cos_min;
 }
 
+/// The rows of a row path (`NearestCamera`, `CylinderAperture`) given as the rays of a tile,
+/// `width` to a row: `prepare` fills the scratch for row r by `prepare_plane_row` (slack 0: the
+/// crossings are the exact rays' own), `ray(r, i)` is the ray of pixel i of row r.
+template <std::floating_point T, class Px>
+struct TileRows {
+  const FrameTable<T, Px>& table;
+  const ArrayPlane<T>& plane;
+  const Ray<T>* rays;
+  std::size_t width;
+
+  T prepare(std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even, T& slack) const noexcept {
+    slack = 0;
+    return prepare_plane_row(table, plane, rays + r * width, width, scratch, all_cross, even);
+  }
+  [[nodiscard]] const Ray<T>& ray(std::size_t r, std::size_t i) const noexcept { return rays[r * width + i]; }
+};
+
+/// The rows of a row path given as a `RayGrid`: `prepare` by `prepare_plane_grid_row`, `ray(r,
+/// i)` the renderer's exact ray.
+template <std::floating_point T, class Px, class ExactRay>
+struct GridRows {
+  const FrameTable<T, Px>& table;
+  const ArrayPlane<T>& plane;
+  const RayGrid<T, ExactRay>& grid;
+
+  T prepare(std::size_t r, PlaneRowScratch<T>& scratch, bool& all_cross, bool& even, T& slack) const noexcept {
+    return prepare_plane_grid_row(table, plane, grid, static_cast<int>(r), scratch, all_cross, even, slack);
+  }
+  [[nodiscard]] Ray<T> ray(std::size_t r, std::size_t i) const noexcept {
+    return grid.ray(static_cast<int>(i), static_cast<int>(r));
+  }
+};
+
 } // namespace mpr
