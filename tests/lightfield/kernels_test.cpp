@@ -708,6 +708,83 @@ TEMPLATE_TEST_CASE("plane_rays: every variant finds the plane crossing of the po
   }
 }
 
+TEMPLATE_TEST_CASE("plane_rays_affine: every variant finds the crossings of an evenly spaced row of rays",
+                   "[camera_frame_kernels]", float, double) {
+  using T = TestType;
+  using Flag = typename PlaneRays<T>::Flag;
+  std::mt19937_64 rng(sizeof(T) == 4 ? 17 : 18);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int failures = 0, good_rays = 0, rejected = 0;
+  const auto fail = [&](const std::string& what) {
+    if (++failures <= 8) FAIL_CHECK(what);
+  };
+  for (int trial = 0; trial < 24; ++trial) {
+    const PlaneAxes<T> f = random_frame<T>(rng);
+    const mpr::Vec3<LD> n = ld(normal_of(f)), u = ld(u_of(f)), v = ld(v_of(f));
+    for (const std::size_t len : kLengths) {
+      // A row of rays: origins and directions stepping evenly; every third trial a row that
+      // sweeps through parallel to the plane (some rays rejected), the others crossing it.
+      T first[6], step[6];
+      for (int k = 0; k < 6; ++k) {
+        first[k] = static_cast<T>(4 * unit(rng));
+        step[k] = static_cast<T>((k < 3 ? 0.05 : 0.01) * unit(rng));
+      }
+      if (trial % 3 != 0) { // directions mostly along the normal: they cross
+        const mpr::Vec3<T> along = normal_of(f) * static_cast<T>(unit(rng) < 0 ? -2 : 2);
+        for (int k = 0; k < 3; ++k) first[3 + k] += along[k];
+      }
+      for (const Kernel k : kernels()) {
+        PlaneOut<T> out(len);
+        mpr::detail::plane_rays_affine(first, step, len, f, out.rays(), out.cos2.data(), level(k));
+        const std::string where = std::string(kernel_name(k)) + " n=" + std::to_string(len);
+        if (!out.guards_intact()) fail(where + ": wrote past the end");
+        for (std::size_t i = 0; i < len; ++i) {
+          const std::string at = where + " i=" + std::to_string(i);
+          if (out.ok[i] != 0 && out.ok[i] != Flag(-1)) fail(at + ": ok is neither 0 nor all bits");
+          // The reference in long double, from the row's exact origin and direction at i.
+          mpr::Vec3<LD> O, D, O_mag, D_mag;
+          for (int c = 0; c < 3; ++c) {
+            O[c] = LD(first[c]) + LD(i) * LD(step[c]);
+            D[c] = LD(first[3 + c]) + LD(i) * LD(step[3 + c]);
+            O_mag[c] = std::abs(LD(first[c])) + LD(i) * std::abs(LD(step[c]));
+            D_mag[c] = std::abs(LD(first[3 + c])) + LD(i) * std::abs(LD(step[3 + c]));
+          }
+          const LD dn = n.dot(D), length2 = D.squaredNorm(), ratio = dn * dn / length2;
+          if (std::abs(ratio - LD(1e-6)) > LD(1e-6) && (out.ok[i] != 0) != (ratio > LD(1e-6)))
+            fail(at + ": ok flag disagrees with the reference angle test");
+          if (out.ok[i] == 0) {
+            ++rejected;
+            if (out.cos2[i] != T(1)) fail(at + ": cos2 is not 1 where ok is 0");
+            continue;
+          }
+          ++good_rays;
+          const LD t = -n.dot(O) / dn;
+          const mpr::Vec3<LD> X = O + t * D;
+          const LD dl = std::sqrt(length2);
+          // The tolerance of the per-ray kernel's test, on the magnitudes of the terms the
+          // row's evaluation adds (a + i b) instead of the ray's own.
+          const LD crossing_tol = 64 * eps<T>() * (O_mag.norm() + std::abs(t) * D_mag.norm()) * (dl / std::abs(dn));
+          const LD dir_tol = 8 * eps<T>() * D_mag.norm();
+          const auto near = [&](T got, LD want, LD tol, const char* name) {
+            if (!(std::abs(LD(got) - want) <= tol))
+              fail(at + ": " + name + " = " + std::to_string(static_cast<double>(got)) + ", reference " +
+                   std::to_string(static_cast<double>(want)));
+          };
+          near(out.xu[i], u.dot(X), crossing_tol, "xu");
+          near(out.xv[i], v.dot(X), crossing_tol, "xv");
+          near(out.du[i], u.dot(D), dir_tol, "du");
+          near(out.dv[i], v.dot(D), dir_tol, "dv");
+          near(out.dd[i], length2, 8 * eps<T>() * D_mag.squaredNorm(), "dd");
+        }
+      }
+    }
+  }
+  report("plane_rays_affine: crossing rays " + std::to_string(good_rays) + ", rejected " + std::to_string(rejected));
+  CHECK(failures == 0);
+  CHECK(good_rays > 10000);
+  CHECK(rejected > 10);
+}
+
 TEMPLATE_TEST_CASE("prove_nearest: every variant agrees with the portable proof, and every proof is true",
                    "[camera_frame_kernels]", float, double) {
   using T = TestType;

@@ -195,20 +195,13 @@ T prepare_plane_grid_row(const FrameTable<T, Px>& table, const ArrayPlane<T>& pl
   const T first[6] = {rel.x(), rel.y(), rel.z(), d.x(), d.y(), d.z()};
   const T step[6] = {row.origin_step.x(),    row.origin_step.y(),    row.origin_step.z(),
                      row.direction_step.x(), row.direction_step.y(), row.direction_step.z()};
-  T reach[6]; // the largest magnitude of each stream over the row (affine: at one of its ends)
-  for (int k = 0; k < 6; ++k) {
-    T* q = scratch.soa[k].data();
-    const T a = first[k], b = step[k];
-    for (int i = 0; i < n; ++i) q[i] = a + static_cast<T>(i) * b;
-    reach[k] = std::max(std::abs(a), std::abs(a + static_cast<T>(n - 1) * b));
-  }
+  T reach[6]; // per coordinate, a bound on the terms its evaluation a + i b over the row adds
+  for (int k = 0; k < 6; ++k) reach[k] = std::abs(first[k]) + static_cast<T>(n - 1) * std::abs(step[k]);
   detail::affine_points(row.point, row.point_step, n, scratch.points.data());
   const detail::PlaneAxes<T> frame{plane.point.x(),  plane.point.y(),  plane.point.z(),  plane.normal.x(),
                                    plane.normal.y(), plane.normal.z(), plane.axis_u.x(), plane.axis_u.y(),
                                    plane.axis_u.z(), plane.axis_v.x(), plane.axis_v.y(), plane.axis_v.z()};
-  const T* const soa_in[6] = {scratch.soa[0].data(), scratch.soa[1].data(), scratch.soa[2].data(),
-                              scratch.soa[3].data(), scratch.soa[4].data(), scratch.soa[5].data()};
-  detail::plane_rays(soa_in, w, frame, scratch.plane_rays(), scratch.cos2.data());
+  detail::plane_rays_affine(first, step, w, frame, scratch.plane_rays(), scratch.cos2.data());
   unsigned crossing = 1;
   for (int i = 0; i < n; ++i) crossing &= scratch.ok[static_cast<std::size_t>(i)] != 0 ? 1u : 0u;
   all_cross = crossing != 0;

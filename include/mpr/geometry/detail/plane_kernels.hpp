@@ -78,4 +78,63 @@ inline void plane_rays(const T* const (&soa)[6], std::size_t n, const PlaneAxes<
   });
 }
 
+/// `plane_rays_body` for the n rays of an evenly spaced row: ray i has origin `first[0..2] + i
+/// step[0..2]` (relative to the frame's point) and direction `first[3..5] + i step[3..5]`. The
+/// projections onto the frame's axes are affine in i too, so they are formed once from the
+/// row's first ray and step, not per ray: no ray arrays are read. Same outputs and rules as
+/// `plane_rays_body`, to rounding.
+template <class T>
+MPR_ALWAYS_INLINE void plane_rays_affine_body(const T (&first)[6], const T (&step)[6], std::size_t n,
+                                              const PlaneAxes<T>& f, T* MPR_RESTRICT xu, T* MPR_RESTRICT xv,
+                                              T* MPR_RESTRICT du, T* MPR_RESTRICT dv, T* MPR_RESTRICT dd,
+                                              typename PlaneRays<T>::Flag* MPR_RESTRICT ok,
+                                              T* MPR_RESTRICT cos2) noexcept {
+  using Flag = typename PlaneRays<T>::Flag;
+  const auto dot = [](T ax, T ay, T az, T bx, T by, T bz) { return ax * bx + ay * by + az * bz; };
+  // Each per-ray quantity as q0 + i q1: the origin's and direction's projections on n, u, v,
+  // and the direction's components (for its length).
+  const T on0 = dot(f.nx, f.ny, f.nz, first[0], first[1], first[2]),
+          on1 = dot(f.nx, f.ny, f.nz, step[0], step[1], step[2]);
+  const T ou0 = dot(f.ux, f.uy, f.uz, first[0], first[1], first[2]),
+          ou1 = dot(f.ux, f.uy, f.uz, step[0], step[1], step[2]);
+  const T ov0 = dot(f.vx, f.vy, f.vz, first[0], first[1], first[2]),
+          ov1 = dot(f.vx, f.vy, f.vz, step[0], step[1], step[2]);
+  const T dn0 = dot(f.nx, f.ny, f.nz, first[3], first[4], first[5]),
+          dn1 = dot(f.nx, f.ny, f.nz, step[3], step[4], step[5]);
+  const T du0 = dot(f.ux, f.uy, f.uz, first[3], first[4], first[5]),
+          du1 = dot(f.ux, f.uy, f.uz, step[3], step[4], step[5]);
+  const T dv0 = dot(f.vx, f.vy, f.vz, first[3], first[4], first[5]),
+          dv1 = dot(f.vx, f.vy, f.vz, step[3], step[4], step[5]);
+  const T dx0 = first[3], dx1 = step[3], dy0 = first[4], dy1 = step[4], dz0 = first[5], dz1 = step[5];
+  // (An int index: its conversion to T vectorises, a size_t's does not; rows are short.)
+  const int count = static_cast<int>(n);
+  for (int i = 0; i < count; ++i) {
+    const T k = static_cast<T>(i);
+    const T dn = dn0 + k * dn1, on = on0 + k * on1, u = du0 + k * du1, v = dv0 + k * dv1;
+    const T x = dx0 + k * dx1, y = dy0 + k * dy1, z = dz0 + k * dz1;
+    const T length2 = x * x + y * y + z * z;
+    const T t = -on / dn;
+    const T cu = ou0 + k * ou1 + t * u;
+    const T cv = ov0 + k * ov1 + t * v;
+    const bool good =
+        (dn * dn > T(1e-6) * length2) & (cu - cu == T(0)) & (cv - cv == T(0)) & (length2 - length2 == T(0));
+    xu[i] = cu;
+    xv[i] = cv;
+    du[i] = u;
+    dv[i] = v;
+    dd[i] = length2;
+    ok[i] = good ? Flag(-1) : Flag(0);
+    cos2[i] = good ? dn * dn / length2 : T(1);
+  }
+}
+
+/// `plane_rays_affine_body` compiled for `level`. Precondition: n fits an int.
+template <class T>
+inline void plane_rays_affine(const T (&first)[6], const T (&step)[6], std::size_t n, const PlaneAxes<T>& f,
+                              const PlaneRays<T>& out, T* cos2, SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA {
+    plane_rays_affine_body(first, step, n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
+  });
+}
+
 } // namespace mpr::detail
