@@ -462,8 +462,11 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
     };
     return mpr::GlcSelector<T>(p, d(0, 0), d(1, 0), d(0, 1));
   };
-  for (const auto& [plane, glc] :
-       {std::pair{tilted, mpr::pinhole_glc(view, tilted)}, std::pair{parallel, sweep(parallel)}}) {
+  for (const auto& setup : {std::pair{tilted, mpr::pinhole_glc(view, tilted)}, std::pair{parallel, sweep(parallel)}}) {
+    // Named references, not a structured binding: lambdas capture those from C++20 on, but
+    // Clang before 16 rejects it.
+    const auto& plane = setup.first;
+    const auto& glc = setup.second;
     const auto compare = [&](const auto& sampler) {
       const mpr::Renderer renderer(plane, glc, sampler);
       mpr::Image<mpr::Rgb8> batch(64, 48);
