@@ -185,6 +185,14 @@ public:
     return Color(acc[0] * inv, acc[1] * inv, acc[2] * inv);
   }
 
+  /// `finish` for n pixels at once: out[i] = finish(acc + 3 i, weight[i]), vectorised.
+  void finish_all(const float* acc, const float* weight, std::size_t n, Color* out) const noexcept {
+    // Color is three packed floats (static_assert in color.hpp): the outputs are one flat array.
+    detail::average_rows(acc, weight, out->data(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(weight[i] > 0)) out[i] = config_.background;
+  }
+
   /// Camera `camera`'s colour at X: the background when `camera < 0` or it does not see X.
   [[nodiscard]] Color camera_color(int camera, const Vec3<T>& X) const noexcept {
     if (camera < 0) return config_.background;

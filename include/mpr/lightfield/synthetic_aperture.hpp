@@ -9,6 +9,7 @@
 #include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
+#include <mpr/lightfield/frame_tiles.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 #include <mpr/lightfield/plane_rows.hpp>
 
@@ -82,7 +83,7 @@ private:
     std::fill(acc, acc + 3 * n, 0.0f);
     const bool even = table.config().filter == PixelFilter::bilinear && n >= 8 && evenly_spaced(points, n);
     for (const auto& c : table.cameras()) add_run(table, c, points, n, even, acc, weight);
-    for (std::size_t i = 0; i < n; ++i) out[i] = table.finish(acc + 3 * i, weight[i]);
+    table.finish_all(acc, weight, n, out.data());
   }
 
   // Per-thread working memory of `tile`.
@@ -91,8 +92,10 @@ private:
     std::vector<Vec3<T>> points;
     std::vector<float> acc; // 3 per ray (r g b), the layout of the texel rows
     std::vector<float> weight;
+    std::vector<float> weight_steps; // of `shift_add_tile`: rows (w + 1)
     std::vector<unsigned char> even;
     LerpRowCache rows;
+    TileWork tiles;
   };
 
   // Every camera once per tile of n points in rows of w; `fill(points, even)` gives the points
@@ -106,6 +109,7 @@ private:
       if (scratch.points.size() < n) scratch.points.resize(n);
       if (scratch.acc.size() < 3 * n) scratch.acc.resize(3 * n);
       if (scratch.weight.size() < n) scratch.weight.resize(n);
+      if (scratch.weight_steps.size() < n + rows) scratch.weight_steps.resize(n + rows);
       if (scratch.even.size() < rows) scratch.even.resize(rows);
     } catch (...) {
       return false;
@@ -116,12 +120,16 @@ private:
     float* weight = scratch.weight.data();
     fill(points, scratch.even.data());
     std::fill(weight, weight + n, 0.0f);
+    float* steps = scratch.weight_steps.data();
+    std::fill(steps, steps + n + rows, 0.0f);
     std::fill(acc, acc + 3 * n, 0.0f);
     const bool all_even = std::all_of(scratch.even.begin(), scratch.even.begin() + static_cast<std::ptrdiff_t>(rows),
                                       [](unsigned char e) { return e != 0; });
     for (const auto& c : table.cameras()) {
       // The next camera's rows are asked for while this one's are read (`shift_add`).
       const auto* ahead = &c != &table.cameras().back() && !(&c + 1)->distorted ? &c + 1 : nullptr;
+      // The tile as one 2-D shift of the camera's image, when it is one.
+      if (all_even && shift_add_tile(table, c, points, rows, w, acc, weight, steps, scratch.tiles, ahead)) continue;
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
@@ -133,7 +141,8 @@ private:
         table.add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
       }
     }
-    for (std::size_t i = 0; i < n; ++i) out[i] = table.finish(acc + 3 * i, weight[i]);
+    add_weight_steps(steps, rows, w, weight);
+    table.finish_all(acc, weight, n, out.data());
     return true;
   }
 };

@@ -6,7 +6,8 @@
 /// permutes (seven index bits) and its top bit chooses between the halves; the bytes are then
 /// interleaved into words. Ten instructions for 64 codes, against two 32-code word-permute
 /// decodes (`decode16x32`, eighteen with the widening). And the horizontal row interpolation of
-/// the separable shift-and-add on top of it (`lerp_row_codes_vbmi`).
+/// the separable shift-and-add on top of it (`lerp_row_codes_vbmi`), alone or fused with the
+/// vertical blend of the row above (`lerp_blend_row_codes_vbmi`, the 2-D shift of shift_tile.hpp).
 
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
@@ -95,16 +96,21 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void decode_floats64(const DecodeBytes&
   out[3] = words_high_ps(second);
 }
 
-/// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v the table value of the
-/// code (`lerp_row_portable` for 8-bit codes), 64 channels a step; each code decoded once, the
-/// values one pixel to the right taken from the decoded block and the next by a lane shift.
-/// Reads a[0, m + 3); `ahead` (nullptr: none) as in `lerp_row_portable`.
-MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
-                                                       float scale, float* h, std::size_t m,
-                                                       const std::uint8_t* ahead = nullptr) noexcept {
+// What the row pass of `lerp_row_codes_vbmi_impl` does with each 16 interpolated channels:
+// store them to h; store them and blend them with the row above (hp) into acc; add them to acc.
+enum class RowPass { store, blend, add };
+
+// The loop of the row kernels below. Without `Right` (ax == 0) the right neighbours are not
+// formed.
+template <RowPass Pass, bool Right>
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void lerp_row_codes_vbmi_impl(const std::uint8_t* a, const std::uint16_t* lut,
+                                                                       float ax, float scale, float* h, std::size_t m,
+                                                                       const std::uint8_t* ahead, const float* hp,
+                                                                       float wy0, float wy1, float* acc) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
   const __m512 w0 = _mm512_set1_ps((1 - ax) * scale), w1 = _mm512_set1_ps(ax * scale);
-  const std::size_t codes = m + 3; // readable codes
+  const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);
+  const std::size_t codes = m + (Right ? 3 : 0); // readable codes
   __m512 cur[4];
   decode_floats64(d, a, std::min<std::size_t>(64, codes), cur);
   for (std::size_t j = 0; j < m; j += 64) {
@@ -113,18 +119,66 @@ MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, co
     if (j + 64 < codes) decode_floats64(d, a + j + 64, std::min<std::size_t>(64, codes - j - 64), next);
     const std::size_t count = std::min<std::size_t>(64, m - j);
     for (int k = 0; k < 4; ++k) {
-      const __m512 after = k < 3 ? cur[k + 1] : next[0];
-      const __m512 right = _mm512_castsi512_ps(
-          _mm512_maskz_alignr_epi32(0xFFFF, _mm512_castps_si512(after), _mm512_castps_si512(cur[k]), 3));
-      const __m512 value = _mm512_fmadd_ps(w1, right, _mm512_mul_ps(w0, cur[k]));
       const std::size_t first = 16 * static_cast<std::size_t>(k);
-      if (count >= first + 16)
-        _mm512_storeu_ps(h + j + first, value);
-      else if (count > first)
-        _mm512_mask_storeu_ps(h + j + first, static_cast<__mmask16>((1u << (count - first)) - 1), value);
+      if (count <= first) break;
+      const __mmask16 keep =
+          count >= first + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (count - first)) - 1);
+      const std::size_t at = j + first;
+      __m512 right = _mm512_setzero_ps();
+      if constexpr (Right) {
+        const __m512 after = k < 3 ? cur[k + 1] : next[0];
+        right = _mm512_castsi512_ps(
+            _mm512_maskz_alignr_epi32(0xFFFF, _mm512_castps_si512(after), _mm512_castps_si512(cur[k]), 3));
+      }
+      if constexpr (Pass == RowPass::add) {
+        __m512 sum = _mm512_fmadd_ps(w0, cur[k], _mm512_maskz_loadu_ps(keep, acc + at));
+        if constexpr (Right) sum = _mm512_fmadd_ps(w1, right, sum);
+        _mm512_mask_storeu_ps(acc + at, keep, sum);
+      } else {
+        const __m512 value = Right ? _mm512_fmadd_ps(w1, right, _mm512_mul_ps(w0, cur[k])) : _mm512_mul_ps(w0, cur[k]);
+        _mm512_mask_storeu_ps(h + at, keep, value);
+        if constexpr (Pass == RowPass::blend) {
+          const __m512 sum = _mm512_fmadd_ps(
+              v1, value,
+              _mm512_fmadd_ps(v0, _mm512_maskz_loadu_ps(keep, hp + at), _mm512_maskz_loadu_ps(keep, acc + at)));
+          _mm512_mask_storeu_ps(acc + at, keep, sum);
+        }
+      }
     }
     for (int k = 0; k < 4; ++k) cur[k] = next[k];
   }
+}
+
+/// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v the table value of the
+/// code (`lerp_row_portable` for 8-bit codes), 64 channels a step; each code decoded once, the
+/// values one pixel to the right taken from the decoded block and the next by a lane shift.
+/// Reads a[0, m + 3); `ahead` (nullptr: none) as in `lerp_row_portable`.
+MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
+                                                       float scale, float* h, std::size_t m,
+                                                       const std::uint8_t* ahead = nullptr) noexcept {
+  lerp_row_codes_vbmi_impl<RowPass::store, true>(a, lut, ax, scale, h, m, ahead, nullptr, 0, 0, nullptr);
+}
+
+/// `lerp_row_codes_vbmi` into h, and in the same pass acc[j] += wy0 hp[j] + wy1 h[j] for j in
+/// [0, m): the next row of a separable shift-and-add blended with the previous one (hp) while it
+/// is interpolated. h must not overlap hp or acc.
+MPR_TARGET_AVX512_VBMI inline void lerp_blend_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
+                                                             float scale, float* h, std::size_t m,
+                                                             const std::uint8_t* ahead, const float* hp, float wy0,
+                                                             float wy1, float* acc) noexcept {
+  lerp_row_codes_vbmi_impl<RowPass::blend, true>(a, lut, ax, scale, h, m, ahead, hp, wy0, wy1, acc);
+}
+
+/// acc[j] += scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m): one camera row added at
+/// a horizontal offset alone (a vertical offset of 0); with ax = 0, the decoded codes scaled and
+/// added, nothing formed to their right. Reads a[0, m + 3), a[0, m) when ax = 0.
+MPR_TARGET_AVX512_VBMI inline void lerp_add_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
+                                                           float scale, float* acc, std::size_t m,
+                                                           const std::uint8_t* ahead = nullptr) noexcept {
+  if (ax == 0)
+    lerp_row_codes_vbmi_impl<RowPass::add, false>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc);
+  else
+    lerp_row_codes_vbmi_impl<RowPass::add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc);
 }
 
 } // namespace mpr::detail

@@ -182,6 +182,21 @@ inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale
   run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m, ahead); });
 }
 
+/// acc[j] += scale v(a[j]) for j in [0, m), v = `channel_value`: one camera row added unshifted
+/// within its texels (the 2-D shift at offsets of 0). Reads a[0, m).
+template <class C>
+MPR_ALWAYS_INLINE void add_scaled_row_body(const C* MPR_RESTRICT a, const std::uint16_t* MPR_RESTRICT lut, float scale,
+                                           float* MPR_RESTRICT acc, std::size_t m) noexcept {
+  for (std::size_t j = 0; j < m; ++j) acc[j] += scale * channel_value(a[j], lut);
+}
+
+/// `add_scaled_row_body` compiled for `level`.
+template <class C>
+inline void add_scaled_row(const C* a, const std::uint16_t* lut, float scale, float* acc, std::size_t m,
+                           SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { add_scaled_row_body(a, lut, scale, acc, m); });
+}
+
 /// acc[3 i + k] += rw[i] (w0 h0[3 i + k] + w1 h1[3 i + k]) for pixels i in [0, n) (rw nullptr:
 /// weight 1): the vertical half of a separable bilinear shift-and-add, on rows from `lerp_row`.
 MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float* MPR_RESTRICT h1, float w0, float w1,
@@ -208,6 +223,30 @@ MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float
 inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc, std::size_t n,
                        SimdLevel level = simd_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, n); });
+}
+
+/// out[3 i + k] = acc[3 i + k] / weight[i] for pixels i in [0, n) with weight[i] > 0, 0 for the
+/// others (their colour is the caller's): the averages of a row of sums, as `FrameTable::finish`
+/// computes them (the reciprocal, then three products), a stack buffer at a time.
+MPR_ALWAYS_INLINE void average_rows_body(const float* MPR_RESTRICT acc, const float* MPR_RESTRICT weight,
+                                         float* MPR_RESTRICT out, std::size_t n) noexcept {
+  constexpr std::size_t kStep = 256;
+  float spread[3 * kStep];
+  for (std::size_t s0 = 0; s0 < n; s0 += kStep) {
+    const std::size_t m = std::min(kStep, n - s0);
+    for (std::size_t i = 0; i < m; ++i) {
+      const float w = weight[s0 + i];
+      const float inv = w > 0 ? 1.0f / w : 0.0f;
+      spread[3 * i] = spread[3 * i + 1] = spread[3 * i + 2] = inv;
+    }
+    for (std::size_t j = 0; j < 3 * m; ++j) out[3 * s0 + j] = acc[3 * s0 + j] * spread[j];
+  }
+}
+
+/// `average_rows_body` compiled for `level`.
+inline void average_rows(const float* acc, const float* weight, float* out, std::size_t n,
+                         SimdLevel level = simd_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { average_rows_body(acc, weight, out, n); });
 }
 
 /// Asks the cache for the bytes of [begin, end) (GCC and Clang; nothing elsewhere).

@@ -89,59 +89,97 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512i load_window64(const std::uint8_
   return _mm512_maskz_loadu_epi8(k, row + start);
 }
 
+// The constants of the VBMI step.
+struct ResampleConstants {
+  __m512i pixel[2], offset[2], lane_pixel[3];
+  __m512 lanes, step;
+};
+
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE ResampleConstants load_resample_constants(double s) noexcept {
+  ResampleConstants c;
+  for (int k = 0; k < 2; ++k) {
+    c.pixel[k] = _mm512_loadu_si512(kResamplePatterns.pixel[k]);
+    c.offset[k] = _mm512_loadu_si512(kResamplePatterns.offset[k]);
+  }
+  for (int k = 0; k < 3; ++k) c.lane_pixel[k] = _mm512_loadu_si512(kResamplePatterns.lane_pixel[k]);
+  c.lanes = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  c.step = _mm512_set1_ps(static_cast<float>(s));
+  return c;
+}
+
+/// Where the 16 pixels from pixel i of a resampled row read their texel pairs: the byte of the
+/// group's first texel j0 in the row (`start`), the window byte of each of the 96 codes of their
+/// pairs (`index`, two blocks, see `ResamplePatterns`) and each channel lane's fraction (`f`, r g b
+/// of pixels 0-15 over three vectors).
+struct ResampleGroup {
+  std::size_t start;
+  __m512i index[2];
+  __m512 f[3];
+};
+
+// The group of pixel i at x + s i (j0 in double, the lanes' offsets from it in float, below 40).
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE ResampleGroup resample_group(const ResampleConstants& c, double x, double s,
+                                                                      std::size_t i, long last_pair) noexcept {
+  const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+  const double xg = x + s * static_cast<double>(i);
+  const long j0 = std::clamp(static_cast<long>(std::floor(xg)), 0L, last_pair);
+  const __m512 xl = _mm512_fmadd_ps(c.step, c.lanes, _mm512_set1_ps(static_cast<float>(xg - static_cast<double>(j0))));
+  __m512i jl = _mm512_maskz_cvttps_epi32(0xFFFF, _mm512_maskz_max_ps(0xFFFF, xl, zero));
+  jl = _mm512_maskz_min_epi32(0xFFFF, jl, _mm512_set1_epi32(static_cast<int>(std::min(last_pair - j0, 40L))));
+  const __m512 f = _mm512_maskz_min_ps(
+      0xFFFF, _mm512_maskz_max_ps(0xFFFF, _mm512_sub_ps(xl, _mm512_maskz_cvtepi32_ps(0xFFFF, jl)), zero), one);
+  const __m128i jb = _mm512_maskz_cvtepi32_epi8(0xFFFF, jl);
+  const __m512i j3 = _mm512_maskz_broadcast_i32x4(0xFFFF, _mm_add_epi8(jb, _mm_add_epi8(jb, jb)));
+  ResampleGroup g;
+  g.start = 3 * static_cast<std::size_t>(j0);
+  for (int k = 0; k < 2; ++k)
+    g.index[k] = _mm512_add_epi8(_mm512_maskz_permutexvar_epi8(~__mmask64(0), c.pixel[k], j3), c.offset[k]);
+  for (int k = 0; k < 3; ++k) g.f[k] = _mm512_maskz_permutexvar_ps(0xFFFF, c.lane_pixel[k], f);
+  return g;
+}
+
+// The group's interpolated channels of the row of `bytes` codes at `row` (table values, the
+// scale not applied): r g b of pixels 0-15 over three vectors.
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void resample_group_values(const DecodeBytes& d, const std::uint8_t* row,
+                                                                    std::size_t bytes, const ResampleGroup& g,
+                                                                    __m512 (&value)[3]) noexcept {
+  const __m512i lo = load_window64(row, g.start, bytes), hi = load_window64(row, g.start + 64, bytes);
+  __m512i v[4];
+  for (int k = 0; k < 2; ++k) decode16x64(d, _mm512_permutex2var_epi8(lo, g.index[k], hi), v[2 * k], v[2 * k + 1]);
+  // v: codes 0-31, 32-63, 64-95 (and 32 unused).
+  const __m512 left[3] = {words_low_ps(v[0]), words_high_ps(v[0]), words_low_ps(v[1])};
+  const __m512 right[3] = {words_high_ps(v[1]), words_low_ps(v[2]), words_high_ps(v[2])};
+  for (int k = 0; k < 3; ++k) value[k] = _mm512_fmadd_ps(g.f[k], _mm512_sub_ps(right[k], left[k]), left[k]);
+}
+
 // `resample_row_portable` for 8-bit codes, 16 pixels a step. Precondition: s <= kResampleMaxStep.
 MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* row, std::size_t texels,
                                                            const std::uint16_t* lut, double x, double s, float scale,
                                                            float* h, std::size_t n,
                                                            const std::uint8_t* ahead = nullptr) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
-  __m512i pixel[2], offset[2], lane_pixel[3];
-  for (int k = 0; k < 2; ++k) {
-    pixel[k] = _mm512_loadu_si512(kResamplePatterns.pixel[k]);
-    offset[k] = _mm512_loadu_si512(kResamplePatterns.offset[k]);
-  }
-  for (int k = 0; k < 3; ++k) lane_pixel[k] = _mm512_loadu_si512(kResamplePatterns.lane_pixel[k]);
-  const __m512 lanes = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m512 step = _mm512_set1_ps(static_cast<float>(s)), vscale = _mm512_set1_ps(scale);
-  const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+  const ResampleConstants c = load_resample_constants(s);
+  const __m512 vscale = _mm512_set1_ps(scale);
   const long last_pair = static_cast<long>(texels) - 2;
   const std::size_t bytes = 3 * texels;
-  const long j_first = std::clamp(static_cast<long>(std::floor(x)), 0L, last_pair);
+  const std::size_t start_first =
+      3 * static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor(x)), 0L, last_pair));
   for (std::size_t i = 0; i < n; i += 16) {
-    // The group's first texel j0 in double; the lanes' offsets from it in float (below 40).
-    const double xg = x + s * static_cast<double>(i);
-    const long j0 = std::clamp(static_cast<long>(std::floor(xg)), 0L, last_pair);
+    const ResampleGroup g = resample_group(c, x, s, i, last_pair);
     if (ahead != nullptr) { // the group's 16 s + 1 texels (at most 123 bytes) in the next row
-      const std::size_t at = 3 * static_cast<std::size_t>(j0 - j_first);
-      prefetch_l2(ahead, at);
-      prefetch_l2(ahead, at + 64);
+      prefetch_l2(ahead, g.start - start_first);
+      prefetch_l2(ahead, g.start - start_first + 64);
     }
-    const __m512 xl = _mm512_fmadd_ps(step, lanes, _mm512_set1_ps(static_cast<float>(xg - static_cast<double>(j0))));
-    __m512i jl = _mm512_maskz_cvttps_epi32(0xFFFF, _mm512_maskz_max_ps(0xFFFF, xl, zero));
-    jl = _mm512_maskz_min_epi32(0xFFFF, jl, _mm512_set1_epi32(static_cast<int>(std::min(last_pair - j0, 40L))));
-    const __m512 f = _mm512_maskz_min_ps(
-        0xFFFF, _mm512_maskz_max_ps(0xFFFF, _mm512_sub_ps(xl, _mm512_maskz_cvtepi32_ps(0xFFFF, jl)), zero), one);
-    const __m128i jb = _mm512_maskz_cvtepi32_epi8(0xFFFF, jl);
-    const __m512i j3 = _mm512_maskz_broadcast_i32x4(0xFFFF, _mm_add_epi8(jb, _mm_add_epi8(jb, jb)));
-    const std::size_t start = 3 * static_cast<std::size_t>(j0);
-    const __m512i lo = load_window64(row, start, bytes), hi = load_window64(row, start + 64, bytes);
-    __m512i v[4];
-    for (int k = 0; k < 2; ++k) {
-      const __m512i index = _mm512_add_epi8(_mm512_maskz_permutexvar_epi8(~__mmask64(0), pixel[k], j3), offset[k]);
-      decode16x64(d, _mm512_permutex2var_epi8(lo, index, hi), v[2 * k], v[2 * k + 1]);
-    }
-    // v: codes 0-31, 32-63, 64-95 (and 32 unused).
-    const __m512 left[3] = {words_low_ps(v[0]), words_high_ps(v[0]), words_low_ps(v[1])};
-    const __m512 right[3] = {words_high_ps(v[1]), words_low_ps(v[2]), words_high_ps(v[2])};
+    __m512 value[3];
+    resample_group_values(d, row, bytes, g, value);
     const std::size_t count = 3 * std::min<std::size_t>(16, n - i); // floats to store
     for (int k = 0; k < 3; ++k) {
-      const __m512 fk = _mm512_maskz_permutexvar_ps(0xFFFF, lane_pixel[k], f);
-      const __m512 value = _mm512_mul_ps(vscale, _mm512_fmadd_ps(fk, _mm512_sub_ps(right[k], left[k]), left[k]));
       const std::size_t first = 16 * static_cast<std::size_t>(k);
       if (count >= first + 16)
-        _mm512_storeu_ps(h + 3 * i + first, value);
+        _mm512_storeu_ps(h + 3 * i + first, _mm512_mul_ps(vscale, value[k]));
       else if (count > first)
-        _mm512_mask_storeu_ps(h + 3 * i + first, static_cast<__mmask16>((1u << (count - first)) - 1), value);
+        _mm512_mask_storeu_ps(h + 3 * i + first, static_cast<__mmask16>((1u << (count - first)) - 1),
+                              _mm512_mul_ps(vscale, value[k]));
     }
   }
 }

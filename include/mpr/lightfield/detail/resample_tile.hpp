@@ -1,0 +1,136 @@
+#pragma once
+/// \file
+/// One camera's bilinear contribution to a block of output rows that it sees at evenly spaced
+/// positions along its rows, any step up to `kResampleMaxStep` (a focal plane parallel to the
+/// camera plane seen at another scale than the cameras': the README's 700x400 animations of
+/// 1400x800 cameras, a 960x540 window). Each output row blends two resampled camera rows
+/// (`resample_row`); on AVX-512 with VBMI where the block's pixels read their texel pairs is
+/// found once for all its rows, and both camera rows of an output row are resampled and blended
+/// into it in one pass, with no row written in between.
+
+#include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/detail/resample_row.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+namespace mpr::detail {
+
+/// A block of output rows as one camera sees it: pixel i of every row at camera column x + s i,
+/// row r between camera rows iy[r] and iy[r] + 1 at vertical fraction ay[r]. Output row r gets,
+/// for pixel i and channel k,
+///   acc[r acc_stride + 3 i + k] += (1 - ay[r]) h_{iy[r]}[3 i + k] + ay[r] h_{iy[r]+1}[3 i + k],
+/// h_y the camera row y resampled as `resample_row_portable` does (texel pairs clamped to the row,
+/// `scale` applied). Preconditions: width >= 2, x >= 0, 0 < s, 0 <= iy[r] < height - 1.
+template <class C>
+struct ResampleTile {
+  const C* texels = nullptr;          ///< the camera image, flat channels, rows of `width` texels
+  std::size_t width = 0;              ///< texels per camera row
+  double x = 0, s = 1;                ///< the first pixel's camera column and the step (camera pixels)
+  std::size_t n = 0;                  ///< pixels per output row
+  std::size_t rows = 0;               ///< output rows
+  const int* iy = nullptr;            ///< per output row: its upper camera row
+  const float* ay = nullptr;          ///< per output row: its vertical fraction in [0, 1]
+  float scale = 1;                    ///< channel scale of the texel type
+  const std::uint16_t* lut = nullptr; ///< decode table of 8-bit codes (unused otherwise)
+  float* acc = nullptr;               ///< the output rows' accumulators (flat r g b)
+  std::ptrdiff_t acc_stride = 0;      ///< channels from one output row's accumulators to the next
+};
+
+/// Where a group of 16 pixels reads its texel pairs (`ResampleGroup`), as stored between rows.
+struct alignas(64) ResampleGroupStore {
+  std::uint8_t index[2][64];
+  float f[3][16];
+  std::size_t start;
+};
+
+/// Working memory of `resample_tile`, one per thread; it grows to the longest rows seen.
+struct ResampleTileWork {
+  std::vector<float> h;                   // two resampled rows (the portable form)
+  std::vector<ResampleGroupStore> groups; // the groups of a block (the VBMI form)
+};
+
+#if defined(MPR_SIMD_X86)
+// The VBMI form: the groups first, then each output row in one pass over its groups.
+MPR_TARGET_AVX512_VBMI inline void resample_tile_codes_vbmi(const ResampleTile<std::uint8_t>& t,
+                                                            ResampleGroupStore* groups) noexcept {
+  const DecodeBytes d = load_decode_bytes(t.lut);
+  const ResampleConstants c = load_resample_constants(t.s);
+  const long last_pair = static_cast<long>(t.width) - 2;
+  const std::size_t bytes = 3 * t.width, count = (t.n + 15) / 16;
+  for (std::size_t g = 0; g < count; ++g) {
+    const ResampleGroup q = resample_group(c, t.x, t.s, 16 * g, last_pair);
+    for (int k = 0; k < 2; ++k) _mm512_store_si512(groups[g].index[k], q.index[k]);
+    for (int k = 0; k < 3; ++k) _mm512_store_ps(groups[g].f[k], q.f[k]);
+    groups[g].start = q.start;
+  }
+  for (std::size_t r = 0; r < t.rows; ++r) {
+    const std::uint8_t* top = t.texels + bytes * static_cast<std::size_t>(t.iy[r]);
+    const std::uint8_t* bottom = top + bytes;
+    const __m512 w0 = _mm512_set1_ps((1 - t.ay[r]) * t.scale), w1 = _mm512_set1_ps(t.ay[r] * t.scale);
+    float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
+    for (std::size_t g = 0; g < count; ++g) {
+      ResampleGroup q;
+      for (int k = 0; k < 2; ++k) q.index[k] = _mm512_load_si512(groups[g].index[k]);
+      for (int k = 0; k < 3; ++k) q.f[k] = _mm512_load_ps(groups[g].f[k]);
+      q.start = groups[g].start;
+      __m512 a[3], b[3];
+      resample_group_values(d, top, bytes, q, a);
+      resample_group_values(d, bottom, bytes, q, b);
+      const std::size_t floats = 3 * std::min<std::size_t>(16, t.n - 16 * g);
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t first = 16 * static_cast<std::size_t>(k);
+        if (floats <= first) break;
+        const __mmask16 keep =
+            floats >= first + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (floats - first)) - 1);
+        float* at = acc + 48 * g + first;
+        const __m512 sum = _mm512_fmadd_ps(w1, b[k], _mm512_fmadd_ps(w0, a[k], _mm512_maskz_loadu_ps(keep, at)));
+        _mm512_mask_storeu_ps(at, keep, sum);
+      }
+    }
+  }
+}
+#endif
+
+/// Adds the block `t` (see `ResampleTile`) to its accumulators at `level`; false (nothing added)
+/// when working memory cannot grow.
+template <class C>
+[[nodiscard]] bool resample_tile(const ResampleTile<C>& t, ResampleTileWork& work,
+                                 SimdLevel level = simd_level()) noexcept {
+  if (t.rows == 0 || t.n == 0) return true;
+#if defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && t.s <= kResampleMaxStep) {
+      try {
+        if (work.groups.size() < (t.n + 15) / 16) work.groups.resize((t.n + 15) / 16);
+      } catch (...) {
+        return false;
+      }
+      resample_tile_codes_vbmi(t, work.groups.data());
+      return true;
+    }
+  }
+#endif
+  try {
+    if (work.h.size() < 6 * t.n) work.h.resize(6 * t.n);
+  } catch (...) {
+    return false;
+  }
+  float* h0 = work.h.data();
+  float* h1 = h0 + 3 * t.n;
+  const std::size_t stride = 3 * t.width;
+  for (std::size_t r = 0; r < t.rows; ++r) {
+    const C* top = t.texels + stride * static_cast<std::size_t>(t.iy[r]);
+    resample_row(top, t.width, t.lut, t.x, t.s, t.scale, h0, t.n, static_cast<const C*>(nullptr), level);
+    resample_row(top + stride, t.width, t.lut, t.x, t.s, t.scale, h1, t.n, static_cast<const C*>(nullptr), level);
+    blend_rows(h0, h1, 1 - t.ay[r], t.ay[r], nullptr, t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride, t.n,
+               level);
+  }
+  return true;
+}
+
+} // namespace mpr::detail

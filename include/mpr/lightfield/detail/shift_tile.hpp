@@ -1,0 +1,113 @@
+#pragma once
+/// \file
+/// The 2-D shift-and-add: one camera's bilinear contribution to a block of output rows that it
+/// sees as its own image shifted by a fixed sub-pixel offset, one camera pixel per output pixel
+/// (refocusing on a plane parallel to the camera plane at the cameras' scale; Isaksen et al.
+/// 2000, Vaish et al. 2004). In its separable form each camera row is interpolated horizontally
+/// once and blended into the two output rows that read it; on AVX-512 with VBMI the
+/// interpolation of a row and the blend of the output row above it are one pass over the row.
+
+#include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/decode_vbmi.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+namespace mpr::detail {
+
+/// A block of output rows as one camera sees it. Output row r (r in [0, rows)) gets, for each
+/// channel j in [0, m) (flat r g b channels of m / 3 pixels),
+///   acc[r acc_stride + j] += (1 - ay) h_r[j] + ay h_{r+1}[j],
+///   h_k[j] = scale ((1 - ax) v(t[k stride + j]) + ax v(t[k stride + j + 3])),
+/// with t = `texels` (flat channels of the camera's texel under the block's first pixel) and v
+/// the value of a stored channel (`channel_value`: 8-bit codes decoded by `lut`). Reads camera
+/// rows 0 .. rows (m + 3 channels each); with ay = 0, rows 0 .. rows - 1 only, and with ax = ay
+/// = 0 their first m channels only.
+template <class C>
+struct ShiftTile {
+  const C* texels = nullptr;          ///< first camera row of the block, from its first texel read
+  std::ptrdiff_t stride = 0;          ///< channels from one camera row to the next
+  std::size_t rows = 0;               ///< output rows (rows + 1 camera rows are read)
+  std::size_t m = 0;                  ///< channels per output row, a multiple of 3
+  float ax = 0, ay = 0;               ///< sub-pixel offsets in [0, 1], horizontal and vertical
+  float scale = 1;                    ///< channel scale of the texel type (`Srgb8Texel::scale`, ...)
+  const std::uint16_t* lut = nullptr; ///< decode table of 8-bit codes (unused otherwise)
+  float* acc = nullptr;               ///< the output rows' accumulators (flat r g b)
+  std::ptrdiff_t acc_stride = 0;      ///< channels from one output row's accumulators to the next
+};
+
+/// Floats of working memory `shift_tile` needs for rows of m channels.
+[[nodiscard]] constexpr std::size_t shift_tile_work(std::size_t m) noexcept { return 2 * (m + 32); }
+
+/// Adds the block `t` (see `ShiftTile`) to its accumulators at `level`. `work` holds
+/// `shift_tile_work(t.m)` floats (working rows, overwritten; they must not overlap the
+/// accumulators). `ahead` (nullptr: none): the texels of the block's first row in the camera to
+/// be added next, and `ahead_stride` its row stride in channels, prefetched along the way
+/// (`lerp_row`). The working rows are placed so that each row's accumulators and the row
+/// written beside them share their alignment: the AVX-512 pass then splits a row into a head of
+/// up to 15 channels and a body whose 64-byte accesses do not straddle cache lines.
+template <class C>
+void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, std::ptrdiff_t ahead_stride = 0,
+                SimdLevel level = simd_level()) noexcept {
+  if (t.rows == 0 || t.m == 0) return;
+  const auto next_ahead = [&](std::size_t k) noexcept -> const C* {
+    return ahead != nullptr ? ahead + static_cast<std::ptrdiff_t>(k) * ahead_stride : nullptr;
+  };
+  // Two rows of m + 32 floats from the first 64-byte boundary; row k at misalignment p (floats).
+  float* const base = work + (16 - (reinterpret_cast<std::uintptr_t>(work) / sizeof(float)) % 16) % 16;
+  const auto misalignment = [](const float* p) noexcept {
+    return static_cast<std::size_t>((reinterpret_cast<std::uintptr_t>(p) / sizeof(float)) % 16);
+  };
+  const auto working = [&](std::size_t k, const float* acc) noexcept {
+    return base + (k % 2) * (t.m + 16) + misalignment(acc);
+  };
+  if (t.ay == 0) { // each output row reads one camera row: no vertical blend, no working rows kept
+    for (std::size_t r = 0; r < t.rows; ++r) {
+      const C* row = t.texels + static_cast<std::ptrdiff_t>(r) * t.stride;
+      float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
+#if defined(MPR_SIMD_X86)
+      if constexpr (std::is_same_v<C, std::uint8_t>) {
+        if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
+          lerp_add_row_codes_vbmi(row, t.lut, t.ax, t.scale, acc, t.m, next_ahead(r));
+          continue;
+        }
+      }
+#endif
+      if (t.ax == 0) {
+        add_scaled_row(row, t.lut, t.scale, acc, t.m, level);
+        continue;
+      }
+      float* h = working(0, acc);
+      lerp_row(row, t.lut, t.ax, t.scale, h, t.m, next_ahead(r), level);
+      blend_rows(h, h, 1.0f, 0.0f, nullptr, acc, t.m / 3, level);
+    }
+    return;
+  }
+  float* hp = working(0, t.acc);
+  lerp_row(t.texels, t.lut, t.ax, t.scale, hp, t.m, next_ahead(0), level);
+  for (std::size_t r = 0; r < t.rows; ++r) {
+    const C* row = t.texels + static_cast<std::ptrdiff_t>(r + 1) * t.stride;
+    float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
+    float* h = working(r + 1, acc);
+#if defined(MPR_SIMD_X86)
+    if constexpr (std::is_same_v<C, std::uint8_t>) {
+      if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
+        const std::size_t head = std::min(t.m, (16 - misalignment(acc)) % 16);
+        if (head > 0) lerp_blend_row_codes_vbmi(row, t.lut, t.ax, t.scale, h, head, nullptr, hp, 1 - t.ay, t.ay, acc);
+        lerp_blend_row_codes_vbmi(row + head, t.lut, t.ax, t.scale, h + head, t.m - head, next_ahead(r + 1), hp + head,
+                                  1 - t.ay, t.ay, acc + head);
+        hp = h;
+        continue;
+      }
+    }
+#endif
+    lerp_row(row, t.lut, t.ax, t.scale, h, t.m, next_ahead(r + 1), level);
+    blend_rows(hp, h, 1 - t.ay, t.ay, nullptr, acc, t.m / 3, level);
+    hp = h;
+  }
+}
+
+} // namespace mpr::detail

@@ -1,0 +1,208 @@
+#pragma once
+/// \file
+/// A tile of runs against one camera of a `FrameTable` at once: when the camera sees the tile as
+/// a regular grid of its image (a focal plane parallel to the camera plane), the whole tile is
+/// one 2-D shift-and-add at the cameras' pixel scale (`detail::shift_tile`: each camera row
+/// interpolated once for the two output rows that read it), or one resampled block at any other
+/// (`detail::resample_tile`), instead of a shift-and-add per run (`shift_add`, frame_runs.hpp).
+
+#include <mpr/lightfield/detail/resample_tile.hpp>
+#include <mpr/lightfield/detail/shift_tile.hpp>
+#include <mpr/lightfield/frame_runs.hpp>
+#include <mpr/lightfield/frame_table.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace mpr {
+
+/// Working memory of `shift_add_tile`, one per thread (it grows to the longest rows seen).
+struct TileWork {
+  std::vector<float> h;              // of `detail::shift_tile`
+  std::vector<int> iy;               // per row of a resampled block: its upper camera row
+  std::vector<float> ay;             // ... and its vertical fraction
+  detail::ResampleTileWork resample; // of `detail::resample_tile`
+};
+
+/// weight[r n + i] += steps[r (n + 1)] + ... + steps[r (n + 1) + i] for the `rows` runs of n
+/// pixels of a tile: the per-pixel counts that `shift_add_tile` leaves as steps (a difference
+/// array, two entries per run and camera instead of one per pixel), folded in.
+inline void add_weight_steps(const float* steps, std::size_t rows, std::size_t n, float* weight) noexcept {
+  for (std::size_t r = 0; r < rows; ++r) {
+    float running = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      running += steps[r * (n + 1) + i];
+      weight[r * n + i] += running;
+    }
+  }
+}
+
+namespace detail {
+// The block of rows [r_begin, r_end) and pixels [first, last) of a tile that camera c sees at
+// (x0 + sx i, y0 + sy r), whose texel pairs lie inside the image (see `shift_add_tile`).
+struct TileBlock {
+  long r_begin = 0, r_end = 0, first = 0, last = 0;
+  [[nodiscard]] bool empty() const noexcept { return r_begin >= r_end || first >= last; }
+};
+
+// Rows r with 0 <= floor(y0 + sy r) <= height - 2 (contiguous: y is monotonic in r), and pixels
+// i with 0 <= x0 + sx i <= width - 1 (sx > 0).
+template <std::floating_point T>
+TileBlock tile_block(T x0, T y0, T sx, T sy, std::size_t rows, std::size_t n, int width, int height) noexcept {
+  TileBlock b;
+  const auto inside = [&](long r) noexcept {
+    const T y = std::floor(y0 + sy * static_cast<T>(r));
+    return y >= 0 && y <= static_cast<T>(height - 2);
+  };
+  while (b.r_begin < static_cast<long>(rows) && !inside(b.r_begin)) ++b.r_begin;
+  b.r_end = b.r_begin;
+  while (b.r_end < static_cast<long>(rows) && inside(b.r_end)) ++b.r_end;
+  const T right = static_cast<T>(width - 1);
+  const auto x = [&](long i) noexcept { return x0 + sx * static_cast<T>(i); };
+  b.first = x0 >= 0 ? 0 : static_cast<long>(std::min(std::ceil(-x0 / sx), static_cast<T>(n)));
+  while (b.first < static_cast<long>(n) && x(b.first) < 0) ++b.first;
+  while (b.first > 0 && x(b.first - 1) >= 0) --b.first;
+  b.last = x0 > right ? 0 : static_cast<long>(std::min(std::floor((right - x0) / sx) + 1, static_cast<T>(n)));
+  while (b.last > b.first && x(b.last - 1) > right) --b.last;
+  while (b.last < static_cast<long>(n) && x(b.last) <= right) ++b.last;
+  return b;
+}
+} // namespace detail
+
+/// Camera c's contribution to `rows` runs of n evenly spaced points each (run r at points + n r,
+/// adding to acc + 3 n r and weight + n r; the weights of the pixels added in two dimensions go
+/// to `weight_steps`, rows (n + 1) entries, see `add_weight_steps`) when c sees them as a
+/// regular grid of its image: point i of run r at camera pixel (x0 + sx i, y0 + sy r), checked at
+/// each run's ends and middle within 1e-3 pixel (the contract of `shift_add`), with 0 < sx <=
+/// `detail::kResampleMaxStep`. A grid one pixel apart both ways is a 2-D shift
+/// (`detail::shift_tile`; an offset within 1e-4 pixel of a texel is taken as on it, so integer
+/// shifts add texels uninterpolated), any other is resampled (`detail::resample_tile`). Pixels whose texel
+/// pairs lie inside the image are added so, those near the left and right edges ray by ray
+/// (`detail::add_run_edges`), runs on the image's top and bottom rows or beyond through
+/// `shift_add` one by one (or ray by ray). False (nothing added) when the tile is no such grid
+/// for c, or working memory cannot grow: then add its runs one by one. `ahead` as in
+/// `shift_add`. Preconditions: every run evenly spaced (`evenly_spaced`), bilinear filtering.
+template <std::floating_point T, class Px>
+bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
+                    std::size_t rows, std::size_t n, float* acc, float* weight, float* weight_steps, TileWork& work,
+                    const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
+  using Table = FrameTable<T, Px>;
+  using texel_type = typename Table::texel_type;
+  if (rows < 2 || n < 8 || c.distorted || c.width < 2 || c.height < 2) return false;
+  constexpr T kTolerance = T(1e-3);
+  T x0, y0, x1, y1, xr, yr;
+  if (!Table::project_any(c, points[0], x0, y0) || !Table::project_any(c, points[n - 1], x1, y1) ||
+      !Table::project_any(c, points[(rows - 1) * n], xr, yr))
+    return false;
+  T sx = (x1 - x0) / static_cast<T>(n - 1), sy = (yr - y0) / static_cast<T>(rows - 1);
+  const bool shift = std::abs(sx - 1) * static_cast<T>(n - 1) <= kTolerance &&
+                     std::abs(sy - 1) * static_cast<T>(rows - 1) <= kTolerance;
+  if (shift) sx = sy = 1;
+  if (!(sx > 0 && sx <= T(detail::kResampleMaxStep) && std::abs(sy) < T(1e6))) return false;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (const std::size_t i : {std::size_t(0), n / 2, n - 1}) {
+      T x, y;
+      if (!Table::project_any(c, points[r * n + i], x, y) ||
+          !(std::abs(x - (x0 + sx * static_cast<T>(i))) <= kTolerance &&
+            std::abs(y - (y0 + sy * static_cast<T>(r))) <= kTolerance))
+        return false;
+    }
+  if (!(std::abs(x0) < T(1e8) && std::abs(y0) < T(1e8))) return false; // keeps the conversions in range
+  // The 2-D shift's texel and offsets; an offset within kSnap of a texel is taken as on it (an
+  // error of at most kSnap pixel), so that integer shifts (a focus on the reference plane of
+  // rectified data) add decoded texels with no interpolation (`detail::shift_tile`).
+  constexpr T kSnap = T(1e-4);
+  long ix = static_cast<long>(std::floor(x0)), iy = static_cast<long>(std::floor(y0));
+  T ax = x0 - std::floor(x0), ay = y0 - std::floor(y0);
+  if (ax < kSnap || ax > 1 - kSnap) {
+    ix += ax > 1 - kSnap ? 1 : 0;
+    ax = 0;
+  }
+  if (ay < kSnap || ay > 1 - kSnap) {
+    iy += ay > 1 - kSnap ? 1 : 0;
+    ay = 0;
+  }
+  detail::TileBlock b;
+  if (shift) { // rows reading camera rows iy + r and iy + r + 1; pixels reading texels ix + i, ix + i + 1
+    // With ay = 0 a row reads one camera row; with ax = ay = 0 a pixel reads one texel (the
+    // image's last row and column then need no second one).
+    const long below = ay == 0 ? 0 : 1, right = ax == 0 && ay == 0 ? 0 : 1;
+    b.r_begin = std::clamp(-iy, 0L, static_cast<long>(rows));
+    b.r_end = std::clamp(static_cast<long>(c.height) - below - iy, b.r_begin, static_cast<long>(rows));
+    b.first = std::max(0L, -ix);
+    b.last = std::min(static_cast<long>(n), static_cast<long>(c.width) - right - ix);
+  } else {
+    b = detail::tile_block(x0, y0, sx, sy, rows, n, c.width, c.height);
+  }
+  const std::size_t m = b.empty() ? 0 : 3 * static_cast<std::size_t>(b.last - b.first);
+  try {
+    if (shift && work.h.size() < detail::shift_tile_work(m)) work.h.resize(detail::shift_tile_work(m));
+    if (!shift && work.iy.size() < rows) {
+      work.iy.resize(rows);
+      work.ay.resize(rows);
+    }
+  } catch (...) {
+    return false;
+  }
+  for (long r = 0; r < static_cast<long>(rows); ++r) {
+    const std::size_t o = static_cast<std::size_t>(r) * n;
+    if (b.empty() || r < b.r_begin || r >= b.r_end) {
+      if (!shift_add(table, c, points + o, n, acc + 3 * o, weight + o)) // the image's edge rows, or beyond
+        table.add_per_ray(c, points + o, n, acc + 3 * o, weight + o);
+      continue;
+    }
+    detail::add_run_edges(table, c, points + o, n, static_cast<std::size_t>(b.first), static_cast<std::size_t>(b.last),
+                          x0, sx, acc + 3 * o, weight + o, nullptr);
+    weight_steps[static_cast<std::size_t>(r) * (n + 1) + static_cast<std::size_t>(b.first)] += 1.0f;
+    weight_steps[static_cast<std::size_t>(r) * (n + 1) + static_cast<std::size_t>(b.last)] -= 1.0f;
+  }
+  if (b.empty()) return true;
+  float* block_acc = acc + 3 * (static_cast<std::size_t>(b.r_begin) * n + static_cast<std::size_t>(b.first));
+  if (!shift) {
+    for (long r = b.r_begin; r < b.r_end; ++r) {
+      const T y = y0 + sy * static_cast<T>(r), fr = std::floor(y);
+      work.iy[static_cast<std::size_t>(r - b.r_begin)] = static_cast<int>(fr);
+      work.ay[static_cast<std::size_t>(r - b.r_begin)] = static_cast<float>(y - fr);
+    }
+    detail::ResampleTile<typename texel_type::channel_type> tile;
+    tile.texels = c.texels->c;
+    tile.width = static_cast<std::size_t>(c.width);
+    tile.x = static_cast<double>(x0) + static_cast<double>(sx) * static_cast<double>(b.first);
+    tile.s = static_cast<double>(sx);
+    tile.n = static_cast<std::size_t>(b.last - b.first);
+    tile.rows = static_cast<std::size_t>(b.r_end - b.r_begin);
+    tile.iy = work.iy.data();
+    tile.ay = work.ay.data();
+    tile.scale = texel_type::scale;
+    tile.lut = texel_decode_table<texel_type>();
+    tile.acc = block_acc;
+    tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
+    if (!detail::resample_tile(tile, work.resample)) // out of memory: ray by ray
+      for (long r = b.r_begin; r < b.r_end; ++r) {
+        const std::size_t o = static_cast<std::size_t>(r) * n + static_cast<std::size_t>(b.first);
+        table.add_per_ray(c, points + o, tile.n, acc + 3 * o, weight + o);
+        weight_steps[static_cast<std::size_t>(r) * (n + 1) + static_cast<std::size_t>(b.first)] -= 1.0f;
+        weight_steps[static_cast<std::size_t>(r) * (n + 1) + static_cast<std::size_t>(b.last)] += 1.0f;
+      }
+    return true;
+  }
+  detail::ShiftTile<typename texel_type::channel_type> tile;
+  tile.texels = c.texels[(iy + b.r_begin) * c.width + ix + b.first].c;
+  tile.stride = 3 * static_cast<std::ptrdiff_t>(c.width);
+  tile.rows = static_cast<std::size_t>(b.r_end - b.r_begin);
+  tile.m = m;
+  tile.ax = static_cast<float>(ax);
+  tile.ay = static_cast<float>(ay);
+  tile.scale = texel_type::scale;
+  tile.lut = texel_decode_table<texel_type>();
+  tile.acc = block_acc;
+  tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
+  const auto next = detail::ahead_rows<T, Px>(
+      ahead, points[static_cast<std::size_t>(b.r_begin) * n + static_cast<std::size_t>(b.first)]);
+  detail::shift_tile(tile, work.h.data(), next[0], next[1] - next[0]);
+  return true;
+}
+
+} // namespace mpr

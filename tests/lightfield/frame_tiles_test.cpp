@@ -1,0 +1,118 @@
+// A tile of runs as one block (mpr/lightfield/frame_tiles.hpp): the same sums and weights as the
+// runs added one by one (`shift_add`, then ray by ray), for 2-D shifts and resampled grids inside
+// a camera's image, across its edges and past them; tiles that are no such grid are declined
+// with nothing added.
+
+#include "lightfield/frame_test_scenes.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mpr/lightfield/frame_tiles.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace {
+
+// 8-bit frames of the scene plane with noise in every channel, so that a misplaced texel shows.
+std::vector<mpr::Image<mpr::Rgb8>> noisy_frames(const std::vector<mpr::Image<mpr::Color>>& linear) {
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(17);
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        px(x, y) = mpr::to_rgb8(img(x, y));
+        px(x, y).r = static_cast<std::uint8_t>(px(x, y).r ^ (rng() & 31));
+        px(x, y).g = static_cast<std::uint8_t>(px(x, y).g ^ (rng() & 63));
+      }
+    images.push_back(std::move(px));
+  }
+  return images;
+}
+
+// `rows` runs of n points on the plane z = depth: run r from (x0, y0 + r dy) in steps of dx, or,
+// with `shear`, each run also shifted by shear r in x.
+template <class T>
+std::vector<mpr::Vec3<T>> tile_points(T x0, T y0, T dx, T dy, T shear, T depth, std::size_t rows, std::size_t n) {
+  std::vector<mpr::Vec3<T>> p;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t i = 0; i < n; ++i)
+      p.emplace_back(x0 + shear * static_cast<T>(r) + dx * static_cast<T>(i), y0 + dy * static_cast<T>(r), depth);
+  return p;
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges included, or declines", "[frame_tiles]",
+                   float, double) {
+  using T = TestType;
+  // Two cameras 0.5 apart, 200 x 60 pixels, focal length 200: on the plane z = 10 one camera
+  // pixel is 0.05 world units.
+  const auto cams = mpr_test::grid_cameras<T>(2, 1, 0.5, 200, 60, 200.0);
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, noisy_frames(mpr_test::plane_images(cams, 10.0)));
+  const mpr::FrameTable<T> table(frames);
+  const T pixel = T(0.05), depth = T(10);
+  constexpr std::size_t rows = 8;
+  struct Case {
+    const char* name;
+    T x0, y0; // the tile's first point, in camera pixels of the first camera from its centre
+    std::size_t n;
+    bool qualifies;
+    T dx = 1, dy = 1, shear = 0; // in camera pixels
+    float tolerance = 2e-6f;     // on each sum (within 1e-4 pixel of a texel the tile snaps)
+  };
+  const Case cases[] = {
+      {"inside the image", -40.3, -10.6, 64, true},
+      {"an integer shift (texels added uninterpolated)", -40.5, -10.5, 64, true},
+      {"within 1e-4 pixel of an integer shift", -40.50004, -10.49996, 64, true, 1, 1, 0, 1e-4f},
+      {"an integer shift across the edges", -105.5, -33.5, 220, true},
+      {"across the left and right edges", -105.2, -3.25, 220, true},
+      {"across the top edge", 7.7, -33.4, 50, true},
+      {"across the bottom edge", -20.1, 25.9, 50, true},
+      {"wholly below the image", 0.4, 31.2, 40, true},
+      {"half the cameras' scale, across the edges", -101.3, -29.6, 60, true, 2, 2},
+      {"a 960x540 view of 1400x800 cameras", -60.2, -11.1, 90, true, 1.4583333, 1.4583333},
+      {"twice the cameras' scale", -30.7, -2.2, 100, true, 0.5, 0.5},
+      {"rows two camera pixels apart", 0.3, -5.2, 40, true, 1, 2},
+      {"pixels three camera pixels apart", 0.3, -5.2, 40, false, 3, 3},
+      {"rows sheared", 0.3, -5.2, 40, false, 1, 1, 0.5},
+  };
+  mpr::TileWork work;
+  for (const Case& k : cases) {
+    INFO(k.name);
+    const auto points =
+        tile_points<T>(k.x0 * pixel, k.y0 * pixel, k.dx * pixel, k.dy * pixel, k.shear * pixel, depth, rows, k.n);
+    const std::size_t total = rows * k.n;
+    for (const auto& c : table.cameras()) {
+      std::vector<float> acc(3 * total, 0.25f), weight(total, 0.5f), steps(rows * (k.n + 1), 0.0f);
+      std::vector<float> acc_runs = acc, weight_runs = weight;
+      const bool added =
+          mpr::shift_add_tile(table, c, points.data(), rows, k.n, acc.data(), weight.data(), steps.data(), work);
+      CHECK(added == k.qualifies);
+      if (!added) {
+        CHECK(acc == acc_runs);
+        CHECK(weight == weight_runs);
+        CHECK(std::all_of(steps.begin(), steps.end(), [](float s) { return s == 0; }));
+        continue;
+      }
+      mpr::add_weight_steps(steps.data(), rows, k.n, weight.data());
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t o = r * k.n;
+        if (!mpr::shift_add(table, c, points.data() + o, k.n, acc_runs.data() + 3 * o, weight_runs.data() + o))
+          table.add_per_ray(c, points.data() + o, k.n, acc_runs.data() + 3 * o, weight_runs.data() + o);
+      }
+      int worse = 0;
+      for (std::size_t i = 0; i < total; ++i) {
+        worse += weight[i] != weight_runs[i] ? 1 : 0;
+        for (std::size_t j = 0; j < 3; ++j)
+          worse += std::abs(acc[3 * i + j] - acc_runs[3 * i + j]) <= k.tolerance ? 0 : 1;
+      }
+      CHECK(worse == 0);
+    }
+  }
+}
