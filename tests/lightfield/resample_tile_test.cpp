@@ -115,3 +115,60 @@ TEST_CASE("resample_tile: every level adds each row's blend of its two resampled
   SECTION("8-bit sRGB codes") { check_resample_tile<std::uint8_t>(); }
   SECTION("float channels") { check_resample_tile<float>(); }
 }
+
+TEST_CASE("resample_blend: every level blends two resampled rows into one, weighted, groups kept between rows",
+          "[resample_tile]") {
+  using LD = long double;
+  std::mt19937_64 rng(960);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const mpr_test::ChannelValues<std::uint8_t> channels;
+  const auto value = [&](std::uint8_t c) -> LD { return channels.value(c); };
+  constexpr float kSentinel = -12345.0f;
+  constexpr std::size_t kGuard = 17, width = 300, height = 6;
+  std::vector<std::uint8_t> image(3 * width * height);
+  for (std::uint8_t& c : image) c = static_cast<std::uint8_t>(rng() % 256);
+  int failures = 0, calls = 0;
+  mpr_test::for_each_simd_level([&](mpr_test::SimdLevel level) {
+    mpr::detail::ResampleTileWork work; // kept across calls: groups reused where positions repeat
+    for (const double s : {0.75, 2.0, 2.5})
+      for (const std::size_t n : {1u, 16u, 37u, 100u})
+        for (int repeat = 0; repeat < 3; ++repeat) { // the same positions twice, then half a pixel on
+          const double x = std::max(0.0, (static_cast<double>(width) - 1 - s * static_cast<double>(n - 1)) * 0.4) +
+                           (repeat == 2 ? 0.5 : 0.0);
+          const std::size_t y = static_cast<std::size_t>(repeat) % (height - 1);
+          const std::uint8_t* top = image.data() + 3 * width * y;
+          const std::uint8_t* bottom = top + 3 * width;
+          const float ay = static_cast<float>(unit(rng));
+          std::vector<float> rw(n);
+          for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
+          const bool weighted = (calls++ % 2) == 0;
+          std::vector<float> acc(3 * n + kGuard, kSentinel);
+          for (std::size_t j = 0; j < 3 * n; ++j) acc[j] = static_cast<float>(unit(rng));
+          const std::vector<float> acc0 = acc;
+          CHECK(mpr::detail::resample_blend(top, bottom, width, channels.lut, x, s, channels.scale, ay,
+                                            weighted ? rw.data() : nullptr, acc.data(), n, work, level));
+          for (std::size_t j = 3 * n; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
+          for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t k = 0; k < 3; ++k) {
+              const LD xi = LD(x) + LD(s) * LD(i);
+              const LD p = std::clamp(std::floor(xi), LD(0), LD(width) - 2);
+              const LD f = std::clamp(xi - p, LD(0), LD(1));
+              const std::size_t a = 3 * static_cast<std::size_t>(p) + k;
+              const LD sc = LD(channels.scale);
+              const LD h0 = sc * ((1 - f) * value(top[a]) + f * value(top[a + 3]));
+              const LD h1 = sc * ((1 - f) * value(bottom[a]) + f * value(bottom[a + 3]));
+              const LD r = weighted ? LD(rw[i]) : 1.0L;
+              const LD want = LD(acc0[3 * i + k]) + r * ((1 - LD(ay)) * h0 + LD(ay) * h1);
+              const LD spread =
+                  std::abs(value(top[a + 3]) - value(top[a])) + std::abs(value(bottom[a + 3]) - value(bottom[a]));
+              const LD tolerance =
+                  sc * 1e-5L * spread + 8 * LD(std::numeric_limits<float>::epsilon()) * (1 + 2 * sc * 65535);
+              if (!(std::abs(LD(acc[3 * i + k]) - want) <= tolerance) && ++failures <= 5)
+                FAIL_CHECK("s " << s << " n " << n << " repeat " << repeat << " pixel " << i << " channel " << k << ": "
+                                << acc[3 * i + k] << " vs " << static_cast<double>(want));
+            }
+        }
+  });
+  CHECK(calls > 0);
+  CHECK(failures == 0);
+}

@@ -153,6 +153,10 @@ MUTATIONS = [
     M("tile_reads_pairs_past_the_edge", "lightfield",
       [("include/mpr/lightfield/frame_tiles.hpp", "right = ax == 0 && ay == 0 ? 0 : 1;", "right = 0;")],
       ["lightfield"], "a 2-D shift takes the image's last column into the block where it interpolates past it"),
+    M("resample_groups_serve_other_positions", "lightfield",
+      [("include/mpr/lightfield/detail/resample_tile.hpp", "!groups.empty() && std::abs(x1 - x) <= 1e-4 &&",
+        "!groups.empty() &&")],
+      ["lightfield"], "a resampled run reuses the kept groups of a row at other positions"),
     # --- more, across the library ---
     M("nearest_tie_to_highest_index", "lightfield",
       [("include/mpr/lightfield/camera_index.hpp", "(d2 == best && i < best_index)", "(d2 == best && i > best_index)")],

@@ -11,6 +11,7 @@
 #include <mpr/lightfield/detail/projective_row.hpp>
 #include <mpr/lightfield/detail/projective_tile.hpp>
 #include <mpr/lightfield/detail/resample_row.hpp>
+#include <mpr/lightfield/detail/resample_tile.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
@@ -202,14 +203,10 @@ void add_run_edges(const FrameTable<T, Px>& table, const typename FrameTable<T, 
                     ray_weight != nullptr ? ray_weight + last : nullptr);
 }
 
-template <std::floating_point T, class Px>
-bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
-                         const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
-                         float* weight, const float* ray_weight, LerpRowCache* cache,
-                         const typename FrameTable<T, Px>::Camera* ahead) noexcept {
-  using texel_type = typename FrameTable<T, Px>::texel_type;
-  // Pixels i with 0 <= x0 + step i <= width - 1: [first, last).
-  const T right = static_cast<T>(c.width - 1);
+// The pixels i in [0, n) with 0 <= x0 + step i <= width - 1 (step > 0): [first, last).
+template <std::floating_point T>
+[[nodiscard]] std::array<std::size_t, 2> resampled_span(T x0, T step, std::size_t n, int width) noexcept {
+  const T right = static_cast<T>(width - 1);
   std::size_t first = x0 >= 0 ? 0 : static_cast<std::size_t>(std::min(std::ceil(-x0 / step), static_cast<T>(n)));
   while (first < n && x0 + step * static_cast<T>(first) < 0) ++first;
   while (first > 0 && x0 + step * static_cast<T>(first - 1) >= 0) --first;
@@ -217,6 +214,16 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
       x0 > right ? 0 : static_cast<std::size_t>(std::min(std::floor((right - x0) / step) + 1, static_cast<T>(n)));
   while (last > first && x0 + step * static_cast<T>(last - 1) > right) --last;
   while (last < n && x0 + step * static_cast<T>(last) <= right) ++last;
+  return {first, last};
+}
+
+template <std::floating_point T, class Px>
+bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
+                         const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
+                         float* weight, const float* ray_weight, LerpRowCache* cache,
+                         const typename FrameTable<T, Px>::Camera* ahead) noexcept {
+  using texel_type = typename FrameTable<T, Px>::texel_type;
+  const auto [first, last] = resampled_span(x0, step, n, c.width);
   if (first >= last) return false;
   add_run_edges(table, c, points, n, first, last, x0, step, acc, weight, ray_weight);
   thread_local LerpRowCache own;
@@ -228,19 +235,33 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
   const std::uint16_t* lut = texel_decode_table<texel_type>();
   const std::size_t width = static_cast<std::size_t>(c.width);
+  const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
+  const auto add_weights = [&]() noexcept {
+    for (std::size_t i = first; i < last; ++i)
+      if (ray_weight == nullptr || ray_weight[i] > 0) weight[i] += ray_weight != nullptr ? ray_weight[i] : 1.0f;
+  };
+  if (step >= T(1.999)) {
+    // Output rows this far apart in the camera (at an isotropic scale) share no camera row, so
+    // none is worth keeping: both are resampled and blended in one pass (where the pixels read
+    // their texels kept for the next row at the same positions: the camera's next run).
+    thread_local ResampleTileWork work;
+    if (resample_blend(row0, row1, width, lut, x, static_cast<double>(step), texel_type::scale, ay, rw, acc + 3 * first,
+                       m, work)) {
+      add_weights();
+      return true;
+    }
+  }
   const auto next = ahead_rows<T, Px>(ahead, points[first]);
   const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[0]);
   const float* h1 = h0 != nullptr
                         ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[1])
                         : nullptr;
-  const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
   if (h1 == nullptr) { // out of memory
     table.add_per_ray(c, points + first, m, acc + 3 * first, weight + first, rw);
     return true;
   }
   blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * first, m);
-  for (std::size_t i = first; i < last; ++i)
-    if (ray_weight == nullptr || ray_weight[i] > 0) weight[i] += ray_weight != nullptr ? ray_weight[i] : 1.0f;
+  add_weights();
   return true;
 }
 } // namespace detail

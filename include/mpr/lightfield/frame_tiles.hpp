@@ -59,14 +59,9 @@ TileBlock tile_block(T x0, T y0, T sx, T sy, std::size_t rows, std::size_t n, in
   while (b.r_begin < static_cast<long>(rows) && !inside(b.r_begin)) ++b.r_begin;
   b.r_end = b.r_begin;
   while (b.r_end < static_cast<long>(rows) && inside(b.r_end)) ++b.r_end;
-  const T right = static_cast<T>(width - 1);
-  const auto x = [&](long i) noexcept { return x0 + sx * static_cast<T>(i); };
-  b.first = x0 >= 0 ? 0 : static_cast<long>(std::min(std::ceil(-x0 / sx), static_cast<T>(n)));
-  while (b.first < static_cast<long>(n) && x(b.first) < 0) ++b.first;
-  while (b.first > 0 && x(b.first - 1) >= 0) --b.first;
-  b.last = x0 > right ? 0 : static_cast<long>(std::min(std::floor((right - x0) / sx) + 1, static_cast<T>(n)));
-  while (b.last > b.first && x(b.last - 1) > right) --b.last;
-  while (b.last < static_cast<long>(n) && x(b.last) <= right) ++b.last;
+  const auto [first, last] = resampled_span(x0, sx, n, width);
+  b.first = static_cast<long>(first);
+  b.last = static_cast<long>(last);
   return b;
 }
 } // namespace detail

@@ -13,6 +13,7 @@
 #include <mpr/lightfield/detail/resample_row.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -48,53 +49,146 @@ struct alignas(64) ResampleGroupStore {
   std::size_t start;
 };
 
+/// The groups of a row of n pixels at x + s i on camera rows of `width` texels, kept for the next
+/// rows at the same positions (`resample_blend`: the row groups of one camera).
+struct ResampleGroups {
+  double x = 0, s = 0;
+  std::size_t n = 0, width = 0;
+  std::vector<ResampleGroupStore> groups;
+
+  /// Whether the kept groups serve pixels at x + s i, i < n: the same row length, positions
+  /// within 1e-4 pixel (as `LerpRowCache` reuses rows).
+  [[nodiscard]] bool serve(double x1, double s1, std::size_t n1, std::size_t width1) const noexcept {
+    return n1 == n && width1 == width && !groups.empty() && std::abs(x1 - x) <= 1e-4 &&
+           std::abs(s1 - s) * static_cast<double>(n) <= 1e-4;
+  }
+};
+
 /// Working memory of `resample_tile`, one per thread; it grows to the longest rows seen.
 struct ResampleTileWork {
-  std::vector<float> h;                   // two resampled rows (the portable form)
-  std::vector<ResampleGroupStore> groups; // the groups of a block (the VBMI form)
+  std::vector<float> h;  // two resampled rows (the portable form)
+  ResampleGroups groups; // the groups of a block (the VBMI form)
 };
 
 #if defined(MPR_SIMD_X86)
-// The VBMI form: the groups first, then each output row in one pass over its groups.
-MPR_TARGET_AVX512_VBMI inline void resample_tile_codes_vbmi(const ResampleTile<std::uint8_t>& t,
-                                                            ResampleGroupStore* groups) noexcept {
-  const DecodeBytes d = load_decode_bytes(t.lut);
-  const ResampleConstants c = load_resample_constants(t.s);
-  const long last_pair = static_cast<long>(t.width) - 2;
-  const std::size_t bytes = 3 * t.width, count = (t.n + 15) / 16;
-  for (std::size_t g = 0; g < count; ++g) {
-    const ResampleGroup q = resample_group(c, t.x, t.s, 16 * g, last_pair);
+// The groups of the pixels at x + s i, i < n, into `groups` ((n + 15) / 16 of them).
+MPR_TARGET_AVX512_VBMI inline void fill_resample_groups(double x, double s, std::size_t n, std::size_t width,
+                                                        ResampleGroupStore* groups) noexcept {
+  const ResampleConstants c = load_resample_constants(s);
+  const long last_pair = static_cast<long>(width) - 2;
+  for (std::size_t g = 0; g < (n + 15) / 16; ++g) {
+    const ResampleGroup q = resample_group(c, x, s, 16 * g, last_pair);
     for (int k = 0; k < 2; ++k) _mm512_store_si512(groups[g].index[k], q.index[k]);
     for (int k = 0; k < 3; ++k) _mm512_store_ps(groups[g].f[k], q.f[k]);
     groups[g].start = q.start;
   }
-  for (std::size_t r = 0; r < t.rows; ++r) {
-    const std::uint8_t* top = t.texels + bytes * static_cast<std::size_t>(t.iy[r]);
-    const std::uint8_t* bottom = top + bytes;
-    const __m512 w0 = _mm512_set1_ps((1 - t.ay[r]) * t.scale), w1 = _mm512_set1_ps(t.ay[r] * t.scale);
-    float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
-    for (std::size_t g = 0; g < count; ++g) {
-      ResampleGroup q;
-      for (int k = 0; k < 2; ++k) q.index[k] = _mm512_load_si512(groups[g].index[k]);
-      for (int k = 0; k < 3; ++k) q.f[k] = _mm512_load_ps(groups[g].f[k]);
-      q.start = groups[g].start;
-      __m512 a[3], b[3];
-      resample_group_values(d, top, bytes, q, a);
-      resample_group_values(d, bottom, bytes, q, b);
-      const std::size_t floats = 3 * std::min<std::size_t>(16, t.n - 16 * g);
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t first = 16 * static_cast<std::size_t>(k);
-        if (floats <= first) break;
-        const __mmask16 keep =
-            floats >= first + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (floats - first)) - 1);
-        float* at = acc + 48 * g + first;
-        const __m512 sum = _mm512_fmadd_ps(w1, b[k], _mm512_fmadd_ps(w0, a[k], _mm512_maskz_loadu_ps(keep, at)));
-        _mm512_mask_storeu_ps(at, keep, sum);
+}
+
+// One output row of n pixels from camera rows top and bottom (`bytes` codes each) through the
+// stored groups: acc[3 i + k] += rw[i] ((1 - ay) scale h_top + ay scale h_bottom) (rw nullptr:
+// weight 1).
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void blend_resampled_row(const DecodeBytes& d,
+                                                                  const ResampleGroupStore* groups,
+                                                                  const std::uint8_t* top, const std::uint8_t* bottom,
+                                                                  std::size_t bytes, std::size_t n, float scale,
+                                                                  float ay, const float* rw, float* acc) noexcept {
+  const __m512 w0 = _mm512_set1_ps((1 - ay) * scale), w1 = _mm512_set1_ps(ay * scale);
+  const __m512i lane_pixel[3] = {_mm512_loadu_si512(kResamplePatterns.lane_pixel[0]),
+                                 _mm512_loadu_si512(kResamplePatterns.lane_pixel[1]),
+                                 _mm512_loadu_si512(kResamplePatterns.lane_pixel[2])};
+  for (std::size_t g = 0; g < (n + 15) / 16; ++g) {
+    ResampleGroup q;
+    for (int k = 0; k < 2; ++k) q.index[k] = _mm512_load_si512(groups[g].index[k]);
+    for (int k = 0; k < 3; ++k) q.f[k] = _mm512_load_ps(groups[g].f[k]);
+    q.start = groups[g].start;
+    __m512 a[3], b[3];
+    resample_group_values(d, top, bytes, q, a);
+    resample_group_values(d, bottom, bytes, q, b);
+    const std::size_t pixels = std::min<std::size_t>(16, n - 16 * g), floats = 3 * pixels;
+    const __m512 weights = rw != nullptr
+                               ? _mm512_maskz_loadu_ps(static_cast<__mmask16>((1u << pixels) - 1), rw + 16 * g)
+                               : _mm512_setzero_ps();
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t first = 16 * static_cast<std::size_t>(k);
+      if (floats <= first) break;
+      const __mmask16 keep =
+          floats >= first + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (floats - first)) - 1);
+      float* at = acc + 48 * g + first;
+      const __m512 old = _mm512_maskz_loadu_ps(keep, at);
+      __m512 out;
+      if (rw != nullptr) {
+        const __m512 sum = _mm512_fmadd_ps(w1, b[k], _mm512_mul_ps(w0, a[k]));
+        out = _mm512_fmadd_ps(_mm512_maskz_permutexvar_ps(0xFFFF, lane_pixel[k], weights), sum, old);
+      } else {
+        out = _mm512_fmadd_ps(w1, b[k], _mm512_fmadd_ps(w0, a[k], old));
       }
+      _mm512_mask_storeu_ps(at, keep, out);
     }
   }
 }
+
+// The VBMI form of `resample_blend` on stored groups.
+MPR_TARGET_AVX512_VBMI inline void resample_blend_codes_vbmi(const ResampleGroupStore* groups, const std::uint8_t* top,
+                                                             const std::uint8_t* bottom, std::size_t bytes,
+                                                             const std::uint16_t* lut, std::size_t n, float scale,
+                                                             float ay, const float* rw, float* acc) noexcept {
+  blend_resampled_row(load_decode_bytes(lut), groups, top, bottom, bytes, n, scale, ay, rw, acc);
+}
+
+// The VBMI form of `resample_tile`: the groups first, then each output row in one pass over them.
+MPR_TARGET_AVX512_VBMI inline void resample_tile_codes_vbmi(const ResampleTile<std::uint8_t>& t,
+                                                            ResampleGroupStore* groups) noexcept {
+  const DecodeBytes d = load_decode_bytes(t.lut);
+  fill_resample_groups(t.x, t.s, t.n, t.width, groups);
+  const std::size_t bytes = 3 * t.width;
+  for (std::size_t r = 0; r < t.rows; ++r) {
+    const std::uint8_t* top = t.texels + bytes * static_cast<std::size_t>(t.iy[r]);
+    blend_resampled_row(d, groups, top, top + bytes, bytes, t.n, t.scale, t.ay[r], nullptr,
+                        t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride);
+  }
+}
 #endif
+
+/// acc[3 i + k] += rw[i] ((1 - ay) h_0[3 i + k] + ay h_1[3 i + k]) for pixels i in [0, n) (rw
+/// nullptr: weight 1), h_0 and h_1 the camera rows `top` and `bottom` (of `width` texels)
+/// resampled at x + s i as `resample_row_portable` does: one output row of a resampled
+/// shift-and-add, both rows resampled and blended in one pass on AVX-512 with VBMI, where the
+/// pixels read their texel pairs found once for both and kept in `work.groups` for the next row
+/// at the same positions. False (nothing added) when working memory cannot grow. Preconditions
+/// as `resample_row`'s.
+template <class C>
+[[nodiscard]] bool resample_blend(const C* top, const C* bottom, std::size_t width, const std::uint16_t* lut, double x,
+                                  double s, float scale, float ay, const float* rw, float* acc, std::size_t n,
+                                  ResampleTileWork& work, SimdLevel level = simd_level()) noexcept {
+#if defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep) {
+      ResampleGroups& g = work.groups;
+      if (!g.serve(x, s, n, width)) {
+        try {
+          if (g.groups.size() < (n + 15) / 16) g.groups.resize((n + 15) / 16);
+        } catch (...) {
+          return false;
+        }
+        fill_resample_groups(x, s, n, width, g.groups.data());
+        g.x = x, g.s = s, g.n = n, g.width = width;
+      }
+      resample_blend_codes_vbmi(g.groups.data(), top, bottom, 3 * width, lut, n, scale, ay, rw, acc);
+      return true;
+    }
+  }
+#endif
+  try {
+    if (work.h.size() < 6 * n) work.h.resize(6 * n);
+  } catch (...) {
+    return false;
+  }
+  float* h = work.h.data();
+  resample_row(top, width, lut, x, s, scale, h, n, static_cast<const C*>(nullptr), level);
+  resample_row(bottom, width, lut, x, s, scale, h + 3 * n, n, static_cast<const C*>(nullptr), level);
+  blend_rows(h, h + 3 * n, 1 - ay, ay, rw, acc, n, level);
+  return true;
+}
 
 /// Adds the block `t` (see `ResampleTile`) to its accumulators at `level`; false (nothing added)
 /// when working memory cannot grow.
@@ -105,12 +199,14 @@ template <class C>
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>) {
     if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && t.s <= kResampleMaxStep) {
+      std::vector<ResampleGroupStore>& groups = work.groups.groups;
       try {
-        if (work.groups.size() < (t.n + 15) / 16) work.groups.resize((t.n + 15) / 16);
+        if (groups.size() < (t.n + 15) / 16) groups.resize((t.n + 15) / 16);
       } catch (...) {
         return false;
       }
-      resample_tile_codes_vbmi(t, work.groups.data());
+      work.groups.n = 0; // overwritten: serves no row now
+      resample_tile_codes_vbmi(t, groups.data());
       return true;
     }
   }
