@@ -223,7 +223,8 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
                          float* weight, const float* ray_weight, LerpRowCache* cache,
                          const typename FrameTable<T, Px>::Camera* ahead) noexcept {
   using texel_type = typename FrameTable<T, Px>::texel_type;
-  const auto [first, last] = resampled_span(x0, step, n, c.width);
+  const std::array<std::size_t, 2> span = resampled_span(x0, step, n, c.width);
+  const std::size_t first = span[0], last = span[1];
   if (first >= last) return false;
   add_run_edges(table, c, points, n, first, last, x0, step, acc, weight, ray_weight);
   thread_local LerpRowCache own;
