@@ -55,23 +55,6 @@ std::vector<mpr::Ray<T>> ray_row(const mpr::Vec3<T>& start, T step, std::size_t 
   return rays;
 }
 
-// 8-bit frames of `linear` with fine detail: the green code of every pixel XORed with random
-// bits (seed 9), so that any misplaced sample shows.
-std::vector<mpr::Image<mpr::Rgb8>> with_green_detail(const std::vector<mpr::Image<mpr::Color>>& linear) {
-  std::vector<mpr::Image<mpr::Rgb8>> images;
-  std::mt19937 rng(9);
-  for (const auto& img : linear) {
-    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
-    for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x) {
-        px(x, y) = mpr::to_rgb8(img(x, y));
-        px(x, y).g = static_cast<std::uint8_t>(px(x, y).g ^ (rng() & 63));
-      }
-    images.push_back(std::move(px));
-  }
-  return images;
-}
-
 } // namespace
 
 TEST_CASE("camera frame samplers satisfy the sampler concepts", "[camera_frame_sampler]") {
@@ -432,17 +415,7 @@ TEMPLATE_TEST_CASE("the batch path renders the same image as the per-pixel path"
   // A 6x5 array of 8-bit frames with texture, viewed off-axis through a tilted focal plane.
   auto cams = mpr_test::grid_cameras<T>(6, 5, 0.7, 48, 36, 40.0);
   const auto linear = mpr_test::plane_images(cams, 15.0);
-  std::vector<mpr::Image<mpr::Rgb8>> images;
-  std::mt19937 rng(5);
-  for (const auto& img : linear) {
-    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
-    for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x) {
-        px(x, y) = mpr::to_rgb8(img(x, y));
-        px(x, y).r = static_cast<std::uint8_t>(px(x, y).r ^ (rng() & 31)); // high-frequency detail
-      }
-    images.push_back(std::move(px));
-  }
+  const auto images = mpr_test::with_detail(linear, 5, 31, 0, 0); // high-frequency detail
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
   const mpr::PinholeCamera<T> view = mpr::PinholeCamera<T>::look_at(
       mpr::Vec3<T>(T(0.3), T(-0.2), T(-1)), mpr::Vec3<T>(0, 0, 15), mpr::Vec3<T>(0, -1, 0), T(0.9), 64, 48);
@@ -494,7 +467,7 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   // that starts at an odd row and column so tiles and regions do not line up.
   auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 21, 320.0);
   const auto linear = mpr_test::plane_images(cams, 12.0);
-  const std::vector<mpr::Image<mpr::Rgb8>> images = with_green_detail(linear);
+  const std::vector<mpr::Image<mpr::Rgb8>> images = mpr_test::with_detail(linear, 9, 0, 63, 0);
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
   mpr::Mat3<T> K = cams[0].K();
   const mpr::PinholeCamera<T> straight(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), 300, 19);
@@ -602,7 +575,7 @@ TEMPLATE_TEST_CASE("far from the world origin the grid paths still give the per-
   // matches to one level there).
   auto base = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 21, 320.0);
   const auto linear = mpr_test::plane_images(base, 12.0);
-  const std::vector<mpr::Image<mpr::Rgb8>> images = with_green_detail(linear);
+  const std::vector<mpr::Image<mpr::Rgb8>> images = mpr_test::with_detail(linear, 9, 0, 63, 0);
   for (const double D : {1e3, 1e5}) {
     INFO("moved by " << D);
     const mpr::Vec3<T> off(static_cast<T>(D), static_cast<T>(0.7 * D), static_cast<T>(0.3 * D));
@@ -653,17 +626,7 @@ TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel imag
   // and 2.4 (resampled rows), on a plane parallel to the array; 8-bit frames with fine detail.
   auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 40, 320.0);
   const auto linear = mpr_test::plane_images(cams, 12.0);
-  std::vector<mpr::Image<mpr::Rgb8>> images;
-  std::mt19937 rng(11);
-  for (const auto& img : linear) {
-    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
-    for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x) {
-        px(x, y) = mpr::to_rgb8(img(x, y));
-        px(x, y).b = static_cast<std::uint8_t>(px(x, y).b ^ (rng() & 63));
-      }
-    images.push_back(std::move(px));
-  }
+  const auto images = mpr_test::with_detail(linear, 11, 0, 0, 63);
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
   for (const T step : {T(2), T(3), T(0.75), T(1.5), T(2.4)}) {
     INFO("camera pixels per output pixel: " << step);

@@ -4,6 +4,7 @@
 
 #include <mpr/lightfield.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <vector>
@@ -40,6 +41,31 @@ std::vector<mpr::PinholeCamera<T>> grid_cameras(int nx, int ny, double spacing, 
       cameras.push_back(camera_at<T>(c, width, height, focal));
     }
   return cameras;
+}
+
+/// `linear` as 8-bit frames with fine detail, so that any misplaced sample shows: each pixel's
+/// red, green and blue codes XORed with random bits under `mask_r`, `mask_g`, `mask_b` (one draw
+/// of `std::mt19937(seed)` per non-zero mask, in that order, pixel after pixel).
+inline std::vector<mpr::Image<mpr::Rgb8>> with_detail(const std::vector<mpr::Image<mpr::Color>>& linear, unsigned seed,
+                                                      unsigned mask_r, unsigned mask_g, unsigned mask_b) {
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  std::mt19937 rng(seed);
+  const auto xored = [&](std::uint8_t code, unsigned mask) {
+    return mask == 0 ? code : static_cast<std::uint8_t>(code ^ (rng() & mask));
+  };
+  for (const auto& img : linear) {
+    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        mpr::Rgb8 c = mpr::to_rgb8(img(x, y));
+        c.r = xored(c.r, mask_r);
+        c.g = xored(c.g, mask_g);
+        c.b = xored(c.b, mask_b);
+        px(x, y) = c;
+      }
+    images.push_back(std::move(px));
+  }
+  return images;
 }
 
 /// Images of the textured plane z = `depth` seen by `cameras` (linear colour).

@@ -18,23 +18,6 @@
 
 namespace {
 
-// 8-bit frames of the scene plane with noise in every channel, so that a misplaced texel shows.
-std::vector<mpr::Image<mpr::Rgb8>> noisy_frames(const std::vector<mpr::Image<mpr::Color>>& linear) {
-  std::vector<mpr::Image<mpr::Rgb8>> images;
-  std::mt19937 rng(17);
-  for (const auto& img : linear) {
-    mpr::Image<mpr::Rgb8> px(img.width(), img.height());
-    for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x) {
-        px(x, y) = mpr::to_rgb8(img(x, y));
-        px(x, y).r = static_cast<std::uint8_t>(px(x, y).r ^ (rng() & 31));
-        px(x, y).g = static_cast<std::uint8_t>(px(x, y).g ^ (rng() & 63));
-      }
-    images.push_back(std::move(px));
-  }
-  return images;
-}
-
 // `rows` runs of n points on the plane z = depth: run r from (x0, y0 + r dy) in steps of dx, or,
 // with `shear`, each run also shifted by shear r in x.
 template <class T>
@@ -54,7 +37,8 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
   // Two cameras 0.5 apart, 200 x 60 pixels, focal length 200: on the plane z = 10 one camera
   // pixel is 0.05 world units.
   const auto cams = mpr_test::grid_cameras<T>(2, 1, 0.5, 200, 60, 200.0);
-  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, noisy_frames(mpr_test::plane_images(cams, 10.0)));
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
+      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 17, 31, 63, 0));
   const mpr::FrameTable<T> table(frames);
   const T pixel = T(0.05), depth = T(10);
   constexpr std::size_t rows = 8;
