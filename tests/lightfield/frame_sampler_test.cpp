@@ -148,8 +148,10 @@ TEMPLATE_TEST_CASE("SyntheticAperture averages the cameras that see the point", 
   CHECK(close(sampler.sample({X, mpr::Vec3<T>(0, 0, 1)}), pair_mean, 1e-6f));
   check_every_path(sampler, ray_row<T>(mpr::Vec3<T>(T(0.99), 0, T(2.5)), T(0.001), 16), 8,
                    std::vector<mpr::Color>(16, pair_mean), 1e-5f);
-  // Nobody sees it: the background.
+  // Nobody sees it: the background, by every path (a row of points behind the cameras).
   CHECK(close(sampler.sample({mpr::Vec3<T>(0, 0, -1), mpr::Vec3<T>(0, 0, 1)}), config.background, 0));
+  check_every_path(sampler, ray_row<T>(mpr::Vec3<T>(T(-0.2), 0, T(-1)), T(0.02), 16), 8,
+                   std::vector<mpr::Color>(16, config.background), 0);
 }
 
 TEMPLATE_TEST_CASE("CylinderAperture weights cameras by 1 - d/r and falls back to the nearest",
