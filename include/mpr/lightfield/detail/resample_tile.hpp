@@ -64,7 +64,8 @@ struct ResampleGroups {
   }
 };
 
-/// Working memory of `resample_tile`, one per thread; it grows to the longest rows seen.
+/// Working memory of `resample_blend` and `resample_tile`, one per thread; it grows to the
+/// longest rows seen.
 struct ResampleTileWork {
   std::vector<float> h;  // two resampled rows (the portable form)
   ResampleGroups groups; // the groups of a block (the VBMI form)
@@ -135,18 +136,6 @@ MPR_TARGET_AVX512_VBMI inline void resample_blend_codes_vbmi(const ResampleGroup
   blend_resampled_row(load_decode_bytes(lut), groups, top, bottom, bytes, n, scale, ay, rw, acc);
 }
 
-// The VBMI form of `resample_tile`: the groups first, then each output row in one pass over them.
-MPR_TARGET_AVX512_VBMI inline void resample_tile_codes_vbmi(const ResampleTile<std::uint8_t>& t,
-                                                            ResampleGroupStore* groups) noexcept {
-  const DecodeBytes d = load_decode_bytes(t.lut);
-  fill_resample_groups(t.x, t.s, t.n, t.width, groups);
-  const std::size_t bytes = 3 * t.width;
-  for (std::size_t r = 0; r < t.rows; ++r) {
-    const std::uint8_t* top = t.texels + bytes * static_cast<std::size_t>(t.iy[r]);
-    blend_resampled_row(d, groups, top, top + bytes, bytes, t.n, t.scale, t.ay[r], nullptr,
-                        t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride);
-  }
-}
 #endif
 
 /// acc[3 i + k] += rw[i] ((1 - ay) h_0[3 i + k] + ay h_1[3 i + k]) for pixels i in [0, n) (rw
@@ -190,41 +179,20 @@ template <class C>
   return true;
 }
 
-/// Adds the block `t` (see `ResampleTile`) to its accumulators at `level`; false (nothing added)
-/// when working memory cannot grow.
+/// Adds the block `t` (see `ResampleTile`) to its accumulators at `level`, an output row at a
+/// time (`resample_blend`: on AVX-512 with VBMI the groups are found for the first row and kept
+/// for the others); false (nothing added) when working memory cannot grow.
 template <class C>
 [[nodiscard]] bool resample_tile(const ResampleTile<C>& t, ResampleTileWork& work,
                                  SimdLevel level = simd_level()) noexcept {
-  if (t.rows == 0 || t.n == 0) return true;
-#if defined(MPR_SIMD_X86)
-  if constexpr (std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && t.s <= kResampleMaxStep) {
-      std::vector<ResampleGroupStore>& groups = work.groups.groups;
-      try {
-        if (groups.size() < (t.n + 15) / 16) groups.resize((t.n + 15) / 16);
-      } catch (...) {
-        return false;
-      }
-      work.groups.n = 0; // overwritten: serves no row now
-      resample_tile_codes_vbmi(t, groups.data());
-      return true;
-    }
-  }
-#endif
-  try {
-    if (work.h.size() < 6 * t.n) work.h.resize(6 * t.n);
-  } catch (...) {
-    return false;
-  }
-  float* h0 = work.h.data();
-  float* h1 = h0 + 3 * t.n;
   const std::size_t stride = 3 * t.width;
   for (std::size_t r = 0; r < t.rows; ++r) {
     const C* top = t.texels + stride * static_cast<std::size_t>(t.iy[r]);
-    resample_row(top, t.width, t.lut, t.x, t.s, t.scale, h0, t.n, static_cast<const C*>(nullptr), level);
-    resample_row(top + stride, t.width, t.lut, t.x, t.s, t.scale, h1, t.n, static_cast<const C*>(nullptr), level);
-    blend_rows(h0, h1, 1 - t.ay[r], t.ay[r], nullptr, t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride, t.n,
-               level);
+    // Only the first row can ask for memory (the others have the same length): a failure adds
+    // nothing.
+    if (!resample_blend(top, top + stride, t.width, t.lut, t.x, t.s, t.scale, t.ay[r], nullptr,
+                        t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride, t.n, work, level))
+      return false;
   }
   return true;
 }
