@@ -89,9 +89,6 @@ ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) no
   return {texel->c, texel[ahead->width].c};
 }
 
-// The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy + 1 (ay the
-// vertical offset): pixels whose texel pairs lie inside the row are blended from two resampled
-// rows (`LerpRowCache::resampled`), the others go ray by ray. False when none lies inside.
 // Pixels [0, first) and [last, n) of a run that camera c sees at x = x0 + step i (step > 0),
 // around the part added by shift-and-add: those whose x lies within 0.01 pixel of the image's
 // columns [-0.5, width - 0.5) go ray by ray; those beyond are outside c's image (the run's affine
@@ -124,9 +121,13 @@ template <std::floating_point T>
   return {first, last};
 }
 
+// The rest of `shift_add` for a run seen at x0 + step i on camera rows iy, iy1 (iy + 1, or the
+// same row in the image's border rows; ay the vertical offset): pixels whose texel pairs lie
+// inside the row are blended from two resampled rows (`LerpRowCache::resampled`), the others go
+// ray by ray. False when none lies inside.
 template <std::floating_point T, class Px>
 bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
-                         const Vec3<T>* points, std::size_t n, T x0, T step, int iy, float ay, float* acc,
+                         const Vec3<T>* points, std::size_t n, T x0, T step, int iy, int iy1, float ay, float* acc,
                          float* weight, const float* ray_weight, LerpRowCache* cache,
                          const typename FrameTable<T, Px>::Camera* ahead) noexcept {
   using texel_type = typename FrameTable<T, Px>::texel_type;
@@ -140,7 +141,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const std::size_t m = last - first;
   const double x = static_cast<double>(x0) + static_cast<double>(step) * static_cast<double>(first);
   const auto* row0 = c.texels[static_cast<std::ptrdiff_t>(iy) * c.width].c;
-  const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy + 1) * c.width].c;
+  const auto* row1 = c.texels[static_cast<std::ptrdiff_t>(iy1) * c.width].c;
   const std::uint16_t* lut = texel_decode_table<texel_type>();
   const std::size_t width = static_cast<std::size_t>(c.width);
   const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
@@ -216,10 +217,15 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   const T fx = std::floor(x0), fy = std::floor(y0);
   if (!(std::abs(fx) < T(1e8))) return false; // keeps the integer conversion in range
   const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  if (iy < 0 || iy + 1 > c.height - 1) return false; // the clamped border rows: per ray
+  // A row in the image's half-pixel border (y in [-0.5, 0) or [height - 1, height - 0.5)) reads
+  // the edge row twice, as the bilinear pixel clamps it; within the tolerance of the border's
+  // outer edge, where points may fall either side, it goes ray by ray.
+  const bool border = iy < 0 || iy + 1 > c.height - 1;
+  if (border && !(y0 >= T(-0.5) + kTolerance && y0 < static_cast<T>(c.height) - T(0.5) - kTolerance)) return false;
+  const int row_a = std::clamp(iy, 0, c.height - 1), row_b = std::clamp(iy + 1, 0, c.height - 1);
   if (resample)
-    return detail::shift_add_resampled(table, c, points, n, x0, step, iy, static_cast<float>(y0 - fy), acc, weight,
-                                       ray_weight, cache, ahead);
+    return detail::shift_add_resampled(table, c, points, n, x0, step, row_a, row_b, static_cast<float>(y0 - fy), acc,
+                                       weight, ray_weight, cache, ahead);
   const std::size_t stride = static_cast<std::size_t>(steps);
   // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
   // and added; the others (near or past the left and right edges) go ray by ray.
@@ -232,12 +238,12 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   detail::add_run_edges(table, c, points, n, i_begin, i_end, x0, steps, acc, weight, ray_weight);
   const float ax = static_cast<float>(x0 - fx), ay = static_cast<float>(y0 - fy);
   const float sc = texel_type::scale;
-  const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(iy) * c.width + ix;
-  const texel_type* b = a + c.width;
+  const texel_type* a = c.texels + static_cast<std::ptrdiff_t>(row_a) * c.width + ix;
+  const texel_type* b = c.texels + static_cast<std::ptrdiff_t>(row_b) * c.width + ix;
   // The next output row reads row iy + 2 over about the same columns: ask for it now. Short runs
   // (nearest camera, cylinder aperture) are too short for the hardware prefetcher to pick up; on
   // long ones (whole-row refocusing) it does, and extra prefetches cost time.
-  if (iy + 2 < c.height && i_end - i_begin < 1024 && stride == 1)
+  if (!border && iy + 2 < c.height && i_end - i_begin < 1024 && stride == 1)
     detail::prefetch_range(b + c.width + i_begin, b + c.width + i_end + 1);
   const std::size_t m = i_end - i_begin;
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
