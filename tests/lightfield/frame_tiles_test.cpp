@@ -4,6 +4,7 @@
 // with nothing added.
 
 #include "lightfield/frame_test_scenes.hpp"
+#include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -67,6 +68,7 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
       {"rows sheared", 0.3, -5.2, 40, false, 1, 1, 0.5},
   };
   mpr::TileWork work;
+  std::size_t deferred = 0; // blocks a batch took
   for (const Case& k : cases) {
     INFO(k.name);
     const auto points =
@@ -84,6 +86,24 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
         CHECK(std::all_of(steps.begin(), steps.end(), [](float s) { return s == 0; }));
         continue;
       }
+      // With a batch: a whole-pixel shift over whole rows is deferred, and added with
+      // `add_shifted_blocks` it gives the same sums; the edges and weights are the same at once.
+      {
+        std::vector<float> acc_b(3 * total, 0.25f), weight_b(total, 0.5f), steps_b(rows * (k.n + 1), 0.0f);
+        mpr::detail::ShiftBatch batch;
+        batch.blocks.reserve(1);
+        batch.rows.resize(1);
+        CHECK(mpr::shift_add_tile(table, c, points.data(), rows, k.n, acc_b.data(), weight_b.data(), steps_b.data(),
+                                  work, nullptr, &batch));
+        deferred += batch.blocks.size();
+        mpr::detail::add_shifted_blocks(batch, rows, mpr::Srgb8Texel::linear16(), mpr::Srgb8Texel::scale, acc_b.data(),
+                                        3 * static_cast<std::ptrdiff_t>(k.n));
+        CHECK(weight_b == weight);
+        CHECK(steps_b == steps);
+        int apart = 0;
+        for (std::size_t j = 0; j < acc.size(); ++j) apart += std::abs(acc_b[j] - acc[j]) <= 1e-6f ? 0 : 1;
+        CHECK(apart == 0);
+      }
       mpr::add_weight_steps(steps.data(), rows, k.n, weight.data());
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * k.n;
@@ -98,5 +118,30 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
       }
       CHECK(worse == 0);
     }
+  }
+  CHECK(deferred > 0);
+}
+
+TEST_CASE("add_weight_steps folds the step rows into running counts at every SIMD level", "[frame_tiles]") {
+  // Rows of every length up to two vectors and beyond, steps of whole camera counts (starts and
+  // ends of runs, several on one pixel), onto weights that are not whole.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> count(-3, 3);
+  for (const std::size_t n : {1u, 2u, 15u, 16u, 17u, 31u, 32u, 33u, 100u}) {
+    INFO("n = " << n);
+    const std::size_t rows = 3;
+    std::vector<float> steps(rows * (n + 1)), start(rows * n);
+    for (float& s : steps) s = static_cast<float>(count(rng));
+    for (std::size_t i = 0; i < start.size(); ++i) start[i] = 0.25f + static_cast<float>(i % 7);
+    std::vector<float> expected = start;
+    for (std::size_t r = 0; r < rows; ++r) {
+      float running = 0;
+      for (std::size_t i = 0; i < n; ++i) expected[r * n + i] += running += steps[r * (n + 1) + i];
+    }
+    mpr_test::for_each_simd_level([&](mpr_test::SimdLevel level) {
+      std::vector<float> weight = start;
+      mpr::add_weight_steps(steps.data(), rows, n, weight.data(), level);
+      CHECK(weight == expected);
+    });
   }
 }

@@ -189,6 +189,7 @@ public:
   void finish_all(const float* acc, const float* weight, std::size_t n, Color* out) const noexcept {
     // Color is three packed floats (static_assert in color.hpp): the outputs are one flat array.
     detail::average_rows(acc, weight, out->data(), n);
+    if (detail::min_of(weight, n) > 0) return; // every pixel seen: no background to put in
     for (std::size_t i = 0; i < n; ++i)
       if (!(weight[i] > 0)) out[i] = config_.background;
   }

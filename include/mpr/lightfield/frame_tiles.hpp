@@ -6,7 +6,9 @@
 /// interpolated once for the two output rows that read it), or one resampled block at any other
 /// (`detail::resample_tile`), instead of a shift-and-add per run (`shift_add`, frame_runs.hpp).
 
+#include <mpr/core/simd.hpp>
 #include <mpr/lightfield/detail/resample_tile.hpp>
+#include <mpr/lightfield/detail/shift_batch.hpp>
 #include <mpr/lightfield/detail/shift_tile.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -14,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace mpr {
@@ -26,16 +30,60 @@ struct TileWork {
   detail::ResampleTileWork resample; // of `detail::resample_tile`
 };
 
+namespace detail {
+// weight[i] += running + steps[0] + ... + steps[i] for i in [0, n); returns the last sum.
+inline float add_running_sums_portable(const float* steps, std::size_t n, float running, float* weight) noexcept {
+  for (std::size_t i = 0; i < n; ++i) {
+    running += steps[i];
+    weight[i] += running;
+  }
+  return running;
+}
+
+#if defined(MPR_SIMD_X86)
+// v plus v shifted up by `Lanes` lanes (zeros shifted in): one step of a running sum. The masked
+// form of the shift: GCC 12's unmasked one passes an undefined vector (GCC bug 105593).
+template <int Lanes>
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 plus_shifted(__m512 v) noexcept {
+  return _mm512_add_ps(v, _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(0xFFFF, _mm512_castps_si512(v),
+                                                                        _mm512_setzero_si512(), 16 - Lanes)));
+}
+
+// The same, 16 at a time: each vector's running sums by four shifted adds, plus the carry of the
+// vectors before (sums of whole numbers, exact in any order). Lanes past n load steps of 0, so
+// the carry (lane 15) is the last sum.
+MPR_TARGET_AVX512 inline float add_running_sums_avx512(const float* steps, std::size_t n, float running,
+                                                       float* weight) noexcept {
+  const __m512i last = _mm512_set1_epi32(15);
+  __m512 carry = _mm512_set1_ps(running);
+  for (std::size_t i = 0; i < n; i += 16) {
+    const __mmask16 keep = n - i >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (n - i)) - 1);
+    const __m512 v =
+        plus_shifted<8>(plus_shifted<4>(plus_shifted<2>(plus_shifted<1>(_mm512_maskz_loadu_ps(keep, steps + i)))));
+    const __m512 sums = _mm512_add_ps(carry, v);
+    _mm512_mask_storeu_ps(weight + i, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, weight + i), sums));
+    carry = _mm512_maskz_permutexvar_ps(0xFFFF, last, sums);
+  }
+  return _mm512_cvtss_f32(carry);
+}
+#endif
+} // namespace detail
+
 /// weight[r n + i] += steps[r (n + 1)] + ... + steps[r (n + 1) + i] for the `rows` runs of n
 /// pixels of a tile: the per-pixel counts that `shift_add_tile` leaves as steps (a difference
-/// array, two entries per run and camera instead of one per pixel), folded in.
-inline void add_weight_steps(const float* steps, std::size_t rows, std::size_t n, float* weight) noexcept {
+/// array, two entries per run and camera instead of one per pixel), folded in. The steps are
+/// whole numbers (camera counts), so the sums are exact in any order: 16 at a time on AVX-512.
+inline void add_weight_steps(const float* steps, std::size_t rows, std::size_t n, float* weight,
+                             detail::SimdLevel level = detail::simd_level()) noexcept {
   for (std::size_t r = 0; r < rows; ++r) {
-    float running = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      running += steps[r * (n + 1) + i];
-      weight[r * n + i] += running;
+#if defined(MPR_SIMD_X86)
+    if (level == detail::SimdLevel::avx512) {
+      (void)detail::add_running_sums_avx512(steps + r * (n + 1), n, 0.0f, weight + r * n);
+      continue;
     }
+#endif
+    (void)level;
+    (void)detail::add_running_sums_portable(steps + r * (n + 1), n, 0.0f, weight + r * n);
   }
 }
 
@@ -78,11 +126,17 @@ TileBlock tile_block(T x0, T y0, T sx, T sy, std::size_t rows, std::size_t n, in
 /// (`detail::add_run_edges`), runs on the image's top and bottom rows or beyond through
 /// `shift_add` one by one (or ray by ray). False (nothing added) when the tile is no such grid
 /// for c, or working memory cannot grow: then add its runs one by one. `ahead` as in
-/// `shift_add`. Preconditions: every run evenly spaced (`evenly_spaced`), bilinear filtering.
+/// `shift_add`. With a `batch` (nullptr: none) and 8-bit codes, a whole-pixel shift whose block
+/// spans the runs' whole length is not added but appended to it, while it has room (its
+/// capacity), to be added with the other cameras' (`detail::add_shifted_blocks`); its edges and
+/// weights are added now. (Blocks over part of the runs are added at once: summed row by row with
+/// the others, their pieces scatter the reads, docs/performance.md.)
+/// Preconditions: every run evenly spaced (`evenly_spaced`), bilinear filtering.
 template <std::floating_point T, class Px>
 bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
                     std::size_t rows, std::size_t n, float* acc, float* weight, float* weight_steps, TileWork& work,
-                    const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
+                    const typename FrameTable<T, Px>::Camera* ahead = nullptr,
+                    detail::ShiftBatch* batch = nullptr) noexcept {
   using Table = FrameTable<T, Px>;
   using texel_type = typename Table::texel_type;
   if (rows < 2 || n < 8 || c.distorted || c.width < 2 || c.height < 2) return false;
@@ -183,8 +237,18 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
       }
     return true;
   }
+  const auto* texels = c.texels[(iy + b.r_begin) * c.width + ix + b.first].c;
+  if constexpr (std::is_same_v<typename texel_type::channel_type, std::uint8_t>) {
+    if (batch != nullptr && ax == 0 && ay == 0 && b.first == 0 && b.last == static_cast<long>(n) &&
+        batch->blocks.size() < batch->blocks.capacity()) {
+      batch->blocks.push_back({texels, 3 * static_cast<std::ptrdiff_t>(c.width), static_cast<std::size_t>(b.r_begin),
+                               static_cast<std::size_t>(b.r_end), static_cast<std::size_t>(b.first),
+                               static_cast<std::size_t>(b.last)});
+      return true;
+    }
+  }
   detail::ShiftTile<typename texel_type::channel_type> tile;
-  tile.texels = c.texels[(iy + b.r_begin) * c.width + ix + b.first].c;
+  tile.texels = texels;
   tile.stride = 3 * static_cast<std::ptrdiff_t>(c.width);
   tile.rows = static_cast<std::size_t>(b.r_end - b.r_begin);
   tile.m = m;

@@ -96,6 +96,7 @@ private:
     std::vector<unsigned char> even;
     LerpRowCache rows;
     TileWork tiles;
+    detail::ShiftBatch shifted; // the cameras' whole-pixel shifts, added together
   };
 
   // Every camera once per tile of n points in rows of w; `fill(points, even)` gives the points
@@ -114,6 +115,14 @@ private:
     } catch (...) {
       return false;
     }
+    detail::ShiftBatch* batch = &scratch.shifted;
+    batch->blocks.clear();
+    try {
+      batch->blocks.reserve(table.size());
+      if (batch->rows.size() < table.size()) batch->rows.resize(table.size());
+    } catch (...) {
+      batch = nullptr; // each camera's shift added by itself
+    }
     scratch.rows.clear(); // rows kept from another tile may belong to frames since freed
     Vec3<T>* points = scratch.points.data();
     float* acc = scratch.acc.data();
@@ -129,7 +138,8 @@ private:
       // The next camera's rows are asked for while this one's are read (`shift_add`).
       const auto* ahead = &c != &table.cameras().back() && !(&c + 1)->distorted ? &c + 1 : nullptr;
       // The tile as one 2-D shift of the camera's image, when it is one.
-      if (all_even && shift_add_tile(table, c, points, rows, w, acc, weight, steps, scratch.tiles, ahead)) continue;
+      if (all_even && shift_add_tile(table, c, points, rows, w, acc, weight, steps, scratch.tiles, ahead, batch))
+        continue;
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
         if (scratch.even[r] && !c.distorted) {
@@ -140,6 +150,11 @@ private:
         }
         table.add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
       }
+    }
+    if (batch != nullptr && !batch->blocks.empty()) {
+      using texel_type = typename FrameTable<T, Px>::texel_type;
+      detail::add_shifted_blocks(*batch, rows, texel_decode_table<texel_type>(), texel_type::scale, acc,
+                                 3 * static_cast<std::ptrdiff_t>(w));
     }
     add_weight_steps(steps, rows, w, weight);
     table.finish_all(acc, weight, n, out.data());

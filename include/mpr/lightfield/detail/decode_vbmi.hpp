@@ -4,10 +4,12 @@
 /// with the byte permutes of AVX-512 VBMI: the table is held as two byte planes (low and high
 /// bytes of its 256 entries, four registers each), each code picks its two bytes with two-register
 /// permutes (seven index bits) and its top bit chooses between the halves; the bytes are then
-/// interleaved into words. Ten instructions for 64 codes, against two 32-code word-permute
-/// decodes (`decode16x32`, eighteen with the widening). And the horizontal row interpolation of
-/// the separable shift-and-add on top of it (`lerp_row_codes_vbmi`), alone or fused with the
-/// vertical blend of the row above (`lerp_blend_row_codes_vbmi`, the 2-D shift of shift_tile.hpp).
+/// interleaved into words (`decode16x64`: ten instructions for 64 codes, against two 32-code
+/// word-permute decodes, `decode16x32`, eighteen with the widening), or spread straight into
+/// 32-bit lanes and converted to floats (`decode_floats64`). And the horizontal row interpolation
+/// of the separable shift-and-add on top of it (`lerp_row_codes_vbmi`), alone, fused with the
+/// vertical blend of the row above (`lerp_blend_row_codes_vbmi`, the 2-D shift of
+/// shift_tile.hpp) or added to accumulators (`lerp_add_row_codes_vbmi`).
 
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
@@ -83,17 +85,55 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE __m512 words_high_ps(__m512i v) noexcep
                                   _mm512_maskz_cvtepu16_epi32(0xFFFF, _mm512_maskz_extracti64x4_epi64(0xF, v, 1)));
 }
 
-// The decoded values of the `count` (<= 64) codes at p as floats, 16 a vector; lanes at or past
-// `count` are not read and hold the value of code 0.
+/// Byte indices that spread the low and high table bytes of 64 codes (two planes, code order)
+/// into 32-bit lanes, 16 codes a vector: lane k of vector q holds the bytes (0, lo, hi, 0) of code
+/// 16 q + k, its table value times 256 -- a float exactly (below 2^24) after one conversion, with
+/// no word interleave or widening in between. `kSpreadKeep` marks the bytes taken (the others
+/// are zeroed).
+struct DecodeSpread {
+  std::uint8_t index[4][64];
+};
+
+constexpr DecodeSpread make_decode_spread() noexcept {
+  DecodeSpread s{};
+  for (int q = 0; q < 4; ++q)
+    for (int k = 0; k < 16; ++k) {
+      s.index[q][4 * k + 1] = static_cast<std::uint8_t>(16 * q + k);
+      s.index[q][4 * k + 2] = static_cast<std::uint8_t>(64 + 16 * q + k);
+    }
+  return s;
+}
+
+inline constexpr DecodeSpread kDecodeSpread = make_decode_spread();
+inline constexpr __mmask64 kSpreadKeep = 0x6666666666666666ull;
+
+/// What `decode_spread64` and `decode_floats64` return per table unit: callers fold
+/// 1 / kDecodedScale into their weights (a power of two: exact).
+inline constexpr float kDecodedScale = 256.0f;
+
+// The table values of the `count` (<= 64) codes at p times `kDecodedScale`, as 32-bit integers,
+// 16 a vector (codes 16 q .. 16 q + 15 in out[q]); lanes at or past `count` are not read and hold
+// the value of code 0. Each code picks its low and high table bytes in code order (two-register
+// permutes, the top bit choosing the half), and the two planes are spread into 32-bit lanes by
+// one two-register permute per vector: eight permutes for 64 codes.
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void decode_spread64(const DecodeBytes& d, const std::uint8_t* p,
+                                                              std::size_t count, __m512i (&out)[4]) noexcept {
+  const __m512i c = count >= 64 ? _mm512_loadu_si512(p) : _mm512_maskz_loadu_epi8((__mmask64(1) << count) - 1, p);
+  const __mmask64 top = _mm512_movepi8_mask(c);
+  const __m512i lo = _mm512_mask_blend_epi8(top, _mm512_permutex2var_epi8(d.lo[0], c, d.lo[1]),
+                                            _mm512_permutex2var_epi8(d.lo[2], c, d.lo[3]));
+  const __m512i hi = _mm512_mask_blend_epi8(top, _mm512_permutex2var_epi8(d.hi[0], c, d.hi[1]),
+                                            _mm512_permutex2var_epi8(d.hi[2], c, d.hi[3]));
+  for (int q = 0; q < 4; ++q)
+    out[q] = _mm512_maskz_permutex2var_epi8(kSpreadKeep, lo, _mm512_loadu_si512(kDecodeSpread.index[q]), hi);
+}
+
+// `decode_spread64` as floats (exact: below 2^24).
 MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void decode_floats64(const DecodeBytes& d, const std::uint8_t* p,
                                                               std::size_t count, __m512 (&out)[4]) noexcept {
-  const __m512i codes = count >= 64 ? _mm512_loadu_si512(p) : _mm512_maskz_loadu_epi8((__mmask64(1) << count) - 1, p);
-  __m512i first, second;
-  decode16x64(d, codes, first, second);
-  out[0] = words_low_ps(first);
-  out[1] = words_high_ps(first);
-  out[2] = words_low_ps(second);
-  out[3] = words_high_ps(second);
+  __m512i v[4];
+  decode_spread64(d, p, count, v);
+  for (int q = 0; q < 4; ++q) out[q] = _mm512_maskz_cvtepi32_ps(0xFFFF, v[q]);
 }
 
 // What the row pass of `lerp_row_codes_vbmi_impl` does with each 16 interpolated channels:
@@ -108,7 +148,8 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void lerp_row_codes_vbmi_impl(const std
                                                                        const std::uint8_t* ahead, const float* hp,
                                                                        float wy0, float wy1, float* acc) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
-  const __m512 w0 = _mm512_set1_ps((1 - ax) * scale), w1 = _mm512_set1_ps(ax * scale);
+  const float unit = scale / kDecodedScale;
+  const __m512 w0 = _mm512_set1_ps((1 - ax) * unit), w1 = _mm512_set1_ps(ax * unit);
   const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);
   const std::size_t codes = m + (Right ? 3 : 0); // readable codes
   __m512 cur[4];

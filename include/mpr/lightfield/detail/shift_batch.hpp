@@ -1,0 +1,135 @@
+#pragma once
+/// \file
+/// Many cameras' 2-D shifts at whole-pixel offsets added to a tile together. Each such camera
+/// adds one decoded texel per output channel (the refocus on the reference plane of rectified
+/// data: every camera of Chess at z = 1000); added a camera at a time, every accumulator of the
+/// tile is read and written once per camera. Here each output row takes, 64 channels at a time,
+/// the codes of every camera that reads it, summed in registers, and adds the sum once. The
+/// decoded values are whole multiples of the table's unit (`decode_spread64`), so the sum is
+/// exact in 32-bit integers and in its one conversion to float (up to `kShiftSumCameras` cameras
+/// at once), and the result differs from the camera-at-a-time one by float rounding only.
+
+#include <mpr/core/detail/prefetch.hpp>
+#include <mpr/core/simd.hpp>
+#include <mpr/lightfield/detail/decode_vbmi.hpp>
+#include <mpr/lightfield/detail/kernels.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mpr::detail {
+
+/// One camera's part of a tile at a whole-pixel shift: output row r in [r_begin, r_end), pixel i
+/// in [first, last) gets the camera's texel at `texels` + (r - r_begin) `stride` + 3 (i - first)
+/// (flat channels; 8-bit codes).
+struct ShiftedBlock {
+  const std::uint8_t* texels = nullptr;
+  std::ptrdiff_t stride = 0;
+  std::size_t r_begin = 0, r_end = 0, first = 0, last = 0;
+};
+
+/// The blocks of one tile, to be added together (`add_shifted_blocks`), and working memory.
+struct ShiftBatch {
+  std::vector<ShiftedBlock> blocks;
+  std::vector<const std::uint8_t*> rows; // per output row: the cameras' codes
+};
+
+/// Cameras summed in one register pass: the decoded values are below 2^24 and multiples of 2^8,
+/// so 127 of them fit a 32-bit lane, and their sum (below 2^24 units of 2^8) a float, exactly.
+inline constexpr std::size_t kShiftSumCameras = 127;
+
+/// acc[j] += scale sum_c v(rows[c][j]) for j in [0, m), v the table value of the code (`lut`):
+/// the plain loop, camera by camera.
+inline void add_code_rows_portable(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut,
+                                   float scale, float* acc, std::size_t m, SimdLevel level) noexcept {
+  for (std::size_t c = 0; c < k; ++c) add_scaled_row(rows[c], lut, scale, acc, m, level);
+}
+
+#if defined(MPR_SIMD_X86)
+/// The same on AVX-512 with VBMI: 64 channels a step, the cameras' decoded codes summed in
+/// 32-bit lanes (at most `kShiftSumCameras` at a time), converted and added once. Each camera's
+/// row is asked for a few cache lines ahead (the cameras' rows are too many streams for the
+/// hardware prefetcher).
+MPR_TARGET_AVX512_VBMI inline void add_code_rows_vbmi(const std::uint8_t* const* rows, std::size_t k,
+                                                      const std::uint16_t* lut, float scale, float* acc,
+                                                      std::size_t m) noexcept {
+  constexpr std::size_t kAhead = 256; // bytes
+  const DecodeBytes d = load_decode_bytes(lut);
+  const __m512 w = _mm512_set1_ps(scale / kDecodedScale);
+  for (std::size_t j = 0; j < m; j += 64) {
+    const std::size_t count = std::min<std::size_t>(64, m - j);
+    for (std::size_t c0 = 0; c0 < k; c0 += kShiftSumCameras) {
+      __m512i sum[4] = {_mm512_setzero_si512(), _mm512_setzero_si512(), _mm512_setzero_si512(), _mm512_setzero_si512()};
+      for (std::size_t c = c0; c < std::min(k, c0 + kShiftSumCameras); ++c) {
+        prefetch_l2(rows[c], j + kAhead);
+        __m512i v[4];
+        decode_spread64(d, rows[c] + j, count, v);
+        for (int q = 0; q < 4; ++q) sum[q] = _mm512_add_epi32(sum[q], v[q]);
+      }
+      for (std::size_t q = 0; q < 4 && 16 * q < count; ++q) {
+        const __mmask16 keep =
+            count >= 16 * q + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (count - 16 * q)) - 1);
+        float* at = acc + j + 16 * q;
+        _mm512_mask_storeu_ps(
+            at, keep, _mm512_fmadd_ps(w, _mm512_maskz_cvtepi32_ps(0xFFFF, sum[q]), _mm512_maskz_loadu_ps(keep, at)));
+      }
+    }
+  }
+}
+#endif
+
+/// `add_code_rows_portable`, or the VBMI kernel where `level` and the CPU allow. Reads
+/// rows[c][0, m); the VBMI kernel reads each row in 64-byte loads (masked at its end) and asks
+/// for lines past it (a prefetch, which never faults).
+inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut, float scale,
+                          float* acc, std::size_t m, SimdLevel level = simd_level()) noexcept {
+#if defined(MPR_SIMD_X86)
+  if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return add_code_rows_vbmi(rows, k, lut, scale, acc, m);
+#endif
+  add_code_rows_portable(rows, k, lut, scale, acc, m, level);
+}
+
+/// Adds every block of `batch` to the tile's accumulators (output row r's at acc + r
+/// `acc_stride`, pixel i's channels at 3 i), `rows` output rows: per row, the pixels that all its
+/// blocks cover in one `add_code_rows` over their cameras, each block's other pixels by itself.
+/// `batch.rows` holds at least one entry per block.
+inline void add_shifted_blocks(ShiftBatch& batch, std::size_t rows, const std::uint16_t* lut, float scale, float* acc,
+                               std::ptrdiff_t acc_stride, SimdLevel level = simd_level()) noexcept {
+  const std::span<const ShiftedBlock> blocks(batch.blocks);
+  const std::uint8_t** ptr = batch.rows.data();
+  for (std::size_t r = 0; r < rows; ++r) {
+    float* out = acc + static_cast<std::ptrdiff_t>(r) * acc_stride;
+    std::size_t k = 0, first = 0, last = static_cast<std::size_t>(-1);
+    for (const ShiftedBlock& b : blocks)
+      if (r >= b.r_begin && r < b.r_end) {
+        ++k;
+        first = std::max(first, b.first);
+        last = std::min(last, b.last);
+      }
+    if (k == 0) continue;
+    if (first >= last) first = last = 0; // no pixel common to all: each block by itself
+    // Every block's pixels before and after the common ones, then the common ones together.
+    k = 0;
+    for (const ShiftedBlock& b : blocks) {
+      if (r < b.r_begin || r >= b.r_end) continue;
+      const std::uint8_t* row = b.texels + static_cast<std::ptrdiff_t>(r - b.r_begin) * b.stride;
+      const auto piece = [&](std::size_t from, std::size_t to) noexcept {
+        const std::uint8_t* at = row + 3 * (from - b.first);
+        if (from < to) add_code_rows(&at, 1, lut, scale, out + 3 * from, 3 * (to - from), level);
+      };
+      if (first >= last) {
+        piece(b.first, b.last);
+        continue;
+      }
+      piece(b.first, first);
+      piece(last, b.last);
+      ptr[k++] = row + 3 * (first - b.first);
+    }
+    if (k > 0) add_code_rows(ptr, k, lut, scale, out + 3 * first, 3 * (last - first), level);
+  }
+}
+
+} // namespace mpr::detail
