@@ -147,7 +147,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
   const float* rw = ray_weight != nullptr ? ray_weight + first : nullptr;
   const auto add_weights = [&]() noexcept {
     for (std::size_t i = first; i < last; ++i)
-      if (ray_weight == nullptr || ray_weight[i] > 0) weight[i] += ray_weight != nullptr ? ray_weight[i] : 1.0f;
+      weight[i] += ray_weight == nullptr ? 1.0f : ray_weight[i] > 0 ? ray_weight[i] : 0.0f;
   };
   if (step >= T(1.999)) {
     // Output rows this far apart in the camera (at an isotropic scale) share no camera row, so
@@ -270,8 +270,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     }
   }
   if (ray_weight != nullptr) {
-    for (std::size_t i = i_begin; i < i_end; ++i)
-      if (ray_weight[i] > 0) weight[i] += ray_weight[i];
+    for (std::size_t i = i_begin; i < i_end; ++i) weight[i] += ray_weight[i] > 0 ? ray_weight[i] : 0.0f; // no branch
   } else {
     for (std::size_t i = i_begin; i < i_end; ++i) weight[i] += 1.0f;
   }

@@ -193,11 +193,14 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void lerp_row_codes_vbmi_impl(const std
 /// h[j] = scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), v the table value of the
 /// code (`lerp_row_portable` for 8-bit codes), 64 channels a step; each code decoded once, the
 /// values one pixel to the right taken from the decoded block and the next by a lane shift.
-/// Reads a[0, m + 3); `ahead` (nullptr: none) as in `lerp_row_portable`.
+/// Reads a[0, m + 3) (a[0, m) when ax = 0); `ahead` (nullptr: none) as in `lerp_row_portable`.
 MPR_TARGET_AVX512_VBMI inline void lerp_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float ax,
                                                        float scale, float* h, std::size_t m,
                                                        const std::uint8_t* ahead = nullptr) noexcept {
-  lerp_row_codes_vbmi_impl<RowPass::store, true>(a, lut, ax, scale, h, m, ahead, nullptr, 0, 0, nullptr);
+  if (ax == 0) // the decoded codes scaled, nothing formed to their right
+    lerp_row_codes_vbmi_impl<RowPass::store, false>(a, lut, ax, scale, h, m, ahead, nullptr, 0, 0, nullptr);
+  else
+    lerp_row_codes_vbmi_impl<RowPass::store, true>(a, lut, ax, scale, h, m, ahead, nullptr, 0, 0, nullptr);
 }
 
 /// `lerp_row_codes_vbmi` into h, and in the same pass acc[j] += wy0 hp[j] + wy1 h[j] for j in

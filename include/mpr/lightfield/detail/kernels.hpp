@@ -222,7 +222,11 @@ MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float
 /// `blend_rows_body` compiled for `level`.
 inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc, std::size_t n,
                        SimdLevel level = simd_level()) noexcept {
-  run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, n); });
+  // A weight of 0 on the second row (a vertical offset of 0): the first alone, the second not read.
+  if (w1 == 0)
+    run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h0, w0, 0.0f, rw, acc, n); });
+  else
+    run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h1, w0, w1, rw, acc, n); });
 }
 
 /// out[3 i + k] = acc[3 i + k] / weight[i] for pixels i in [0, n) with weight[i] > 0, 0 for the
