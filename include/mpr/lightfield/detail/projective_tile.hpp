@@ -228,19 +228,21 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
   thread_local TileBox box;
   const DecodeBytes d = load_decode_bytes(rows[0].lut);
   const ProjectiveRow<float, std::uint8_t>& image = rows[0];
-  // The box of the chunk from point i0 (see `chunk_box`), and the next chunk's, whose texel
-  // rows are prefetched while this one is sampled: each box row is a short stretch of its own
-  // image row, which the hardware prefetcher does not pick up.
-  // Each chunk's texels are prefetched while the chunk before it is sampled, a share per row:
-  // a box row is a short stretch of its own image row, which the hardware prefetcher does not
-  // pick up, and the software prefetches are spread out so as not to hold up the loads.
+  // The boxes of the chunk from point i0 (see `chunk_box`), of the next and of the one after:
+  // each chunk's texels are prefetched while the chunk two before it is sampled (the second
+  // chunk's before the first), a share per row: a box row is a short stretch of its own image
+  // row, which the hardware prefetcher does not pick up, and one chunk's sampling was too short
+  // to hide the memory's latency; the prefetches are spread out so as not to hold up the loads.
   ChunkBox next = chunk_box(rows, 0, n, image);
+  ChunkBox after = kTileChunk < n ? chunk_box(rows, kTileChunk, n, image) : ChunkBox{};
+  if (after.state == ChunkBox::boxed) prefetch_box(image, after, 0, after.rows);
   for (std::size_t i0 = 0; i0 < n; i0 += kTileChunk) {
     const std::size_t i1 = std::min(n, i0 + kTileChunk);
     const ChunkBox b = next;
-    next = i1 < n ? chunk_box(rows, i1, n, image) : ChunkBox{};
-    const bool prefetch = next.state == ChunkBox::boxed;
-    const int per_row = (next.rows + static_cast<int>(rows.size()) - 1) / static_cast<int>(rows.size());
+    next = after;
+    after = i1 + kTileChunk < n ? chunk_box(rows, i1 + kTileChunk, n, image) : ChunkBox{};
+    const bool prefetch = after.state == ChunkBox::boxed;
+    const int per_row = (after.rows + static_cast<int>(rows.size()) - 1) / static_cast<int>(rows.size());
     if (b.state == ChunkBox::outside) continue; // nothing of the chunk is seen
     const bool boxed = b.state == ChunkBox::boxed;
     const int x0 = b.x0, y0 = b.y0, texels = b.texels, box_rows = b.rows;
@@ -248,7 +250,7 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
     for (std::size_t r = 0; r < rows.size(); ++r) {
       float* acc_row = acc + 3 * n * r;
       float* seen_row = seen + n * r;
-      if (prefetch) prefetch_box(image, next, static_cast<int>(r) * per_row, static_cast<int>(r + 1) * per_row);
+      if (prefetch) prefetch_box(image, after, static_cast<int>(r) * per_row, static_cast<int>(r + 1) * per_row);
       for (std::size_t i = i0; i < i1; i += 16) {
         const ProjectiveLanes p = projective_lanes(rows[r], i, i1, nullptr);
         if (p.m == 0) continue;
