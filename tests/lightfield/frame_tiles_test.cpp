@@ -96,8 +96,8 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
         CHECK(mpr::shift_add_tile(table, c, points.data(), rows, k.n, acc_b.data(), weight_b.data(), steps_b.data(),
                                   work, nullptr, &batch));
         deferred += batch.blocks.size();
-        mpr::detail::add_shifted_blocks(batch, rows, mpr::Srgb8Texel::linear16(), mpr::Srgb8Texel::scale, acc_b.data(),
-                                        3 * static_cast<std::ptrdiff_t>(k.n));
+        mpr::detail::add_shifted_blocks(batch, rows, k.n, mpr::Srgb8Texel::linear16(), mpr::Srgb8Texel::scale,
+                                        acc_b.data(), 3 * static_cast<std::ptrdiff_t>(k.n));
         CHECK(weight_b == weight);
         CHECK(steps_b == steps);
         int apart = 0;

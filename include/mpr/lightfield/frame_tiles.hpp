@@ -31,13 +31,13 @@ struct TileWork {
 };
 
 namespace detail {
-// weight[i] += running + steps[0] + ... + steps[i] for i in [0, n); returns the last sum.
-inline float add_running_sums_portable(const float* steps, std::size_t n, float running, float* weight) noexcept {
+// weight[i] += steps[0] + ... + steps[i] for i in [0, n).
+inline void add_running_sums_portable(const float* steps, std::size_t n, float* weight) noexcept {
+  float running = 0;
   for (std::size_t i = 0; i < n; ++i) {
     running += steps[i];
     weight[i] += running;
   }
-  return running;
 }
 
 #if defined(MPR_SIMD_X86)
@@ -50,12 +50,10 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 plus_shifted(__m512 v) noexcept {
 }
 
 // The same, 16 at a time: each vector's running sums by four shifted adds, plus the carry of the
-// vectors before (sums of whole numbers, exact in any order). Lanes past n load steps of 0, so
-// the carry (lane 15) is the last sum.
-MPR_TARGET_AVX512 inline float add_running_sums_avx512(const float* steps, std::size_t n, float running,
-                                                       float* weight) noexcept {
+// vectors before (lane 15 of their sums; sums of whole numbers, exact in any order).
+MPR_TARGET_AVX512 inline void add_running_sums_avx512(const float* steps, std::size_t n, float* weight) noexcept {
   const __m512i last = _mm512_set1_epi32(15);
-  __m512 carry = _mm512_set1_ps(running);
+  __m512 carry = _mm512_setzero_ps();
   for (std::size_t i = 0; i < n; i += 16) {
     const __mmask16 keep = n - i >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (n - i)) - 1);
     const __m512 v =
@@ -64,7 +62,6 @@ MPR_TARGET_AVX512 inline float add_running_sums_avx512(const float* steps, std::
     _mm512_mask_storeu_ps(weight + i, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, weight + i), sums));
     carry = _mm512_maskz_permutexvar_ps(0xFFFF, last, sums);
   }
-  return _mm512_cvtss_f32(carry);
 }
 #endif
 } // namespace detail
@@ -78,12 +75,12 @@ inline void add_weight_steps(const float* steps, std::size_t rows, std::size_t n
   for (std::size_t r = 0; r < rows; ++r) {
 #if defined(MPR_SIMD_X86)
     if (level == detail::SimdLevel::avx512) {
-      (void)detail::add_running_sums_avx512(steps + r * (n + 1), n, 0.0f, weight + r * n);
+      detail::add_running_sums_avx512(steps + r * (n + 1), n, weight + r * n);
       continue;
     }
 #endif
     (void)level;
-    (void)detail::add_running_sums_portable(steps + r * (n + 1), n, 0.0f, weight + r * n);
+    detail::add_running_sums_portable(steps + r * (n + 1), n, weight + r * n);
   }
 }
 
@@ -242,8 +239,7 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
     if (batch != nullptr && ax == 0 && ay == 0 && b.first == 0 && b.last == static_cast<long>(n) &&
         batch->blocks.size() < batch->blocks.capacity()) {
       batch->blocks.push_back({texels, 3 * static_cast<std::ptrdiff_t>(c.width), static_cast<std::size_t>(b.r_begin),
-                               static_cast<std::size_t>(b.r_end), static_cast<std::size_t>(b.first),
-                               static_cast<std::size_t>(b.last)});
+                               static_cast<std::size_t>(b.r_end)});
       return true;
     }
   }

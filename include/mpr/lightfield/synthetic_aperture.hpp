@@ -153,7 +153,7 @@ private:
     }
     if (batch != nullptr && !batch->blocks.empty()) {
       using texel_type = typename FrameTable<T, Px>::texel_type;
-      detail::add_shifted_blocks(*batch, rows, texel_decode_table<texel_type>(), texel_type::scale, acc,
+      detail::add_shifted_blocks(*batch, rows, w, texel_decode_table<texel_type>(), texel_type::scale, acc,
                                  3 * static_cast<std::ptrdiff_t>(w));
     }
     add_weight_steps(steps, rows, w, weight);

@@ -7,7 +7,9 @@
 /// the codes of every camera that reads it, summed in registers, and adds the sum once. The
 /// decoded values are whole multiples of the table's unit (`decode_spread64`), so the sum is
 /// exact in 32-bit integers and in its one conversion to float (up to `kShiftSumCameras` cameras
-/// at once), and the result differs from the camera-at-a-time one by float rounding only.
+/// at once), and the result differs from the camera-at-a-time one by float rounding only. Blocks
+/// cover whole runs: partial ones, whose pixels outside the shared span would go camera by camera
+/// per row, scattered the reads and were slower (docs/performance.md).
 
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
@@ -17,18 +19,17 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 namespace mpr::detail {
 
-/// One camera's part of a tile at a whole-pixel shift: output row r in [r_begin, r_end), pixel i
-/// in [first, last) gets the camera's texel at `texels` + (r - r_begin) `stride` + 3 (i - first)
+/// One camera's part of a tile at a whole-pixel shift, over whole runs: output row r in
+/// [r_begin, r_end), pixel i gets the camera's texel at `texels` + (r - r_begin) `stride` + 3 i
 /// (flat channels; 8-bit codes).
 struct ShiftedBlock {
   const std::uint8_t* texels = nullptr;
   std::ptrdiff_t stride = 0;
-  std::size_t r_begin = 0, r_end = 0, first = 0, last = 0;
+  std::size_t r_begin = 0, r_end = 0;
 };
 
 /// The blocks of one tile, to be added together (`add_shifted_blocks`), and working memory.
@@ -92,43 +93,19 @@ inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const 
   add_code_rows_portable(rows, k, lut, scale, acc, m, level);
 }
 
-/// Adds every block of `batch` to the tile's accumulators (output row r's at acc + r
-/// `acc_stride`, pixel i's channels at 3 i), `rows` output rows: per row, the pixels that all its
-/// blocks cover in one `add_code_rows` over their cameras, each block's other pixels by itself.
-/// `batch.rows` holds at least one entry per block.
-inline void add_shifted_blocks(ShiftBatch& batch, std::size_t rows, const std::uint16_t* lut, float scale, float* acc,
-                               std::ptrdiff_t acc_stride, SimdLevel level = simd_level()) noexcept {
-  const std::span<const ShiftedBlock> blocks(batch.blocks);
+/// Adds every block of `batch` to the tile's accumulators, `rows` output rows of n pixels
+/// (output row r's at acc + r `acc_stride`, pixel i's channels at 3 i): per row, one
+/// `add_code_rows` over the cameras whose blocks cover it. `batch.rows` holds at least one entry
+/// per block.
+inline void add_shifted_blocks(ShiftBatch& batch, std::size_t rows, std::size_t n, const std::uint16_t* lut,
+                               float scale, float* acc, std::ptrdiff_t acc_stride,
+                               SimdLevel level = simd_level()) noexcept {
   const std::uint8_t** ptr = batch.rows.data();
   for (std::size_t r = 0; r < rows; ++r) {
-    float* out = acc + static_cast<std::ptrdiff_t>(r) * acc_stride;
-    std::size_t k = 0, first = 0, last = static_cast<std::size_t>(-1);
-    for (const ShiftedBlock& b : blocks)
-      if (r >= b.r_begin && r < b.r_end) {
-        ++k;
-        first = std::max(first, b.first);
-        last = std::min(last, b.last);
-      }
-    if (k == 0) continue;
-    if (first >= last) first = last = 0; // no pixel common to all: each block by itself
-    // Every block's pixels before and after the common ones, then the common ones together.
-    k = 0;
-    for (const ShiftedBlock& b : blocks) {
-      if (r < b.r_begin || r >= b.r_end) continue;
-      const std::uint8_t* row = b.texels + static_cast<std::ptrdiff_t>(r - b.r_begin) * b.stride;
-      const auto piece = [&](std::size_t from, std::size_t to) noexcept {
-        const std::uint8_t* at = row + 3 * (from - b.first);
-        if (from < to) add_code_rows(&at, 1, lut, scale, out + 3 * from, 3 * (to - from), level);
-      };
-      if (first >= last) {
-        piece(b.first, b.last);
-        continue;
-      }
-      piece(b.first, first);
-      piece(last, b.last);
-      ptr[k++] = row + 3 * (first - b.first);
-    }
-    if (k > 0) add_code_rows(ptr, k, lut, scale, out + 3 * first, 3 * (last - first), level);
+    std::size_t k = 0;
+    for (const ShiftedBlock& b : batch.blocks)
+      if (r >= b.r_begin && r < b.r_end) ptr[k++] = b.texels + static_cast<std::ptrdiff_t>(r - b.r_begin) * b.stride;
+    if (k > 0) add_code_rows(ptr, k, lut, scale, acc + static_cast<std::ptrdiff_t>(r) * acc_stride, 3 * n, level);
   }
 }
 
