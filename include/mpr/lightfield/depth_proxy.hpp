@@ -43,7 +43,8 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 /// (`CameraFrameSet::depth_near`: nothing c sees lies nearer); the first step where the ray's
 /// depth along c's axis reaches the map's depth brackets the crossing, narrowed to 1/256 of the
 /// step and to ray depths within half the `tolerance` by regula falsi (Illinois) and
-/// interpolated.
+/// interpolated, or until a point where the ray's and the map's depths agree within 2^-10 of the
+/// `tolerance` (`detail::kDepthAgreement`).
 /// When the map's depth there differs from the ray's by more than the relative `tolerance`, the
 /// ray has only passed behind something c sees in front of it (c is occluded there) and the next
 /// camera continues the walk from that point; likewise when the ray leaves c's image. When the

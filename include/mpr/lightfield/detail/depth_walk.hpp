@@ -50,6 +50,12 @@ struct DepthSearch {
 /// tolerance (near a vanishing point).
 inline constexpr int kDepthRefineSteps = 12;
 inline constexpr int kDepthRefineLimit = 48;
+/// The narrowing also ends, on the surface, at a point where the ray's depth and the map's agree
+/// within this fraction of the tolerance (relative to the ray's depth): 2^-10, 1e-5 of the depth
+/// at the default tolerance, far below what the maps resolve. Without it the bracket's far end
+/// took a few more lookups to pull in (Chess: 6.3 refining steps a walk of sixteen lanes, 3.4
+/// with it).
+inline constexpr float kDepthAgreement = 1.0f / 1024;
 
 /// Walks `ray` from parameter `search.t` through camera c's depth map `d` (row-major, c's size;
 /// `near` its nearest depth, `CameraFrameSet::depth_near`), `tolerance` the relative depth
@@ -177,10 +183,11 @@ template <std::floating_point T, class Px>
       // a step between pixels, a depth edge, the halved end weights still shrink the
       // bracket) to 1/256 of the step and to ray depths within half the tolerance (near the
       // vanishing point a pixel spans a long stretch of the ray), then f interpolated
-      // linearly.
+      // linearly; or until a point where the depths agree (`kDepthAgreement`), the surface.
       T s0 = s, s1 = next, f0 = fs, f1 = fn, z0 = zs, z1 = zn;
       T g0 = f0, g1 = f1; // the end values regula falsi weighs (halved when an end is kept)
       const T resolution = (next - s) * T(1.0 / 256);
+      const T agree = tol * T(kDepthAgreement);
       int kept = 0; // +1: the last step moved s0, -1: it moved s1
       for (int it = 0; it < kDepthRefineLimit && (it < kDepthRefineSteps || z1 - z0 > T(0.5) * tol * z1) &&
                        (s1 - s0 > resolution || z1 - z0 > T(0.5) * tol * z1);
@@ -189,6 +196,10 @@ template <std::floating_point T, class Px>
         if (!(mid > s0 && mid < s1)) mid = T(0.5) * (s0 + s1);
         T zm = 0;
         const T fm = f(mid, zm);
+        if (std::abs(fm) <= agree * zm) {
+          t = mid;
+          return DepthWalk::hit;
+        }
         if (fm < 0) {
           s0 = mid;
           z0 = zm;

@@ -242,7 +242,9 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   const __m512 resolution = mul16(_mm512_sub_ps(s1, s0), _mm512_set1_ps(1.0f / 256));
   const __m512 half_tol = _mm512_set1_ps(0.5f * tol);
   __mmask16 kept_low = 0, kept_high = 0; // the last step moved s0 / s1
-  __mmask16 narrowing = bracketed;
+  __mmask16 narrowing = bracketed, agreed = 0;
+  __m512 t_agreed = zero;
+  const __m512 agreement = _mm512_set1_ps(tol * kDepthAgreement);
   for (int it = 0; narrowing != 0 && it < kDepthRefineLimit; ++it) {
     const __mmask16 loose = _mm512_cmp_ps_mask(_mm512_sub_ps(z1, z0), mul16(half_tol, z1), _CMP_GT_OQ);
     if (it >= kDepthRefineSteps) narrowing &= loose;
@@ -256,6 +258,11 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
     mid = _mm512_mask_blend_ps(inside, centre, mid);
     __m512 zm;
     const __m512 fm = walk_f16(h, d, width, height, smooth, mid, narrowing, zm);
+    // A point where the depths agree is the surface.
+    const __mmask16 agree = narrowing & _mm512_cmp_ps_mask(_mm512_abs_ps(fm), mul16(agreement, zm), _CMP_LE_OQ);
+    agreed |= agree;
+    t_agreed = _mm512_mask_mov_ps(t_agreed, agree, mid);
+    narrowing &= static_cast<__mmask16>(~agree);
     const __mmask16 below = narrowing & _mm512_cmp_ps_mask(fm, zero, _CMP_LT_OQ);
     const __mmask16 above = narrowing & ~below;
     s0 = _mm512_mask_blend_ps(below, s0, mid);
@@ -273,14 +280,15 @@ MPR_TARGET_AVX512 void walk_lanes16(const Camera& c, const float* d, float near,
   }
   // A crossing within the tolerance is the surface; else c is occluded from s0 on.
   const __m512 limit = mul16(tolerance16, z1);
-  const __mmask16 crossed =
-      bracketed & _mm512_cmp_ps_mask(f1, limit, _CMP_LE_OQ) & _mm512_cmp_ps_mask(neg16(f0), limit, _CMP_LE_OQ);
+  const __mmask16 crossed = bracketed & ~agreed & _mm512_cmp_ps_mask(f1, limit, _CMP_LE_OQ) &
+                            _mm512_cmp_ps_mask(neg16(f0), limit, _CMP_LE_OQ);
   const __m512 denom = _mm512_sub_ps(f1, f0);
   const __m512 cross = _mm512_add_ps(s0, mul16(_mm512_sub_ps(s1, s0), _mm512_div_ps(neg16(f0), denom)));
   search.t = _mm512_mask_mov_ps(search.t, crossed,
                                 _mm512_mask_blend_ps(_mm512_cmp_ps_mask(denom, zero, _CMP_GT_OQ), s1, cross));
-  search.pass(bracketed & ~crossed, s0);
-  hit |= crossed;
+  search.t = _mm512_mask_mov_ps(search.t, agreed, t_agreed);
+  search.pass(bracketed & ~crossed & ~agreed, s0);
+  hit |= crossed | agreed;
   out.hit = hit;
   out.escaped = escaped;
   out.passed = walk & ~(hit | escaped);
