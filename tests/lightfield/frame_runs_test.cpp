@@ -2,7 +2,8 @@
 // image's edge rows: in the half-pixel border above the first row and below the last, a run's
 // pixels read the edge row twice (the bilinear pixel clamps it), and are added so, at the
 // cameras' scale and resampled; a run within the model's tolerance of the border's outer edge,
-// whose points may fall either side, is declined with nothing added.
+// whose points may fall either side, is declined with nothing added. Offsets within 1e-4 pixel of
+// a texel are snapped to it.
 
 #include "lightfield/frame_test_scenes.hpp"
 
@@ -37,6 +38,10 @@ TEMPLATE_TEST_CASE("shift_add adds runs in the image's half-pixel border rows as
       {"the top border row, resampled (step 1.5)", 3.7, -0.2, 1.5, true},
       {"the bottom border row at half scale", 3.7, 59.4, 2, true},
       {"the first row", 10.3, 0.0, 1, true},
+      // Offsets within 1e-4 pixel of a texel are taken as on it: the nearer texel, below or above.
+      {"just short of whole pixels both ways", 10.99999, 20.99999, 1, true},
+      {"just past whole pixels both ways", 10.00001, 20.00001, 1, true},
+      {"just short of the first row", 10.99999, -0.00001, 1, true},
       {"the last row", 10.3, 59.0, 1, true},
       {"within the tolerance of the top edge", 10.3, -0.4995, 1, false},
       {"within the tolerance of the bottom edge", 10.3, 59.4995, 1, false},

@@ -156,20 +156,12 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
         return false;
     }
   if (!(std::abs(x0) < T(1e8) && std::abs(y0) < T(1e8))) return false; // keeps the conversions in range
-  // The 2-D shift's texel and offsets; an offset within kSnap of a texel is taken as on it (an
-  // error of at most kSnap pixel), so that integer shifts (a focus on the reference plane of
-  // rectified data) add decoded texels with no interpolation (`detail::shift_tile`).
-  constexpr T kSnap = T(1e-4);
-  long ix = static_cast<long>(std::floor(x0)), iy = static_cast<long>(std::floor(y0));
-  T ax = x0 - std::floor(x0), ay = y0 - std::floor(y0);
-  if (ax < kSnap || ax > 1 - kSnap) {
-    ix += ax > 1 - kSnap ? 1 : 0;
-    ax = 0;
-  }
-  if (ay < kSnap || ay > 1 - kSnap) {
-    iy += ay > 1 - kSnap ? 1 : 0;
-    ay = 0;
-  }
+  // The 2-D shift's texel and offsets, snapped to a texel within 1e-4 pixel, so that integer
+  // shifts add decoded texels with no interpolation (`detail::shift_tile`).
+  long ix = 0, iy = 0;
+  T ax = 0, ay = 0;
+  detail::snap_to_texel(x0, ix, ax);
+  detail::snap_to_texel(y0, iy, ay);
   detail::TileBlock b;
   if (shift) { // rows reading camera rows iy + r and iy + r + 1; pixels reading texels ix + i, ix + i + 1
     // With ay = 0 a row reads one camera row; with ax = ay = 0 a pixel reads one texel (the
