@@ -891,8 +891,10 @@ TEMPLATE_TEST_CASE("prove_nearest: every variant agrees with the portable proof,
   CHECK(checked_proofs >= proved);
 }
 
-TEMPLATE_TEST_CASE("cylinder_weights: the linear falloff 1 - d / r, the AVX2 kernel equal to the portable one",
-                   "[camera_frame_kernels]", float, double) {
+TEMPLATE_TEST_CASE(
+    "cylinder_weights: the linear falloff 1 - d / r and its positive span, the SIMD kernels equal to the "
+    "portable one",
+    "[camera_frame_kernels]", float, double) {
   using T = TestType;
   std::mt19937_64 rng(sizeof(T) == 4 ? 41 : 42);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -923,8 +925,19 @@ TEMPLATE_TEST_CASE("cylinder_weights: the linear falloff 1 - d / r, the AVX2 ker
         const T cu = static_cast<T>(2 * unit(rng) - 1), cv = static_cast<T>(2 * unit(rng) - 1);
         const T inv_radius = T(1) / static_cast<T>(radius);
         std::vector<float> w(len + kGuard, kSentinel<float>);
-        mpr::detail::cylinder_weights_portable(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(), len, cu, cv,
-                                               inv_radius, w.data());
+        const auto span = mpr::detail::cylinder_weights_portable(xu.data(), xv.data(), du.data(), dv.data(),
+                                                                 inv_dd.data(), len, cu, cv, inv_radius, w.data());
+        // [first, last): from the first to one past the last positive weight (n, n: none).
+        const auto positive_span = [&](const std::vector<float>& ws) {
+          std::size_t first = len, last = len;
+          for (std::size_t i = 0; i < len; ++i)
+            if (ws[i] > 0) {
+              first = std::min(first, i);
+              last = i + 1;
+            }
+          return std::array<std::size_t, 2>{first, last};
+        };
+        if (span != positive_span(w)) fail("portable span, n=" + std::to_string(len));
         std::vector<LD> tol(len);
         for (std::size_t i = 0; i < len; ++i) {
           const std::string at =
@@ -948,21 +961,29 @@ TEMPLATE_TEST_CASE("cylinder_weights: the linear falloff 1 - d / r, the AVX2 ker
           if (w[i] != kSentinel<float>) fail("portable wrote past the end");
 #if defined(MPR_SIMD_X86)
         if constexpr (std::is_same_v<T, float>) {
-          if (cpu_avx2()) {
+          for (const Kernel level : {Kernel::avx2, Kernel::avx512}) {
+            if (!mpr_test::runs(level)) continue;
             ++simd_runs;
+            const std::string name = level == Kernel::avx2 ? "avx2" : "avx512";
             std::vector<float> w2(len + kGuard, kSentinel<float>);
-            mpr::detail::cylinder_weights_avx2(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(), len, cu, cv,
-                                               inv_radius, w2.data());
+            const auto span2 =
+                level == Kernel::avx2
+                    ? mpr::detail::cylinder_weights_avx2(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(), len,
+                                                         cu, cv, inv_radius, w2.data())
+                    : mpr::detail::cylinder_weights_avx512(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(),
+                                                           len, cu, cv, inv_radius, w2.data());
             for (std::size_t i = 0; i < len; ++i)
               if (!(std::abs(LD(w2[i]) - LD(w[i])) <= 2 * tol[i]))
-                fail("avx2 n=" + std::to_string(len) + " i=" + std::to_string(i) + ": " + std::to_string(w2[i]) +
+                fail(name + " n=" + std::to_string(len) + " i=" + std::to_string(i) + ": " + std::to_string(w2[i]) +
                      " vs portable " + std::to_string(w[i]));
+            if (span2 != positive_span(w2)) fail(name + " span, n=" + std::to_string(len));
             for (std::size_t i = len; i < len + kGuard; ++i)
-              if (w2[i] != kSentinel<float>) fail("avx2 wrote past the end");
+              if (w2[i] != kSentinel<float>) fail(name + " wrote past the end");
+            if (level != dispatched()) continue;
             std::vector<float> w3(len + kGuard, kSentinel<float>);
-            mpr::detail::cylinder_weights(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(), len, cu, cv,
-                                          inv_radius, w3.data());
-            if (dispatched() != Kernel::portable && w3 != w2) fail("cylinder_weights does not dispatch to avx2");
+            const auto span3 = mpr::detail::cylinder_weights(xu.data(), xv.data(), du.data(), dv.data(), inv_dd.data(),
+                                                             len, cu, cv, inv_radius, w3.data());
+            if (w3 != w2 || span3 != span2) fail("cylinder_weights does not dispatch to " + name);
           }
         }
 #endif

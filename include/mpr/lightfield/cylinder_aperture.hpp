@@ -14,6 +14,7 @@
 #include <mpr/lightfield/plane_rows.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -300,7 +301,7 @@ private:
 
   // Camera k's weights for row q of the group, on the segments within the row's reach of its
   // centre (`ray_weight` there; elsewhere untouched), and the rays it weighs, [s.lo[q], s.hi[q])
-  // (empty: none). A scan from each end of the segments, which stops at the cylinder's edge.
+  // (empty: none), from the span of positive weights the weights kernel returns.
   template <std::floating_point T>
   void weigh(const ArrayPlane<T>& plane, std::size_t k, std::size_t w, std::size_t q,
              GroupScratch<T>& s) const noexcept {
@@ -319,13 +320,12 @@ private:
     if (first >= last) return;
     PlaneRowScratch<T>& row = s.row[q];
     float* ray_weight = row.ray_weight.data();
-    detail::cylinder_weights(row.xu.data() + first, row.xv.data() + first, row.du.data() + first, row.dv.data() + first,
-                             row.inv_dd.data() + first, last - first, cu, cv, T(1) / static_cast<T>(radius),
-                             ray_weight + first);
-    while (first < last && !(ray_weight[first] > 0)) ++first;
-    while (last > first && !(ray_weight[last - 1] > 0)) --last;
-    s.lo[q] = first;
-    s.hi[q] = last;
+    const std::array<std::size_t, 2> positive = detail::cylinder_weights(
+        row.xu.data() + first, row.xv.data() + first, row.du.data() + first, row.dv.data() + first,
+        row.inv_dd.data() + first, last - first, cu, cv, T(1) / static_cast<T>(radius), ray_weight + first);
+    if (positive[0] >= positive[1]) return;
+    s.lo[q] = first + positive[0];
+    s.hi[q] = first + positive[1];
   }
 };
 
