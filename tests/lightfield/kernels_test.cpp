@@ -598,6 +598,50 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
   CHECK(failures == 0);
 }
 
+TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated and added times each pixel's weight",
+          "[camera_frame_kernels]") {
+#if defined(MPR_SIMD_X86)
+  if (!(cpu_avx512() && mpr::detail::cpu_has_avx512_vbmi())) {
+    WARN("no AVX-512 VBMI on this CPU: the one-pass weighted row kernel is not run");
+    return;
+  }
+  std::mt19937_64 rng(2004);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const mpr_test::ChannelValues<std::uint8_t> channels;
+  int failures = 0, runs = 0;
+  for (const std::size_t n : kLengths)
+    for (int trial = 0; trial < 3; ++trial) {
+      const std::size_t m = 3 * n;
+      // Exactly the codes the kernel may read (a[0, m + 3)), so that sanitizers see an overread.
+      std::vector<std::uint8_t> a(m + 3);
+      for (std::uint8_t& c : a) c = static_cast<std::uint8_t>(rng() % 256);
+      const float ax = trial == 0 ? 0.0f : static_cast<float>(unit(rng));
+      std::vector<float> rw(n);
+      for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
+      std::vector<float> acc0(m + kGuard, kSentinel<float>);
+      for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
+      std::vector<float> acc = acc0;
+      mpr::detail::lerp_add_weighted_row_codes_vbmi(a.data(), channels.lut, ax, channels.scale, rw.data(), acc.data(),
+                                                    m, trial == 2 ? a.data() : nullptr);
+      ++runs;
+      for (std::size_t j = m; j < m + kGuard; ++j) failures += acc[j] != kSentinel<float> ? 1 : 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        const LD s = LD(channels.scale);
+        const LD right = ax == 0 ? 0.0L : channels.value(a[j + 3]);
+        const LD h = s * ((1 - LD(ax)) * channels.value(a[j]) + LD(ax) * right);
+        const LD want = LD(acc0[j]) + LD(rw[j / 3]) * h;
+        const LD size = std::abs(LD(acc0[j])) + s * (channels.value(a[j]) + right);
+        if (!(std::abs(LD(acc[j]) - want) <= 8 * eps<float>() * size) && ++failures <= 5)
+          FAIL_CHECK("n=" << n << " ax=" << ax << " j=" << j << ": " << acc[j] << " vs " << static_cast<double>(want));
+      }
+    }
+  CHECK(failures == 0);
+  CHECK(runs > 0);
+#else
+  WARN("not an x86 build: the one-pass weighted row kernel is not compiled");
+#endif
+}
+
 TEMPLATE_TEST_CASE("plane_rays: every variant finds the plane crossing of the portable kernel and rejects bad rays",
                    "[camera_frame_kernels]", float, double) {
   using T = TestType;

@@ -274,7 +274,26 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     detail::prefetch_range(below + i_begin, below + i_end + 1);
   const std::size_t m = i_end - i_begin;
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
-  if (codes || cache != nullptr) {
+  bool one_pass = false;
+#if defined(MPR_SIMD_X86)
+  if constexpr (codes) {
+    // One camera row (a vertical offset of 0) one pixel apart, on AVX-512 with VBMI: decoded,
+    // interpolated and added (times the rays' weights) in one pass, with no working row.
+    one_pass =
+        ay == 0 && stride == 1 && detail::simd_level() == detail::SimdLevel::avx512 && detail::cpu_has_avx512_vbmi();
+    if (one_pass) {
+      const std::uint16_t* lut = texel_decode_table<texel_type>();
+      const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin]);
+      if (rw != nullptr)
+        detail::lerp_add_weighted_row_codes_vbmi(a[i_begin].c, lut, ax, sc, rw, acc + 3 * i_begin, 3 * m, next[0]);
+      else
+        detail::lerp_add_row_codes_vbmi(a[i_begin].c, lut, ax, sc, acc + 3 * i_begin, 3 * m, next[0]);
+    }
+  }
+#endif
+  if (one_pass) {
+    // added above
+  } else if (codes || cache != nullptr) {
     // The separable form: always for 8-bit codes, whose decode is then done once per texel.
     thread_local LerpRowCache own;
     LerpRowCache& rows = cache != nullptr ? *cache : own;

@@ -137,17 +137,37 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void decode_floats64(const DecodeBytes&
 }
 
 // What the row pass of `lerp_row_codes_vbmi_impl` does with each 16 interpolated channels:
-// store them to h; store them and blend them with the row above (hp) into acc; add them to acc.
-enum class RowPass { store, blend, add };
+// store them to h; store them and blend them with the row above (hp) into acc; add them to acc;
+// add them to acc times their pixel's weight (rw).
+enum class RowPass { store, blend, add, weighted_add };
+
+// Lane l of 16 channels starting at channel 3 p + o (o < 3) belongs to pixel p + (o + l) / 3: the
+// permutes that spread 16 pixel weights from p over them, one per o.
+struct WeightSpread {
+  std::int32_t index[3][16];
+};
+
+constexpr WeightSpread make_weight_spread() noexcept {
+  WeightSpread s{};
+  for (int o = 0; o < 3; ++o)
+    for (int l = 0; l < 16; ++l) s.index[o][l] = (o + l) / 3;
+  return s;
+}
+
+inline constexpr WeightSpread kWeightSpread = make_weight_spread();
 
 // The loop of the row kernels below. Without `Right` (ax == 0) the right neighbours are not
 // formed.
 template <RowPass Pass, bool Right>
-MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void lerp_row_codes_vbmi_impl(const std::uint8_t* a, const std::uint16_t* lut,
-                                                                       float ax, float scale, float* h, std::size_t m,
-                                                                       const std::uint8_t* ahead, const float* hp,
-                                                                       float wy0, float wy1, float* acc) noexcept {
+MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void
+lerp_row_codes_vbmi_impl(const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
+                         std::size_t m, const std::uint8_t* ahead, const float* hp, float wy0, float wy1, float* acc,
+                         const float* rw = nullptr) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
+  __m512i spread[3] = {};
+  if constexpr (Pass == RowPass::weighted_add)
+    for (int o = 0; o < 3; ++o) spread[o] = _mm512_loadu_si512(kWeightSpread.index[o]);
+  const std::size_t pixels = m / 3;
   const float unit = scale / kDecodedScale;
   const __m512 w0 = _mm512_set1_ps((1 - ax) * unit), w1 = _mm512_set1_ps(ax * unit);
   const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);
@@ -175,6 +195,12 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE void lerp_row_codes_vbmi_impl(const std
         __m512 sum = _mm512_fmadd_ps(w0, cur[k], _mm512_maskz_loadu_ps(keep, acc + at));
         if constexpr (Right) sum = _mm512_fmadd_ps(w1, right, sum);
         _mm512_mask_storeu_ps(acc + at, keep, sum);
+      } else if constexpr (Pass == RowPass::weighted_add) {
+        const std::size_t p = at / 3, left = pixels - p; // at < m: left >= 1
+        const __mmask16 have = left >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << left) - 1);
+        const __m512 weights = _mm512_maskz_permutexvar_ps(0xFFFF, spread[at % 3], _mm512_maskz_loadu_ps(have, rw + p));
+        const __m512 value = Right ? _mm512_fmadd_ps(w1, right, _mm512_mul_ps(w0, cur[k])) : _mm512_mul_ps(w0, cur[k]);
+        _mm512_mask_storeu_ps(acc + at, keep, _mm512_fmadd_ps(weights, value, _mm512_maskz_loadu_ps(keep, acc + at)));
       } else {
         const __m512 value = Right ? _mm512_fmadd_ps(w1, right, _mm512_mul_ps(w0, cur[k])) : _mm512_mul_ps(w0, cur[k]);
         _mm512_mask_storeu_ps(h + at, keep, value);
@@ -223,6 +249,20 @@ MPR_TARGET_AVX512_VBMI inline void lerp_add_row_codes_vbmi(const std::uint8_t* a
     lerp_row_codes_vbmi_impl<RowPass::add, false>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc);
   else
     lerp_row_codes_vbmi_impl<RowPass::add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc);
+}
+
+/// acc[j] += rw[j / 3] scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), m a multiple of
+/// 3: `lerp_add_row_codes_vbmi` with a weight per pixel (rw[0, m / 3)), spread over its three
+/// channels by a permute. Reads a[0, m + 3), a[0, m) when ax = 0.
+MPR_TARGET_AVX512_VBMI inline void lerp_add_weighted_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut,
+                                                                    float ax, float scale, const float* rw, float* acc,
+                                                                    std::size_t m,
+                                                                    const std::uint8_t* ahead = nullptr) noexcept {
+  if (ax == 0)
+    lerp_row_codes_vbmi_impl<RowPass::weighted_add, false>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc,
+                                                           rw);
+  else
+    lerp_row_codes_vbmi_impl<RowPass::weighted_add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc, rw);
 }
 
 } // namespace mpr::detail
