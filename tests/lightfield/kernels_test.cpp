@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/lightfield.hpp>
+#include <mpr/lightfield/detail/cylinder_weights.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/mpr.hpp>
 
@@ -598,7 +599,8 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
   CHECK(failures == 0);
 }
 
-TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated and added times each pixel's weight",
+TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated and added times each pixel's weight, "
+          "the weights summed",
           "[camera_frame_kernels]") {
 #if defined(MPR_SIMD_X86)
   if (!(cpu_avx512() && mpr::detail::cpu_has_avx512_vbmi())) {
@@ -620,11 +622,19 @@ TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated 
       for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
       std::vector<float> acc0(m + kGuard, kSentinel<float>);
       for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
+      if (trial == 1 && n > 0) rw[n / 2] = -0.5f; // a negative weight: not counted in the sums
       std::vector<float> acc = acc0;
+      std::vector<float> weight0(n + kGuard, kSentinel<float>);
+      for (std::size_t i = 0; i < n; ++i) weight0[i] = static_cast<float>(unit(rng));
+      std::vector<float> weight = weight0;
       mpr::detail::lerp_add_weighted_row_codes_vbmi(a.data(), channels.lut, ax, channels.scale, rw.data(), acc.data(),
-                                                    m, trial == 2 ? a.data() : nullptr);
+                                                    weight.data(), m, trial == 2 ? a.data() : nullptr);
       ++runs;
       for (std::size_t j = m; j < m + kGuard; ++j) failures += acc[j] != kSentinel<float> ? 1 : 0;
+      for (std::size_t i = n; i < n + kGuard; ++i) failures += weight[i] != kSentinel<float> ? 1 : 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!(weight[i] == weight0[i] + std::max(rw[i], 0.0f)) && ++failures <= 5)
+          FAIL_CHECK("weight n=" << n << " i=" << i << ": " << weight[i] << " vs " << weight0[i] << " + " << rw[i]);
       for (std::size_t j = 0; j < m; ++j) {
         const LD s = LD(channels.scale);
         const LD right = ax == 0 ? 0.0L : channels.value(a[j + 3]);
@@ -1214,7 +1224,7 @@ TEMPLATE_TEST_CASE("the cylinder tile path renders the per-pixel image, fallback
   CHECK(grazing_weighed > 100);
 }
 
-TEMPLATE_TEST_CASE("evenly_spaced: every variant tells evenly spaced points from others; min_of is the minimum",
+TEMPLATE_TEST_CASE("evenly_spaced: every variant tells evenly spaced points from others; min_of, widen_bounds",
                    "[camera_frame_kernels]", float, double) {
   using T = TestType;
   std::mt19937_64 rng(sizeof(T) == 4 ? 51 : 52);
@@ -1280,5 +1290,20 @@ TEMPLATE_TEST_CASE("evenly_spaced: every variant tells evenly spaced points from
       v[len - 1] = -std::numeric_limits<T>::infinity(); // in the tail
       CHECK(mpr::detail::min_of(v.data(), len) == -std::numeric_limits<T>::infinity());
     }
+  }
+  // widen_bounds: the bounds grown to every value, kept where the values lie inside them.
+  for (const std::size_t len : kLengths) {
+    std::vector<T> v(len);
+    for (T& e : v) e = static_cast<T>(100 * unit(rng) - 50);
+    if (len > 0) v[rng() % len] = T(-1000);
+    if (len > 0) v[len - 1] = T(1000); // in the tail
+    T lo = std::numeric_limits<T>::infinity(), hi = -lo;
+    mpr::detail::widen_bounds(v.data(), len, lo, hi);
+    CHECK(lo == (len == 0 ? std::numeric_limits<T>::infinity() : *std::min_element(v.begin(), v.end())));
+    CHECK(hi == (len == 0 ? -std::numeric_limits<T>::infinity() : *std::max_element(v.begin(), v.end())));
+    T wide_lo = T(-5000), wide_hi = T(5000);
+    mpr::detail::widen_bounds(v.data(), len, wide_lo, wide_hi);
+    CHECK(wide_lo == T(-5000));
+    CHECK(wide_hi == T(5000));
   }
 }

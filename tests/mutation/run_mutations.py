@@ -162,7 +162,7 @@ MUTATIONS = [
       [("include/mpr/lightfield/frame_runs.hpp", "  if (a > 1 - kSnap) ++i;", "  if (a > 1 - kSnap) i += 0;")],
       ["lightfield"], "an offset just short of a whole pixel snaps to the texel before it, a pixel off"),
     M("cylinder_span_drops_last_weight", "lightfield",
-      [("include/mpr/lightfield/detail/kernels.hpp",
+      [("include/mpr/lightfield/detail/cylinder_weights.hpp",
         "last = i + static_cast<std::size_t>(32 - __builtin_clz(positive));",
         "last = i + static_cast<std::size_t>(31 - __builtin_clz(positive));")],
       ["lightfield"], "the SIMD weights kernels end the cylinder's span before its last positive weight"),

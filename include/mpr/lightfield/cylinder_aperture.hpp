@@ -7,6 +7,7 @@
 #include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray_grid.hpp>
+#include <mpr/lightfield/detail/cylinder_weights.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -234,12 +235,9 @@ private:
       for (std::size_t i = 0; i < w; ++i) row.inv_dd[i] = T(1) / row.dd[i];
       for (std::size_t g = 0; g * kSegment < w; ++g) {
         T lu = kInf, hu = -kInf, lv = kInf, hv = -kInf;
-        for (std::size_t i = g * kSegment; i < std::min(w, (g + 1) * kSegment); ++i) {
-          lu = std::min(lu, row.xu[i]);
-          hu = std::max(hu, row.xu[i]);
-          lv = std::min(lv, row.xv[i]);
-          hv = std::max(hv, row.xv[i]);
-        }
+        const std::size_t i0 = g * kSegment, count = std::min(w, i0 + kSegment) - i0;
+        detail::widen_bounds(row.xu.data() + i0, count, lu, hu);
+        detail::widen_bounds(row.xv.data() + i0, count, lv, hv);
         s.lo_u[q][g] = lu;
         s.hi_u[q][g] = hu;
         s.lo_v[q][g] = lv;

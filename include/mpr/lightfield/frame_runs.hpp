@@ -284,10 +284,12 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     if (one_pass) {
       const std::uint16_t* lut = texel_decode_table<texel_type>();
       const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin]);
-      if (rw != nullptr)
-        detail::lerp_add_weighted_row_codes_vbmi(a[i_begin].c, lut, ax, sc, rw, acc + 3 * i_begin, 3 * m, next[0]);
-      else
-        detail::lerp_add_row_codes_vbmi(a[i_begin].c, lut, ax, sc, acc + 3 * i_begin, 3 * m, next[0]);
+      if (rw != nullptr) {
+        detail::lerp_add_weighted_row_codes_vbmi(a[i_begin].c, lut, ax, sc, rw, acc + 3 * i_begin, weight + i_begin,
+                                                 3 * m, next[0]);
+        return true; // the weights added too
+      }
+      detail::lerp_add_row_codes_vbmi(a[i_begin].c, lut, ax, sc, acc + 3 * i_begin, 3 * m, next[0]);
     }
   }
 #endif

@@ -253,16 +253,25 @@ MPR_TARGET_AVX512_VBMI inline void lerp_add_row_codes_vbmi(const std::uint8_t* a
 
 /// acc[j] += rw[j / 3] scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), m a multiple of
 /// 3: `lerp_add_row_codes_vbmi` with a weight per pixel (rw[0, m / 3)), spread over its three
-/// channels by a permute. Reads a[0, m + 3), a[0, m) when ax = 0.
+/// channels by a permute; and weight[i] += max(rw[i], 0) for the m / 3 pixels (a NaN weight adds
+/// 0). Reads a[0, m + 3), a[0, m) when ax = 0.
 MPR_TARGET_AVX512_VBMI inline void lerp_add_weighted_row_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut,
                                                                     float ax, float scale, const float* rw, float* acc,
-                                                                    std::size_t m,
+                                                                    float* weight, std::size_t m,
                                                                     const std::uint8_t* ahead = nullptr) noexcept {
   if (ax == 0)
     lerp_row_codes_vbmi_impl<RowPass::weighted_add, false>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc,
                                                            rw);
   else
     lerp_row_codes_vbmi_impl<RowPass::weighted_add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc, rw);
+  const std::size_t pixels = m / 3;
+  const __m512 zero = _mm512_setzero_ps();
+  for (std::size_t i = 0; i < pixels; i += 16) {
+    const std::size_t left = pixels - i;
+    const __mmask16 keep = left >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << left) - 1);
+    const __m512 w = _mm512_maskz_max_ps(0xFFFF, _mm512_maskz_loadu_ps(keep, rw + i), zero);
+    _mm512_mask_storeu_ps(weight + i, keep, _mm512_add_ps(_mm512_maskz_loadu_ps(keep, weight + i), w));
+  }
 }
 
 } // namespace mpr::detail
