@@ -74,6 +74,12 @@ public:
     }
   }
 
+  /// Worker w's share: `row(begin + r)` for each row r that `next(w)` hands out.
+  template <class RowFn>
+  void work(int w, int begin, const RowFn& row) noexcept {
+    for (int r = next(w); r >= 0; r = next(w)) row(begin + r);
+  }
+
 private:
   // [front, back) of a block: front in the low 32 bits, back in the high ones.
   struct alignas(64) Block {
@@ -109,9 +115,7 @@ void parallel_rows_std(int begin, int end, int threads, const RowFn& row) noexce
     for (int y = begin; y < end; ++y) row(y);
     return;
   }
-  const auto worker = [&](int w) noexcept {
-    for (int y = rows.next(w); y >= 0; y = rows.next(w)) row(begin + y);
-  };
+  const auto worker = [&](int w) noexcept { rows.work(w, begin, row); };
   std::vector<std::thread> pool;
   try {
     pool.reserve(static_cast<std::size_t>(threads - 1));
@@ -135,10 +139,7 @@ void parallel_rows_openmp(int begin, int end, int threads, const RowFn& row) noe
     return;
   }
 #pragma omp parallel num_threads(threads)
-  {
-    const int w = std::min(omp_get_thread_num(), threads - 1);
-    for (int y = rows.next(w); y >= 0; y = rows.next(w)) row(begin + y);
-  }
+  { rows.work(std::min(omp_get_thread_num(), threads - 1), begin, row); }
 }
 #endif
 

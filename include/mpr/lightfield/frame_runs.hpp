@@ -12,6 +12,7 @@
 #include <mpr/lightfield/detail/projective_tile.hpp>
 #include <mpr/lightfield/detail/resample_row.hpp>
 #include <mpr/lightfield/detail/resample_tile.hpp>
+#include <mpr/lightfield/detail/shift_tile.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/lerp_row_cache.hpp>
 
@@ -274,28 +275,14 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     detail::prefetch_range(below + i_begin, below + i_end + 1);
   const std::size_t m = i_end - i_begin;
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
-  bool one_pass = false;
-#if defined(MPR_SIMD_X86)
-  if constexpr (codes) {
-    // One camera row (a vertical offset of 0) one pixel apart, on AVX-512 with VBMI: decoded,
-    // interpolated and added (times the rays' weights) in one pass, with no working row.
-    one_pass =
-        ay == 0 && stride == 1 && detail::simd_level() == detail::SimdLevel::avx512 && detail::cpu_has_avx512_vbmi();
-    if (one_pass) {
-      const std::uint16_t* lut = texel_decode_table<texel_type>();
-      const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin]);
-      if (rw != nullptr) {
-        detail::lerp_add_weighted_row_codes_vbmi(a[i_begin].c, lut, ax, sc, rw, acc + 3 * i_begin, weight + i_begin,
-                                                 3 * m, next[0]);
-        return true; // the weights added too
-      }
-      detail::lerp_add_row_codes_vbmi(a[i_begin].c, lut, ax, sc, acc + 3 * i_begin, 3 * m, next[0]);
-    }
-  }
-#endif
-  if (one_pass) {
-    // added above
-  } else if (codes || cache != nullptr) {
+  // One camera row (a vertical offset of 0) one pixel apart: decoded, interpolated and added
+  // (times the rays' weights, whose sums are added too) in one pass where the level has it.
+  const bool one_pass =
+      ay == 0 && stride == 1 &&
+      detail::add_row_one_pass(a[i_begin].c, texel_decode_table<texel_type>(), ax, sc, rw, acc + 3 * i_begin,
+                               weight + i_begin, 3 * m, detail::ahead_rows<T, Px>(ahead, points[i_begin])[0]);
+  if (one_pass && rw != nullptr) return true; // the weights added too
+  if (!one_pass && (codes || cache != nullptr)) {
     // The separable form: always for 8-bit codes, whose decode is then done once per texel.
     thread_local LerpRowCache own;
     LerpRowCache& rows = cache != nullptr ? *cache : own;
@@ -312,7 +299,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
       table.add_per_ray(c, points + i_begin, m, acc + 3 * i_begin, weight + i_begin, rw); // out of memory
       return true;
     }
-  } else {
+  } else if (!one_pass) {
     if constexpr (!codes) {
       const detail::RowWeights w{(1 - ax) * (1 - ay) * sc, ax * (1 - ay) * sc, (1 - ax) * ay * sc, ax * ay * sc};
       detail::add_texel_rows(a + i_begin, b + i_begin, w, rw, acc + 3 * i_begin, m);

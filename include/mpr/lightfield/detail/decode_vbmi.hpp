@@ -164,10 +164,9 @@ lerp_row_codes_vbmi_impl(const std::uint8_t* a, const std::uint16_t* lut, float 
                          std::size_t m, const std::uint8_t* ahead, const float* hp, float wy0, float wy1, float* acc,
                          const float* rw = nullptr) noexcept {
   const DecodeBytes d = load_decode_bytes(lut);
-  __m512i spread[3] = {};
+  __m512i spread[3] = {}; // weighted_add: the weight permutes
   if constexpr (Pass == RowPass::weighted_add)
     for (int o = 0; o < 3; ++o) spread[o] = _mm512_loadu_si512(kWeightSpread.index[o]);
-  const std::size_t pixels = m / 3;
   const float unit = scale / kDecodedScale;
   const __m512 w0 = _mm512_set1_ps((1 - ax) * unit), w1 = _mm512_set1_ps(ax * unit);
   const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);
@@ -196,7 +195,7 @@ lerp_row_codes_vbmi_impl(const std::uint8_t* a, const std::uint16_t* lut, float 
         if constexpr (Right) sum = _mm512_fmadd_ps(w1, right, sum);
         _mm512_mask_storeu_ps(acc + at, keep, sum);
       } else if constexpr (Pass == RowPass::weighted_add) {
-        const std::size_t p = at / 3, left = pixels - p; // at < m: left >= 1
+        const std::size_t p = at / 3, left = m / 3 - p; // at < m: left >= 1
         const __mmask16 have = left >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << left) - 1);
         const __m512 weights = _mm512_maskz_permutexvar_ps(0xFFFF, spread[at % 3], _mm512_maskz_loadu_ps(have, rw + p));
         const __m512 value = Right ? _mm512_fmadd_ps(w1, right, _mm512_mul_ps(w0, cur[k])) : _mm512_mul_ps(w0, cur[k]);

@@ -39,6 +39,32 @@ struct ShiftTile {
   std::ptrdiff_t acc_stride = 0;      ///< channels from one output row's accumulators to the next
 };
 
+/// One camera row added at a horizontal offset alone (a vertical offset of 0), in one pass:
+/// acc[j] += r_i scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), i = j / 3, with r_i =
+/// rw[i] (rw nullptr: 1), and then weight[i] += max(rw[i], 0) (weight is read only with rw). On
+/// AVX-512 with VBMI and 8-bit codes (`lerp_add_row_codes_vbmi`,
+/// `lerp_add_weighted_row_codes_vbmi`): true. Elsewhere nothing is added and false is returned
+/// (the caller interpolates into a working row and blends it). Reads a[0, m + 3), a[0, m) when
+/// ax = 0; `ahead` as in `lerp_row`.
+template <class C>
+[[nodiscard]] bool add_row_one_pass(const C* a, const std::uint16_t* lut, float ax, float scale, const float* rw,
+                                    float* acc, float* weight, std::size_t m, const C* ahead = nullptr,
+                                    SimdLevel level = simd_level()) noexcept {
+#if defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
+    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
+      if (rw != nullptr)
+        lerp_add_weighted_row_codes_vbmi(a, lut, ax, scale, rw, acc, weight, m, ahead);
+      else
+        lerp_add_row_codes_vbmi(a, lut, ax, scale, acc, m, ahead);
+      return true;
+    }
+  }
+#endif
+  (void)a, (void)lut, (void)ax, (void)scale, (void)rw, (void)acc, (void)weight, (void)m, (void)ahead, (void)level;
+  return false;
+}
+
 /// Floats of working memory `shift_tile` needs for rows of m channels.
 [[nodiscard]] constexpr std::size_t shift_tile_work(std::size_t m) noexcept { return 2 * (m + 32); }
 
@@ -68,14 +94,7 @@ void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, st
     for (std::size_t r = 0; r < t.rows; ++r) {
       const C* row = t.texels + static_cast<std::ptrdiff_t>(r) * t.stride;
       float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
-#if defined(MPR_SIMD_X86)
-      if constexpr (std::is_same_v<C, std::uint8_t>) {
-        if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
-          lerp_add_row_codes_vbmi(row, t.lut, t.ax, t.scale, acc, t.m, next_ahead(r));
-          continue;
-        }
-      }
-#endif
+      if (add_row_one_pass(row, t.lut, t.ax, t.scale, nullptr, acc, nullptr, t.m, next_ahead(r), level)) continue;
       if (t.ax == 0) {
         add_scaled_row(row, t.lut, t.scale, acc, t.m, level);
         continue;
