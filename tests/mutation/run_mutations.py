@@ -68,6 +68,7 @@ def M(name, area, edits, tests, why):
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
 CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
 KER = "include/mpr/lightfield/detail/kernels.hpp"
+CYW = "include/mpr/lightfield/detail/cylinder_weights.hpp"
 DWL = "include/mpr/lightfield/detail/depth_walk_lanes.hpp"
 DLN = "include/mpr/lightfield/detail/depth_lanes.hpp"
 SA_LOOP = "for (const auto& c : table.cameras())"
@@ -85,10 +86,12 @@ MUTATIONS = [
     M("cylinder_falloff_quadratic_everywhere", "lightfield",
       [(CYL, "static_cast<float>(T(1) - d / r)", "static_cast<float>(T(1) - (d / r) * (d / r))"),
        (CYL, "static_cast<float>(T(1) - std::sqrt(d2) / r)", "static_cast<float>(T(1) - d2 / (r * r))"),
-       (KER, "std::max(T(1) - std::sqrt(d2) * inv_radius, T(0))",
+       (CYW, "std::max(T(1) - std::sqrt(d2) * inv_radius, T(0))",
         "std::max(T(1) - d2 * inv_radius * inv_radius, T(0))"),
-       (KER, "_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one)",
-        "_mm256_fnmadd_ps(_mm256_mul_ps(d2, vinv), vinv, one)")],
+       (CYW, "_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one)",
+        "_mm256_fnmadd_ps(_mm256_mul_ps(d2, vinv), vinv, one)"),
+       (CYW, "_mm512_fnmadd_ps(_mm512_maskz_sqrt_ps(0xFFFF, d2), vinv, one)",
+        "_mm512_fnmadd_ps(_mm512_mul_ps(d2, vinv), vinv, one)")],
       ["lightfield", "tools"], "1 - (d/r)^2 instead of 1 - d/r in every path"),
     M("par_t_one_field_early", "io",
       [("include/mpr/io/par_file.hpp", "parse_number(par_file, line, 19 + k)", "parse_number(par_file, line, 18 + k)")],
@@ -145,8 +148,9 @@ MUTATIONS = [
         "__m512 sum = _mm512_fmadd_ps(w0, cur[(k + 1) % 4], _mm512_maskz_loadu_ps(keep, acc + at));")],
       ["lightfield"], "a row added at a vertical offset of 0 takes its texels 16 channels too far right"),
     M("tile_snap_keeps_texel", "lightfield",
-      [("include/mpr/lightfield/frame_tiles.hpp", "ix += ax > 1 - kSnap ? 1 : 0;", "ix += 0;")],
-      ["lightfield"], "an offset just below a texel is snapped to 0 without moving to that texel"),
+      [("include/mpr/lightfield/frame_runs.hpp", "  if (a > 1 - kSnap) ++i;", "  if (a > 1 - kSnap) i += 0;")],
+      ["lightfield"], "an offset just below a texel is snapped to 0 without moving to that texel (the tile's "
+      "2-D shift and the row path share the snap)"),
     M("finish_all_background_ignored", "lightfield",
       [("include/mpr/lightfield/frame_table.hpp", "if (!(weight[i] > 0)) out[i] = config_.background;",
         "if (!(weight[i] > 0)) (void)out;")],
@@ -158,9 +162,6 @@ MUTATIONS = [
       [("include/mpr/lightfield/detail/resample_tile.hpp", "!groups.empty() && std::abs(x1 - x) <= 1e-4 &&",
         "!groups.empty() &&")],
       ["lightfield"], "a resampled run reuses the kept groups of a row at other positions"),
-    M("snap_keeps_lower_texel", "lightfield",
-      [("include/mpr/lightfield/frame_runs.hpp", "  if (a > 1 - kSnap) ++i;", "  if (a > 1 - kSnap) i += 0;")],
-      ["lightfield"], "an offset just short of a whole pixel snaps to the texel before it, a pixel off"),
     M("cylinder_span_drops_last_weight", "lightfield",
       [("include/mpr/lightfield/detail/cylinder_weights.hpp",
         "last = i + static_cast<std::size_t>(32 - __builtin_clz(positive));",
