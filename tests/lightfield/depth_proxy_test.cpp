@@ -62,6 +62,11 @@ TEMPLATE_TEST_CASE("DepthProxy refuses bad parameters and frames without depth m
   refuse({1.0, 4, 0.0}, "tolerance");
   refuse({1.0, 4, 1.0}, "tolerance");
   refuse({1.0, 4, 0.01, 0}, "march_cameras");
+  for (const double v : {0.0, 1.0, std::nan("")}) {
+    mpr::DepthProxy p;
+    p.visibility_tolerance = v;
+    refuse(p, "visibility_tolerance");
+  }
   const auto cams = mpr_test::grid_cameras<T>(2, 1, 1.0, 8, 6, 8.0);
   const auto bare = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
       cams, mpr_test::plane_images(cams, 5.0), std::vector<std::string>{"left", "right"});
@@ -139,6 +144,48 @@ TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the 
     CHECK(std::abs(static_cast<double>(hit.z()) - 5.0) < 1e-3);
     CHECK((c - mpr_test::plane_texture(static_cast<double>(hit.x()), static_cast<double>(hit.y()))).abs().maxCoeff() <
           2e-3f);
+  }
+}
+
+TEMPLATE_TEST_CASE("DepthProxy's visibility test forgives the maps' error by its own tolerance", "[depth_proxy]", float,
+                   double) {
+  using T = TestType;
+  // As above, but the third camera's map is 2% nearer than the plane (an estimated map's error,
+  // not an occluder) and its image is red. The surface search (tolerance 1%) runs in the middle
+  // camera and finds z = 5; the blend counts the third camera as seeing the point with the
+  // default visibility tolerance (3%), and as occluded with 1%: the red shows only in the first
+  // case, per ray and in the batch path alike.
+  const auto cams = mpr_test::grid_cameras<T>(3, 1, 0.5, 40, 30, 30.0);
+  std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
+  images[2] = mpr::Image<mpr::Color>(40, 30, mpr::Color(1, 0, 0));
+  std::vector<mpr::Image<float>> maps(3, mpr::Image<float>(40, 30, 5.0f));
+  maps[2] = mpr::Image<float>(40, 30, 4.9f);
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+  mpr::DepthProxy strict{2.0, 4};
+  strict.visibility_tolerance = 0.01;
+  REQUIRE(mpr::DepthProxy{}.visibility_tolerance == 0.03);
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> loose(frames, mpr::DepthProxy{2.0, 4}),
+      occluded(frames, strict);
+  std::vector<mpr::Ray<T>> rays;
+  for (const double x : {-0.2, -0.1, 0.1, 0.2}) // off the cameras' centres, which would take all the weight
+    rays.push_back(mpr::Ray<T>{mpr::Vec3<T>(static_cast<T>(x), 0, 0), mpr::Vec3<T>(0, T(0.05), 1)});
+  std::vector<mpr::Color> loose_batch(rays.size()), occluded_batch(rays.size());
+  loose.sample_rays(rays, loose_batch);
+  occluded.sample_rays(rays, occluded_batch);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const std::optional<T> t = loose.interpolation().surface(loose.table(), rays[i]);
+    REQUIRE(t.has_value());
+    const mpr::Vec3<T> hit = rays[i].at(*t);
+    INFO("ray from x = " << rays[i].origin.x());
+    CHECK(std::abs(static_cast<double>(hit.z()) - 5.0) < 1e-3);
+    const mpr::Color truth = mpr_test::plane_texture(static_cast<double>(hit.x()), static_cast<double>(hit.y()));
+    for (const mpr::Color& c : {occluded.sample(rays[i]), occluded_batch[i]})
+      CHECK((c - truth).abs().maxCoeff() < 2e-3f);
+    for (const mpr::Color& c : {loose.sample(rays[i]), loose_batch[i]}) {
+      CHECK(c.x() - truth.x() > 0.02f); // the red camera's share
+      CHECK((c - loose.sample(rays[i])).abs().maxCoeff() < 1e-5f);
+    }
   }
 }
 

@@ -235,10 +235,10 @@ MPR_TARGET_AVX512 void scan_cameras16(const Table& table, const RayLanes& lanes,
 
 /// The blend's choice of cameras for the points `point` (x, y, z rows) of the rays `lanes`,
 /// in the lanes of `blended`: every camera i (at `distance[i]` from each ray line) tried for
-/// the lanes of near[i] -- in front of the
-/// ray (positive cosine), projecting the point inside its image, and its depth map there not
-/// nearer than the point's depth by more than the relative `tolerance` -- and the `slots` with
-/// the largest cosines kept per lane (`LaneChoice`, camera -1 in an empty slot), as
+/// the lanes of near[i] -- in front of the ray (positive cosine), projecting the point inside
+/// its image, and its depth map there not nearer than the point's depth by more than the
+/// relative `tolerance` (`DepthProxy::visibility_tolerance`) -- and the `slots` with the
+/// largest cosines kept per lane (`LaneChoice`, camera -1 in an empty slot), as
 /// `DepthProxy::blend` chooses them. Undistorted cameras only; maps of fewer than 2^31 pixels.
 template <class Table>
 MPR_TARGET_AVX512 void choose_cameras16(const Table& table, const RayLanes& lanes, const float (*point)[16],

@@ -184,7 +184,8 @@ struct DepthProxyLanes {
     // the lanes, then weighed per ray.
     const int slots = p.k + 1;
     LaneChoice best;
-    choose_cameras16(table, g.r, point, g.distance, g.near, blended, slots, static_cast<T>(p.tolerance), best);
+    choose_cameras16(table, g.r, point, g.distance, g.near, blended, slots, static_cast<T>(p.visibility_tolerance),
+                     best);
     prefetch_next(table, best, slots, n);
     for (int l = 0; l < n; ++l) {
       if (escaped[l]) {
