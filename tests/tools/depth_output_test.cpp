@@ -323,6 +323,53 @@ TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, nami
   std::filesystem::remove_all(saved);
 }
 
+TEST_CASE("mpr-render --proxy sets the depth proxy but its radius, naming a bad key", "[tools]") {
+  const std::vector<std::string> base = square_on + std::vector<std::string>{"--raster", "4x3", "--interp", "depth"};
+  const mpr_cli::Job job =
+      job_of(base + std::vector<std::string>{"--proxy", "k=1,tolerance=0.02,visibility_tolerance=0.05,"
+                                                        "march_cameras=3,whole_line=0"});
+  const mpr::DepthProxy p = job.depth_proxy(1.5);
+  CHECK(p.radius == 1.5);
+  CHECK(p.k == 1);
+  CHECK(p.tolerance == 0.02);
+  CHECK(p.visibility_tolerance == 0.05);
+  CHECK(p.march_cameras == 3);
+  CHECK_FALSE(p.whole_line);
+  const mpr::DepthProxy d = job_of(base).depth_proxy(1.5), library{1.5};
+  CHECK((d.k == library.k && d.tolerance == library.tolerance &&
+         d.visibility_tolerance == library.visibility_tolerance && d.march_cameras == library.march_cameras &&
+         d.whole_line == library.whole_line));
+  // The settings reach the render: one camera blended instead of four changes the picture.
+  const Image one = mpr_cli::render_frames(job_of(base + std::vector<std::string>{"--proxy", "k=1"})).at(0);
+  const Image four = mpr_cli::render_frames(job_of(base)).at(0);
+  REQUIRE(one.width() == four.width());
+  int differ = 0;
+  for (int y = 0; y < one.height(); ++y)
+    for (int x = 0; x < one.width(); ++x) differ += std::memcmp(&one(x, y), &four(x, y), sizeof(mpr::Rgb8)) != 0;
+  CHECK(differ > one.width() * one.height() / 10);
+  // Bad items: one line naming --proxy and the key (or what is expected).
+  const std::pair<const char*, const char*> bad[] = {{"k", "KEY=VALUE"},
+                                                     {"radius=2", "unknown key 'radius'"},
+                                                     {"k=0", "--proxy k"},
+                                                     {"k=64", "--proxy k"},
+                                                     {"k=2,k=3", "--proxy k: given twice"},
+                                                     {"tolerance=1", "--proxy tolerance"},
+                                                     {"tolerance=nan", "--proxy tolerance"},
+                                                     {"visibility_tolerance=0", "--proxy visibility_tolerance"},
+                                                     {"march_cameras=0", "--proxy march_cameras"},
+                                                     {"whole_line=2", "--proxy whole_line"},
+                                                     {"k=2,,tolerance=0.02", "KEY=VALUE"}};
+  for (const auto& [item, expected] : bad) {
+    INFO(item);
+    CHECK_THROWS_WITH(job_of(base + std::vector<std::string>{"--proxy", item}),
+                      Catch::Contains("--proxy") && Catch::Contains(expected));
+  }
+  // Only where a depth proxy runs.
+  CHECK_THAT(
+      error_of(square_on + std::vector<std::string>{"--raster", "4x3", "--interp", "cylinder", "--proxy", "k=2"}),
+      Catch::Contains("--proxy") && Catch::Contains("--interp depth"));
+}
+
 TEST_CASE("mpr-render --depth-maps estimate refuses cameras whose sweep exceeds its working memory", "[tools]") {
   // Two flat 6000 x 4000 views (24 Mpixels each, under the loader's limits): the sweep of either
   // needs about 2.3 GiB (`mpr::plane_sweep_bytes`), above PlaneSweepConfig::memory_limit's

@@ -45,7 +45,7 @@ template <std::floating_point T>
 DepthSamplerVariant<T> make_depth_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p,
                                           bool ray_parameter = false) {
   if (l.frames) {
-    const mpr::FrameDepthSampler<T> s(l.frames, mpr::DepthProxy{depth_search_radius(job, l, p)});
+    const mpr::FrameDepthSampler<T> s(l.frames, job.depth_proxy(depth_search_radius(job, l, p)));
     if (ray_parameter) return s;
     return s.along_axis(*l.reference);
   }

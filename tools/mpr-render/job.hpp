@@ -6,6 +6,7 @@
 #include "animation.hpp"
 #include "aperture.hpp"
 #include "cli_args.hpp"
+#include "depth_options.hpp"
 #include "options.hpp"
 #include "output.hpp"
 #include "pixel_sampling.hpp"
@@ -13,6 +14,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/depth_proxy.hpp>
 
 #include <algorithm>
 #include <array>
@@ -61,6 +63,7 @@ struct Job {
   std::optional<Track> focal_depth;                     ///< light fields: depth of the focal (image) plane
   std::optional<std::filesystem::path> depth_maps;      ///< light fields: folder of one PFM per camera
   std::optional<mpr::PlaneSweepConfig> depth_estimate;  ///< light fields: --depth-maps estimate:, --sweep
+  mpr::DepthProxy proxy;                                ///< --proxy: the depth proxy's settings (its radius unused)
   std::string depth_maps_arg;                           ///< --depth-maps as given (the viewer's command line)
   std::optional<std::filesystem::path> save_depth_maps; ///< --save-depth-maps FOLDER: the estimated maps
   bool all_in_focus = false;                            ///< --all-in-focus: the same as --interp depth
@@ -88,6 +91,12 @@ struct Job {
 
   /// Light fields: depth maps come from a folder or from estimation (--depth-maps).
   [[nodiscard]] bool has_depth_maps() const noexcept { return depth_maps.has_value() || depth_estimate.has_value(); }
+  /// The depth proxy of --interp depth and of the depth outputs: `proxy` (--proxy) with `radius`.
+  [[nodiscard]] mpr::DepthProxy depth_proxy(double radius) const noexcept {
+    mpr::DepthProxy d = proxy;
+    d.radius = radius;
+    return d;
+  }
 };
 
 /// True when the track takes more than one value over the animation.
@@ -119,67 +128,6 @@ inline void check_animation(const Job& job) {
     throw mpr::argument_error("--frames", "nothing is animated (give a FROM:TO or keyframe value to --tilt-x, "
                                           "--tilt-y, --radius, --focal-depth, --aperture's size or --morph, or "
                                           "--morph-to VIEW)");
-}
-
-/// `--depth-maps estimate:NEAR:FAR[:PLANES]`: the plane sweep of `mpr::estimate_depth_maps` over
-/// depths NEAR to FAR along each camera's axis (world units), PLANES planes (default 64), the
-/// other settings at their defaults. Throws argument_error naming --depth-maps.
-[[nodiscard]] inline mpr::PlaneSweepConfig parse_depth_estimate(const std::string& text) {
-  const std::vector<std::string> f = split(text, ':');
-  if (f[0] != "estimate" || f.size() < 3 || f.size() > 4)
-    throw mpr::argument_error("--depth-maps", "'" + text +
-                                                  "': give a FOLDER of PFMs or estimate:NEAR:FAR[:PLANES] (the depth "
-                                                  "range to sweep along the cameras' axes, e.g. estimate:600:1400)");
-  mpr::PlaneSweepConfig c;
-  c.near = parse_number(f[1], "--depth-maps");
-  c.far = parse_number(f[2], "--depth-maps");
-  if (!(c.near > 0) || !(c.far > c.near))
-    throw mpr::argument_error("--depth-maps", "'" + text + "': needs 0 < NEAR < FAR");
-  if (f.size() == 4) c.planes = parse_int(f[3], "--depth-maps", 2, 1024);
-  return c;
-}
-
-/// `--sweep KEY=VALUE[,KEY=VALUE...]`: the other settings of the plane sweep of `--depth-maps
-/// estimate:` (keys neighbours, best, truncation, spatial, range: `mpr::PlaneSweepConfig`), set
-/// in `c`, each key at most once. Throws argument_error naming --sweep and the key.
-inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
-  const char* keys = "keys: neighbours, best, truncation, spatial, range";
-  std::vector<std::string> given;
-  for (const std::string& item : split(text, ',')) {
-    const std::size_t eq = item.find('=');
-    const std::string key = item.substr(0, eq);
-    if (eq == std::string::npos || eq + 1 == item.size())
-      throw mpr::argument_error("--sweep", "'" + item + "' is not KEY=VALUE (" + keys + ")");
-    if (std::find(given.begin(), given.end(), key) != given.end())
-      throw mpr::argument_error("--sweep " + key, "given twice");
-    given.push_back(key);
-    const std::string value = item.substr(eq + 1), option = "--sweep " + key;
-    if (key == "neighbours")
-      c.neighbours = parse_int(value, option, 1, 32);
-    else if (key == "best")
-      c.best = parse_int(value, option, 1, 32);
-    else if (key == "truncation")
-      c.truncation = parse_number(value, option);
-    else if (key == "spatial")
-      c.spatial = parse_number(value, option);
-    else if (key == "range")
-      c.range = parse_number(value, option);
-    else
-      throw mpr::argument_error("--sweep", "unknown key '" + key + "' (" + keys + ")");
-  }
-  if (c.best > c.neighbours) {
-    const bool default_best = std::find(given.begin(), given.end(), "best") == given.end();
-    throw mpr::argument_error("--sweep best", std::to_string(c.best) + (default_best ? " (the default)" : "") +
-                                                  " exceeds neighbours (" + std::to_string(c.neighbours) +
-                                                  "): give best=1.." + std::to_string(c.neighbours));
-  }
-  // Every other rule is mpr::validate's (a truncation above 3 acts as 3), under the option's name.
-  try {
-    mpr::validate(c);
-  } catch (const mpr::argument_error& e) {
-    const bool key = std::find(given.begin(), given.end(), e.parameter()) != given.end();
-    throw mpr::argument_error((key ? "--sweep " : "--depth-maps ") + e.parameter(), e.reason());
-  }
 }
 
 /// The colour-mapped preview written beside the depth of --write-depth: FILE.pfm -> FILE_preview.png.
@@ -372,6 +320,12 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       !job.write_depth)
     throw mpr::argument_error(
         "--depth-maps", "is read by --interp depth, --all-in-focus, --focus-at and --write-depth; give one of them");
+  if (const auto v = args.get("proxy")) {
+    if (job.interpolation != Interpolation::depth && !job.focus_at && !job.write_depth && !context.reads_depth_maps)
+      throw mpr::argument_error("--proxy", "sets the depth proxy of --interp depth, --all-in-focus, --focus-at and "
+                                           "--write-depth; give one of them");
+    parse_proxy(*v, job.proxy);
+  }
   if (job.interpolation == Interpolation::depth && light_field && !job.has_depth_maps())
     throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",
                               "needs --depth-maps FOLDER (one PFM per camera) or estimate:NEAR:FAR for a light field");

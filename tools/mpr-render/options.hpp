@@ -95,6 +95,14 @@ inline const std::vector<OptionSpec>& options() {
        "(docs/lightfield.md).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
        "estimate:0.44:0.72 --sweep best=3,spatial=6"},
+      {"proxy", "KEY=VALUE,...",
+       "With --interp depth, --all-in-focus, --focus-at or --write-depth: the depth proxy's settings but its radius "
+       "(mpr::DepthProxy; --radius sets that): k (cameras blended, 4), tolerance (relative depth tolerance of the "
+       "surface search, 0.01), visibility_tolerance (of the blend's depth test, 0.03: forgives estimated maps' "
+       "error), march_cameras (cameras tried in turn for the surface, 4), whole_line (1: search the whole ray line, "
+       "0: only in front of the view's image surface).",
+       "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
+       "estimate:0.44:0.72 --proxy k=6,visibility_tolerance=0.05"},
       {"save-depth-maps", "FOLDER",
        "With --depth-maps estimate: write the estimated maps there as PFMs (read them back with --depth-maps FOLDER).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "

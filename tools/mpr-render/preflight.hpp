@@ -182,11 +182,11 @@ void preflight(const Job& job, const Loaded<T>& l) {
         config.rows = job.raster->second;
         (void)mpr::scene::virtual_array_cameras(base_plane(job, l, p, w, h), config);
         if (job.interpolation == Interpolation::cylinder) (void)mpr::CylinderAperture{p.radius};
-        if (job.interpolation == Interpolation::depth) mpr::DepthProxy{p.radius}.validate();
+        if (job.interpolation == Interpolation::depth) job.depth_proxy(p.radius).validate();
       } else if (!l.scene_sampler && job.interpolation == Interpolation::cylinder) {
         (void)mpr::CameraFrameSampler<mpr::CylinderAperture, T>(l.frames, mpr::CylinderAperture{p.radius});
       } else if (!l.scene_sampler && job.interpolation == Interpolation::depth) {
-        (void)mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, mpr::DepthProxy{p.radius});
+        (void)mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, job.depth_proxy(p.radius));
       }
     } catch (const mpr::argument_error& e) {
       if (count == 1) throw;

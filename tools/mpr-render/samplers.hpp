@@ -40,7 +40,7 @@ SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const 
     return mpr::SceneSampler<S, mpr::Rasterized<mpr::SyntheticAperture>>(*l.scene, plane, config);
   case Interpolation::depth:
     return mpr::SceneSampler<S, mpr::Rasterized<mpr::DepthProxy>>(
-        *l.scene, plane, config, mpr::Rasterized<mpr::DepthProxy>{mpr::DepthProxy{p.radius}});
+        *l.scene, plane, config, mpr::Rasterized<mpr::DepthProxy>{job.depth_proxy(p.radius)});
   case Interpolation::cylinder:
     break;
   }
@@ -59,7 +59,7 @@ SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FramePa
   case Interpolation::synthetic:
     return mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(l.frames);
   case Interpolation::depth:
-    return mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, mpr::DepthProxy{p.radius});
+    return mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, job.depth_proxy(p.radius));
   case Interpolation::cylinder:
     break;
   }
