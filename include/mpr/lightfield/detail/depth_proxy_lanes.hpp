@@ -14,6 +14,7 @@
 #include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/detail/depth_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk_lanes.hpp>
+#include <mpr/lightfield/detail/depth_weigh_lanes.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <type_traits>
 
 namespace mpr::detail {
 
@@ -187,9 +189,31 @@ struct DepthProxyLanes {
     choose_cameras16(table, g.r, point, g.distance, g.near, blended, slots, static_cast<T>(p.visibility_tolerance),
                      best);
     prefetch_next(table, best, slots, n);
+    // 8-bit frames, bilinear: every lane's weighing at once.
+    unsigned weighed = 0;
+    alignas(64) float acc[3][16], weight[16];
+    if constexpr (std::is_same_v<typename FrameTable<float, Px>::texel_type, Srgb8Texel>) {
+      WeighCamera cameras[DepthProxy::kScanCameras];
+      bool indexable = table.config().filter == PixelFilter::bilinear;
+      for (std::size_t i = 0; i < table.size() && indexable; ++i) {
+        const auto& c = table.camera(i);
+        cameras[i] = WeighCamera{&c.texels->c[0], c.width, c.height};
+        indexable = gather_indexable(c.width, c.height);
+      }
+      if (indexable) {
+        for (int l = 0; l < n; ++l)
+          if (!escaped[l] && best.camera[0][l] >= 0) weighed |= 1u << l;
+        weigh16(cameras, best, slots, p.k, weighed, Srgb8Texel::linear16(), Srgb8Texel::scale, acc, weight);
+      }
+    }
     for (int l = 0; l < n; ++l) {
       if (escaped[l]) {
         out[l] = table.config().background;
+        continue;
+      }
+      if (weighed >> l & 1u) {
+        const float sum[3] = {acc[0][l], acc[1][l], acc[2][l]};
+        out[l] = table.finish(sum, weight[l]);
         continue;
       }
       T penalty[kDepthLaneSlots];
