@@ -29,6 +29,19 @@ std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> plane_set(float depth 
       mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
 }
 
+// Cameras at x = -0.5, 0 and 0.5 (40 x 30 pixels, focal 30) see the textured plane z = 5; the
+// third one's image is red and its depth map says `third_depth` everywhere (the others: 5).
+template <class T>
+std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> red_third_set(float third_depth) {
+  const auto cams = mpr_test::grid_cameras<T>(3, 1, 0.5, 40, 30, 30.0);
+  std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
+  images[2] = mpr::Image<mpr::Color>(40, 30, mpr::Color(1, 0, 0));
+  std::vector<mpr::Image<float>> maps(3, mpr::Image<float>(40, 30, 5.0f));
+  maps[2] = mpr::Image<float>(40, 30, third_depth);
+  return std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+}
+
 } // namespace
 
 TEST_CASE("DepthProxy is a frame interpolation with a batch path", "[depth_proxy]") {
@@ -123,17 +136,10 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
 TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the point", "[depth_proxy]", float,
                    double) {
   using T = TestType;
-  // Cameras at x = -0.5, 0 and 0.5 see the plane z = 5; the third one's map claims an occluder
-  // at z = 2 and its image is red. Rays nearer the other two find z = 5 from their maps, and the
-  // third camera, which would see the point only behind its occluder, must not contribute.
-  const auto cams = mpr_test::grid_cameras<T>(3, 1, 0.5, 40, 30, 30.0);
-  std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
-  images[2] = mpr::Image<mpr::Color>(40, 30, mpr::Color(1, 0, 0));
-  std::vector<mpr::Image<float>> maps(3, mpr::Image<float>(40, 30, 5.0f));
-  maps[2] = mpr::Image<float>(40, 30, 2.0f);
-  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
-      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
-  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(frames, mpr::DepthProxy{2.0, 4});
+  // The third camera's map claims an occluder at z = 2 (`red_third_set`). Rays nearer the other
+  // two find z = 5 from their maps, and the third camera, which would see the point only behind
+  // its occluder, must not contribute.
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(red_third_set<T>(2.0f), mpr::DepthProxy{2.0, 4});
   for (const double x : {-0.5, -0.3, 0.0, 0.2}) {
     const mpr::Ray<T> ray{mpr::Vec3<T>(static_cast<T>(x), 0, 0), mpr::Vec3<T>(0, T(0.05), 1)};
     const std::optional<T> t = proxy.interpolation().surface(proxy.table(), ray);
@@ -150,18 +156,12 @@ TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the 
 TEMPLATE_TEST_CASE("DepthProxy's visibility test forgives the maps' error by its own tolerance", "[depth_proxy]", float,
                    double) {
   using T = TestType;
-  // As above, but the third camera's map is 2% nearer than the plane (an estimated map's error,
-  // not an occluder) and its image is red. The surface search (tolerance 1%) runs in the middle
-  // camera and finds z = 5; the blend counts the third camera as seeing the point with the
-  // default visibility tolerance (3%), and as occluded with 1%: the red shows only in the first
-  // case, per ray and in the batch path alike.
-  const auto cams = mpr_test::grid_cameras<T>(3, 1, 0.5, 40, 30, 30.0);
-  std::vector<mpr::Image<mpr::Color>> images = mpr_test::plane_images(cams, 5.0);
-  images[2] = mpr::Image<mpr::Color>(40, 30, mpr::Color(1, 0, 0));
-  std::vector<mpr::Image<float>> maps(3, mpr::Image<float>(40, 30, 5.0f));
-  maps[2] = mpr::Image<float>(40, 30, 4.9f);
-  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
-      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+  // The third camera's map is 2% nearer than the plane (an estimated map's error, not an
+  // occluder; `red_third_set`). The surface search (tolerance 1%) runs in the middle camera and
+  // finds z = 5; the blend counts the third camera as seeing the point with the default
+  // visibility tolerance (3%), and as occluded with 1%: the red shows only in the first case,
+  // per ray and in the batch path alike.
+  const auto frames = red_third_set<T>(4.9f);
   mpr::DepthProxy strict{2.0, 4};
   strict.visibility_tolerance = 0.01;
   REQUIRE(mpr::DepthProxy{}.visibility_tolerance == 0.03);
