@@ -59,11 +59,10 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 ///
 /// Blend: every candidate camera that sees the point X -- projects it inside its image, and its
 /// depth map there is not nearer than X's depth by more than `visibility_tolerance` (relative)
-/// -- has the
-/// penalty p = angle between (X - its centre) and the ray direction; with p_k the (k+1)-th
-/// smallest penalty (or twice the largest when fewer cameras see X), the k best get weight
-/// (1 - p / p_k) / (p + 1e-6): a camera on the ray line dominates, the weight is continuous as
-/// cameras enter and leave the k best. When no candidate sees X, the nearest camera's colour at X
+/// -- has the penalty p = angle between (X - its centre) and the ray direction; with p_k the
+/// (k+1)-th smallest penalty (or twice the largest when fewer cameras see X), the k best get
+/// weight (1 - p / p_k) / (p + 1e-6): a camera on the ray line dominates, the weight is
+/// continuous as cameras enter and leave the k best. When no candidate sees X, the nearest camera's colour at X
 /// (or the background).
 ///
 /// Requirements: the frame set carries depth maps (`validate(table)`, called by
@@ -93,8 +92,8 @@ struct DepthProxy {
   /// its depth map there is nearer than X's depth by more than this. Looser than `tolerance`
   /// because it forgives the maps' own error: a plane sweep's depth is off by up to about a
   /// plane step (1.5% of the depth for Chess at 64 planes), and a camera wrongly found occluded
-  /// drops out of the blend (speckles of the remaining cameras' colours). True occluders lie
-  /// farther in front. Leave-one-out means for 0.01 / 0.03 / 0.05 / 0.08: Chess 39.20 / 39.45 /
+  /// drops out of the blend (speckles of the remaining cameras' colours); true occluders
+  /// usually lie farther in front. Leave-one-out means for 0.01 / 0.03 / 0.05 / 0.08: Chess 39.20 / 39.45 /
   /// 39.63 / 39.76 dB, temple ring 19.89 / 19.96 / 19.85 / 19.48 dB (docs/accuracy.md).
   double visibility_tolerance = 0.03;
 
