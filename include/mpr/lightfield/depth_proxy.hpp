@@ -142,8 +142,8 @@ struct DepthProxy {
   /// 0.24%). Elsewhere, `sample` per ray.
   template <std::floating_point T, class Px>
   void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
-    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at) {
-      detail::DepthProxyLanes<Px>::sample16(*this, table, group, out.data() + at);
+    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at, const auto& blend) {
+      detail::DepthProxyLanes<Px>::sample16(*this, table, group, blend, out.data() + at);
     });
     if (!lanes)
       for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
@@ -154,7 +154,7 @@ struct DepthProxy {
   template <std::floating_point T, class Px>
   void surface_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays,
                     std::span<std::optional<T>> out) const noexcept {
-    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at) {
+    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at, const auto&) {
       detail::DepthProxyLanes<Px>::surface16(*this, table, group, out.data() + at);
     });
     if (!lanes)
@@ -180,15 +180,17 @@ private:
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
 
-  // When the sixteen-lane path answers for `table` (see `sample_rays`): `lanes(group, at)` for
-  // the groups of at most sixteen rays starting at rays[at], and true; else false.
+  // When the sixteen-lane path answers for `table` (see `sample_rays`): `lanes(group, at,
+  // blend)` for the groups of at most sixteen rays starting at rays[at] (`blend`: what the
+  // lanes' weighing reads of the table, prepared once), and true; else false.
   template <std::floating_point T, class Px, class Lanes>
   bool by_sixteen(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, const Lanes& lanes) const noexcept {
 #if defined(MPR_SIMD_X86)
     if constexpr (std::is_same_v<T, float>) {
       if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
+        const typename detail::DepthProxyLanes<Px>::Blend blend(table);
         for (std::size_t at = 0; at < rays.size(); at += 16)
-          lanes(rays.subspan(at, std::min<std::size_t>(16, rays.size() - at)), at);
+          lanes(rays.subspan(at, std::min<std::size_t>(16, rays.size() - at)), at, blend);
         return true;
       }
     }

@@ -42,6 +42,25 @@ struct DepthProxyLanes {
     return true;
   }
 
+  /// What the lanes' weighing (`weigh16`) reads of a table, prepared once per batch: each
+  /// camera's texels and size; `lanes` when it applies (8-bit frames, bilinear filter, images
+  /// `gather_indexable`), else the weighing stays per ray.
+  struct Blend {
+    WeighCamera cameras[DepthProxy::kScanCameras];
+    bool lanes = false;
+
+    explicit Blend(const FrameTable<float, Px>& table) noexcept {
+      if constexpr (std::is_same_v<typename FrameTable<float, Px>::texel_type, Srgb8Texel>) {
+        lanes = table.config().filter == PixelFilter::bilinear && table.size() <= DepthProxy::kScanCameras;
+        for (std::size_t i = 0; i < table.size() && lanes; ++i) {
+          const auto& c = table.camera(i);
+          cameras[i] = WeighCamera{&c.texels->c[0], c.width, c.height};
+          lanes = gather_indexable(c.width, c.height);
+        }
+      }
+    }
+  };
+
   /// Up to sixteen rays in lanes: the scan's results, and each ray's surface (`t`, or none;
   /// `escaped`: it ran to infinity unseen), as `DepthProxy::surface` finds it.
   struct Group {
@@ -165,9 +184,9 @@ struct DepthProxyLanes {
     for (std::size_t l = 0; l < rays.size(); ++l) out[l] = g.escaped[l] ? std::nullopt : g.t[l];
   }
 
-  /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays.
+  /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays (`blend` prepared for `table`).
   static void sample16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
-                       Color* out) noexcept {
+                       const Blend& blend, Color* out) noexcept {
     using T = float;
     const int n = static_cast<int>(rays.size());
     Group g;
@@ -192,19 +211,10 @@ struct DepthProxyLanes {
     // 8-bit frames, bilinear: every lane's weighing at once.
     unsigned weighed = 0;
     alignas(64) float acc[3][16], weight[16];
-    if constexpr (std::is_same_v<typename FrameTable<float, Px>::texel_type, Srgb8Texel>) {
-      WeighCamera cameras[DepthProxy::kScanCameras];
-      bool indexable = table.config().filter == PixelFilter::bilinear;
-      for (std::size_t i = 0; i < table.size() && indexable; ++i) {
-        const auto& c = table.camera(i);
-        cameras[i] = WeighCamera{&c.texels->c[0], c.width, c.height};
-        indexable = gather_indexable(c.width, c.height);
-      }
-      if (indexable) {
-        for (int l = 0; l < n; ++l)
-          if (!escaped[l] && best.camera[0][l] >= 0) weighed |= 1u << l;
-        weigh16(cameras, best, slots, p.k, weighed, Srgb8Texel::linear16(), Srgb8Texel::scale, acc, weight);
-      }
+    if (blend.lanes) {
+      for (int l = 0; l < n; ++l)
+        if (!escaped[l] && best.camera[0][l] >= 0) weighed |= 1u << l;
+      weigh16(blend.cameras, best, slots, p.k, weighed, Srgb8Texel::linear16(), Srgb8Texel::scale, acc, weight);
     }
     for (int l = 0; l < n; ++l) {
       if (escaped[l]) {
