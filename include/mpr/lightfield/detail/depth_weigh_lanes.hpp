@@ -2,8 +2,9 @@
 /// \file
 /// The blend of `DepthProxy`'s batch path for 8-bit frames (lightfield/depth_proxy.hpp), sixteen
 /// rays to a register: the Unstructured-Lumigraph weights of each ray's chosen cameras
-/// (`DepthProxy::weigh`) and their bilinear texels (`FrameTable::fetch_add`), four 32-bit gathers
-/// per camera decoded to linear light by table permutes. Every sum is formed in the per-ray
+/// (`DepthProxy::weigh`) and their bilinear texels (`FrameTable::fetch_add`): per camera four
+/// taps, each a pair of eight-lane 32-bit gathers from 64-bit addresses (the lanes' cameras
+/// differ), decoded to linear light by table permutes. Every sum is formed in the per-ray
 /// code's order with no fused multiply-add, so the lanes give the per-ray bits where that code is
 /// not contracted either (as detail/depth_lanes.hpp explains).
 
@@ -28,8 +29,8 @@ struct WeighCamera {
 };
 
 /// acc[c][l] and weight[l] for the lanes l of `lanes`: `DepthProxy::weigh` of lane l's chosen
-/// cameras `choice` (slots [0, slots), the first `count` of them filled, by increasing penalty;
-/// camera -1 past them) with k blended, each camera's texels bilinear at its pixel
+/// cameras `choice` (slots [0, slots) filled from the first, by increasing penalty; camera -1 in
+/// the empty ones) with k blended, each camera's texels bilinear at its pixel
 /// (`FrameTable::fetch_add` with the bilinear filter, `scale` the texel scale, `lut` the 16-bit
 /// decode table). `cameras[i]` describes camera i. Other lanes: zero.
 MPR_TARGET_AVX512 inline void weigh16(const WeighCamera* cameras, const LaneChoice& choice, int slots, int k,
