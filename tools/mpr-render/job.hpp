@@ -65,6 +65,7 @@ struct Job {
   std::optional<mpr::PlaneSweepConfig> depth_estimate;  ///< light fields: --depth-maps estimate:, --sweep
   mpr::DepthProxy proxy;                                ///< --proxy: the depth proxy's settings (its radius unused)
   std::string depth_maps_arg;                           ///< --depth-maps as given (the viewer's command line)
+  std::string sweep_arg, proxy_arg;                     ///< --sweep and --proxy as given (the same), or ""
   std::optional<std::filesystem::path> save_depth_maps; ///< --save-depth-maps FOLDER: the estimated maps
   bool all_in_focus = false;                            ///< --all-in-focus: the same as --interp depth
   std::optional<std::pair<int, int>> focus_at;          ///< --focus-at X,Y: output pixel whose depth sets the focus
@@ -280,6 +281,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       throw mpr::argument_error("--sweep", "sets the plane sweep of estimated depth maps: needs --depth-maps "
                                            "estimate:NEAR:FAR");
     parse_sweep(*v, *job.depth_estimate);
+    job.sweep_arg = *v;
   }
   if (const auto v = args.get("save-depth-maps")) {
     if (!job.depth_estimate)
@@ -325,6 +327,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       throw mpr::argument_error("--proxy", "sets the depth proxy of --interp depth, --all-in-focus, --focus-at and "
                                            "--write-depth; give one of them");
     parse_proxy(*v, job.proxy);
+    job.proxy_arg = *v;
   }
   if (job.interpolation == Interpolation::depth && light_field && !job.has_depth_maps())
     throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",

@@ -82,7 +82,14 @@ inline std::string shell_word(const std::string& s) {
                                                                     : "cylinder");
     if (job.interpolation == Interpolation::cylinder || job.interpolation == Interpolation::depth)
       add("--radius", detail::number(job.radius.at(time)));
-    if (job.has_depth_maps()) add("--depth-maps", job.depth_maps_arg);
+    // The depth maps and the proxy's settings shape the image under the depth interpolation
+    // only (a focus clicked elsewhere is written as --focal-depth; mpr-render refuses depth
+    // maps that nothing reads).
+    if (job.interpolation == Interpolation::depth && job.has_depth_maps()) {
+      add("--depth-maps", job.depth_maps_arg);
+      if (!job.sweep_arg.empty()) add("--sweep", job.sweep_arg);
+    }
+    if (job.interpolation == Interpolation::depth && !job.proxy_arg.empty()) add("--proxy", job.proxy_arg);
     if (job.focal_depth) add("--focal-depth", detail::number(job.focal_depth->at(time)));
   }
   if (light_field) {

@@ -1,8 +1,11 @@
 #include "mpr-view/command_line.hpp"
 #include "mpr-view/controls.hpp"
+#include "tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -64,6 +67,32 @@ TEST_CASE("render_arguments writes animated values at the frame's time and keeps
   CHECK((back.cols == 2 && back.rows == 1));
   CHECK(back.views == std::vector<std::string>{"A", "pinhole:0,1.6,10"});
   CHECK(back.use_double);
+}
+
+TEST_CASE("render_arguments keeps the depth interpolation's depth maps and settings", "[view]") {
+  const std::filesystem::path dir = mpr_tools_test::textured_plane_light_field("view_depth_arguments", 2.3);
+  const std::string par = (dir / "tiny_par.txt").string();
+  const mpr_cli::Job job =
+      job_of({"--par", par, "--interp", "depth", "--depth-maps", "estimate:1:4:16", "--sweep", "best=1,spatial=3",
+              "--proxy", "k=2,visibility_tolerance=0.05", "--focal-depth", "1.5"});
+  const mpr_cli::Job back = round_trip(job);
+  REQUIRE(back.depth_estimate.has_value());
+  CHECK(back.depth_estimate->planes == 16);
+  CHECK(back.depth_estimate->best == 1);
+  CHECK(back.depth_estimate->spatial == 3);
+  CHECK(back.proxy.k == 2);
+  CHECK(back.proxy.visibility_tolerance == 0.05);
+  // Under another interpolation (the viewer keeps depth maps for click-to-focus) none of them is
+  // written: mpr-render would refuse depth maps that nothing reads.
+  mpr_cli::Job cylinder = job;
+  cylinder.interpolation = mpr_cli::Interpolation::cylinder;
+  const std::vector<std::string> a = mpr_view::render_arguments(cylinder, 0, 64, 48, "out.png");
+  for (const char* option : {"--depth-maps", "--sweep", "--proxy"}) {
+    INFO(option);
+    CHECK(std::find(a.begin(), a.end(), option) == a.end());
+  }
+  CHECK_NOTHROW(job_of(a));
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("render_command quotes what a shell would split", "[view]") {
