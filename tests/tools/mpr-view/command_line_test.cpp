@@ -1,6 +1,6 @@
 #include "mpr-view/command_line.hpp"
 #include "mpr-view/controls.hpp"
-#include "tools_test_support.hpp"
+#include "tools/tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
