@@ -4,9 +4,9 @@
 /// rays to a register: the Unstructured-Lumigraph weights of each ray's chosen cameras
 /// (`DepthProxy::weigh`) and their bilinear texels (`FrameTable::fetch_add`): per camera four
 /// taps, each a pair of eight-lane 32-bit gathers from 64-bit addresses (the lanes' cameras
-/// differ), decoded to linear light by table permutes. Every sum is formed in the per-ray
-/// code's order with no fused multiply-add, so the lanes give the per-ray bits where that code is
-/// not contracted either (as detail/depth_lanes.hpp explains).
+/// differ), decoded to linear light as the projective rows' gathers are (`decode_texel_words`).
+/// Every sum is formed in the per-ray code's order with no fused multiply-add, so the lanes give
+/// the per-ray bits where that code is not contracted either (as detail/depth_lanes.hpp says).
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
@@ -53,7 +53,6 @@ MPR_TARGET_AVX512 inline void weigh16(const WeighCamera* cameras, const LaneChoi
     threshold =
         _mm512_mask_mov_ps(threshold, filled[k], _mm512_maskz_max_ps(0xFFFF, _mm512_load_ps(choice.penalty[k]), tiny));
   __m512 sum[3] = {zero, zero, zero}, total = zero;
-  const __m512i byte = _mm512_set1_epi32(0xFF);
   for (int j = 0; j < slots; ++j) {
     const __m512 p = _mm512_load_ps(choice.penalty[j]);
     const __mmask16 m = filled[j] & _mm512_cmp_ps_mask(p, threshold, _CMP_LT_OQ);
@@ -101,16 +100,8 @@ MPR_TARGET_AVX512 inline void weigh16(const WeighCamera* cameras, const LaneChoi
       const __m256i g0 = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(m), lo, nullptr, 1);
       const __m256i g1 =
           _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(m >> 8), hi, nullptr, 1);
-      const __m512i g = _mm512_maskz_inserti64x4(0xFF, zext256(g0), g1, 1);
-      const __m256i r8 = _mm512_maskz_cvtepi32_epi16(0xFFFF, _mm512_and_si512(g, byte));
-      const __m256i g8 =
-          _mm512_maskz_cvtepi32_epi16(0xFFFF, _mm512_and_si512(_mm512_maskz_srli_epi32(0xFFFF, g, 8), byte));
-      const __m256i b8 =
-          _mm512_maskz_cvtepi32_epi16(0xFFFF, _mm512_and_si512(_mm512_maskz_srli_epi32(0xFFFF, g, 16), byte));
-      const __m512i rg = decode16x32(decode, _mm512_maskz_inserti64x4(0xFF, zext256(r8), g8, 1));
-      const __m512i bb = decode16x32(decode, zext256(b8));
-      const __m512 v[3] = {words_to_floats(low256(rg)), words_to_floats(_mm512_maskz_extracti64x4_epi64(0xF, rg, 1)),
-                           words_to_floats(low256(bb))};
+      __m512 v[3];
+      decode_texel_words(decode, _mm512_maskz_inserti64x4(0xFF, zext256(g0), g1, 1), v);
       for (int c = 0; c < 3; ++c) {
         const __m512 term = mul16(tap_weight[t], v[c]);
         part[c] = t == 0 ? term : _mm512_add_ps(part[c], term);

@@ -98,23 +98,31 @@ MPR_TARGET_AVX512 MPR_ALWAYS_INLINE __m512 words_to_floats(__m256i words) noexce
   return _mm512_maskz_cvtepi32_ps(kAll, _mm512_maskz_cvtepu16_epi32(kAll, words));
 }
 
+// The three channels of sixteen gathered 8-bit texels (lane l: r g b in its low three bytes,
+// the fourth ignored), decoded by the table `d` to floats: r and g in one 32-lane lookup, b in
+// another.
+MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void decode_texel_words(const Decode16x512& d, __m512i g, __m512 (&v)[3]) noexcept {
+  const __m512i byte = _mm512_set1_epi32(0xFF);
+  const __m256i r8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(g, byte));
+  const __m256i g8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 8), byte));
+  const __m256i b8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 16), byte));
+  const __m512i rg = decode16x32(d, _mm512_maskz_inserti64x4(0xFF, zext256(r8), g8, 1));
+  const __m512i bb = decode16x32(d, zext256(b8));
+  v[0] = words_to_floats(low256(rg));
+  v[1] = words_to_floats(_mm512_maskz_extracti64x4_epi64(0xF, rg, 1));
+  v[2] = words_to_floats(low256(bb));
+}
+
 // sum[k] += weight x channel k of the texels at channel offsets `offset` (16 lanes).
 template <class C>
 MPR_TARGET_AVX512 MPR_ALWAYS_INLINE void gather_tap_avx512(const C* texels, const Decode16x512* decode, __m512i offset,
                                                            __m512 weight, __m512 (&sum)[3]) noexcept {
   if constexpr (std::is_same_v<C, std::uint8_t>) {
-    // One 32-bit gather per texel (r g b and a byte past it), the three codes decoded together
-    // by table permutes: r and g in one 32-lane lookup, b in another.
+    // One 32-bit gather per texel (r g b and a byte past it), the three codes decoded together.
     const __m512i g = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), kAll, offset, texels, 1);
-    const __m512i byte = _mm512_set1_epi32(0xFF);
-    const __m256i r8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(g, byte));
-    const __m256i g8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 8), byte));
-    const __m256i b8 = _mm512_maskz_cvtepi32_epi16(kAll, _mm512_and_si512(_mm512_maskz_srli_epi32(kAll, g, 16), byte));
-    const __m512i rg = decode16x32(*decode, _mm512_maskz_inserti64x4(0xFF, zext256(r8), g8, 1));
-    const __m512i bb = decode16x32(*decode, zext256(b8));
-    sum[0] = _mm512_fmadd_ps(weight, words_to_floats(low256(rg)), sum[0]);
-    sum[1] = _mm512_fmadd_ps(weight, words_to_floats(_mm512_maskz_extracti64x4_epi64(0xF, rg, 1)), sum[1]);
-    sum[2] = _mm512_fmadd_ps(weight, words_to_floats(low256(bb)), sum[2]);
+    __m512 v[3];
+    decode_texel_words(*decode, g, v);
+    for (int k = 0; k < 3; ++k) sum[k] = _mm512_fmadd_ps(weight, v[k], sum[k]);
   } else {
     static_assert(std::is_same_v<C, float>, "8-bit codes or float channels");
     for (int k = 0; k < 3; ++k) {
