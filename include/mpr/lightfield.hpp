@@ -18,6 +18,7 @@
 #include <mpr/lightfield/cylinder_aperture.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
+#include <mpr/lightfield/frame_prefilter.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/frame_table.hpp>
