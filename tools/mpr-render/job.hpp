@@ -77,6 +77,9 @@ struct Job {
   /// command line (main.cpp draws a progress line on a terminal with it).
   std::function<void(std::size_t loaded, std::size_t total)> load_progress;
   double zoom = 1; ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
+  /// Light fields: frames box-filtered to 1/N of their scale before rendering (prefilter.hpp);
+  /// nullopt: `auto`, N from the output pixels' footprint on the frames.
+  std::optional<int> prefilter;
   // Surface.
   std::optional<mpr::Vec3<double>> plane_centre, look_at;
   std::optional<std::pair<double, double>> plane_size;
@@ -234,7 +237,9 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");
   }
-  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom", "depth-maps"}) lf_only(name);
+  for (const char* name : {"reference-depth", "position-scale", "camera", "zoom", "depth-maps", "prefilter"})
+    lf_only(name);
+  if (const auto v = args.get("prefilter"); v && *v != "auto") job.prefilter = parse_int(*v, "--prefilter", 1, 8);
   if (!job.raster)
     for (const char* name : {"interp", "radius", "focal-depth"}) lf_only(name);
   if (args.has("obj-scale") && job.sampler != SamplerKind::obj)

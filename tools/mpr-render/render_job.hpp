@@ -12,6 +12,7 @@
 #include "light_field_views.hpp"
 #include "loading.hpp"
 #include "output.hpp"
+#include "prefilter.hpp"
 #include "preflight.hpp"
 #include "print_camera.hpp"
 #include "samplers.hpp"
@@ -67,14 +68,17 @@ using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr:
 
 template <std::floating_point T>
 void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings) {
-  const Loaded<T> l = load<T>(given);
+  const Loaded<T> loaded = load<T>(given);
   if (info != nullptr)
-    for (const std::string& note : l.notes) *info << note << '\n';
-  const Job job = with_focus_at(with_array_defaults(given, l), l, info); // --focus-at: the focal depth set
+    for (const std::string& note : loaded.notes) *info << note << '\n';
+  const Job job = with_focus_at(with_array_defaults(given, loaded), loaded, info); // --focus-at: the focal depth set
+  const auto [w, h] = view_size(job, loaded);
+  const Loaded<T> l = with_prefilter(job, loaded, w, h); // --prefilter: the frames at the output's scale
+  if (info != nullptr)
+    for (std::size_t n = loaded.notes.size(); n < l.notes.size(); ++n) *info << l.notes[n] << '\n';
 
   preflight(job, l); // every frame checked before the first is rendered
   if (warnings != nullptr) warn_job(*warnings, job, l);
-  const auto [w, h] = view_size(job, l);
   const int count = std::max(job.frames, 1);
   const mpr::RenderOptions options{job.threads};
   const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
