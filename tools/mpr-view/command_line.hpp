@@ -96,6 +96,7 @@ inline std::string shell_word(const std::string& s) {
     if (job.reference_depth != 1000) add("--reference-depth", detail::number(job.reference_depth));
     if (job.position_scale != 1) add("--position-scale", detail::number(job.position_scale));
     if (job.camera) add("--camera", std::to_string(*job.camera));
+    if (job.prefilter) add("--prefilter", std::to_string(*job.prefilter)); // else auto, as in the viewer
   }
   add("--size", std::to_string(view_width) + "x" + std::to_string(view_height));
   if (job.cols * job.rows > 1) {

@@ -2,7 +2,8 @@
 // mpr-view's render thread: renders the latest requested view with mpr-render's own code path
 // (framing.hpp's make_camera, samplers.hpp's make_sampler, render_job.hpp's render_view), first
 // as a preview at quarter resolution (half width, half height; coarser when even that would take
-// longer than kPreviewBudgetMs), then at full resolution, in bands of rows
+// longer than kPreviewBudgetMs; light fields sampled from frames prefiltered to the preview's
+// scale, mpr-render's prefilter.hpp), then at full resolution, in bands of rows
 // shared out by a BandPool. Between bands it checks whether a newer view was requested and, if
 // so, abandons the frame.
 // The thread never waits on the event loop: finished frames are left in a slot that the event
@@ -21,6 +22,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -130,27 +132,52 @@ private:
     }
   }
 
-  /// The sampler of a request: rebuilt only when its settings change (a rasterized array costs
-  /// milliseconds per camera to build).
-  const mpr_cli::SamplerVariant<T>& sampler_for(const RenderRequest& r) {
-    std::string key = std::to_string(static_cast<int>(r.job.interpolation)) + " " + std::to_string(r.params.radius);
+  /// The data a render of request `r` at `scale` (view pixels per image pixel) samples: the
+  /// loaded frames prefiltered as --prefilter says (mpr-render's prefilter.hpp; auto: by the
+  /// footprint of the image's pixels at the request's parameters, so a preview reads frames at
+  /// its own scale), each factor's frames built once, on first use.
+  const mpr_cli::Loaded<T>& loaded_for(const RenderRequest& r, int scale) {
+    int factor = 1;
+    if (r.job.prefilter)
+      factor = *r.job.prefilter;
+    else if (mpr_cli::auto_prefilter_applies(r.job, loaded_))
+      factor = mpr_cli::auto_prefilter_factor(
+          scale * mpr_cli::footprint_at(r.job, loaded_, r.params, r.view_width, r.view_height));
+    if (factor <= 1 || !loaded_.frames) return loaded_;
+    if (const auto it = prefiltered_.find(factor); it != prefiltered_.end()) return it->second;
+    mpr_cli::Loaded<T> l = loaded_;
+    const auto start = std::chrono::steady_clock::now();
+    l.frames = mpr_cli::prefiltered_frames(loaded_.frames, factor, r.job.threads);
+    prefilter_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return prefiltered_.emplace(factor, std::move(l)).first->second;
+  }
+
+  /// The sampler of a request over `l` (`loaded_for`), one kept for previews and one for full
+  /// frames: rebuilt only when its settings change (a rasterized array costs milliseconds per
+  /// camera to build).
+  const mpr_cli::SamplerVariant<T>& sampler_for(const RenderRequest& r, const mpr_cli::Loaded<T>& l, bool full) {
+    std::string key = std::to_string(static_cast<int>(r.job.interpolation)) + " " + std::to_string(r.params.radius) +
+                      " " + std::to_string(reinterpret_cast<std::uintptr_t>(l.frames.get()));
     if (r.job.raster) {
       const mpr::PlanarSurface<T> plane = mpr_cli::base_plane(r.job, loaded_, r.params, r.view_width, r.view_height);
       for (const mpr::Vec3<T>& v : {plane.centre(), plane.width_vector(), plane.height_vector()})
         key += " " + std::to_string(v.x()) + "," + std::to_string(v.y()) + "," + std::to_string(v.z());
       key += " " + std::to_string(r.job.focal_depth ? r.params.focal_depth : -1.0);
     }
-    if (!sampler_ || key != sampler_key_) {
-      sampler_.reset();
-      sampler_.emplace(mpr_cli::make_sampler(r.job, loaded_, r.params, r.view_width, r.view_height));
-      sampler_key_ = key;
+    std::optional<mpr_cli::SamplerVariant<T>>& sampler = sampler_[full ? 1 : 0];
+    std::string& sampler_key = sampler_key_[full ? 1 : 0];
+    if (!sampler || key != sampler_key) {
+      sampler.reset();
+      sampler.emplace(mpr_cli::make_sampler(r.job, l, r.params, r.view_width, r.view_height));
+      sampler_key = key;
     }
-    return *sampler_;
+    return *sampler;
   }
 
   std::optional<RenderedFrame> render(const RenderRequest& r, bool full) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
+    prefilter_ms_ = 0;
     RenderedFrame frame;
     frame.generation = r.generation;
     frame.full = full;
@@ -163,7 +190,7 @@ private:
     try {
       for (std::size_t k = 0; k < r.job.views.size(); ++k)
         cameras.push_back(mpr_cli::make_camera(r.job, loaded_, r.params, k, r.view_width, r.view_height));
-      sampler = &sampler_for(r);
+      sampler = &sampler_for(r, loaded_for(r, scale), full);
     } catch (const std::exception& e) {
       frame.error = one_line(e.what());
       frame.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - r.submitted).count();
@@ -203,7 +230,9 @@ private:
     });
     if (abandoned.load()) return std::nullopt;
     const Clock::time_point end = Clock::now();
-    (full ? last_full_ms_ : last_preview_ms_) = std::chrono::duration<double, std::milli>(end - start).count();
+    // The frames' one-off prefiltering is not what the next frames will take.
+    (full ? last_full_ms_ : last_preview_ms_) =
+        std::chrono::duration<double, std::milli>(end - start).count() - prefilter_ms_;
     frame.milliseconds = std::chrono::duration<double, std::milli>(end - start).count();
     frame.latency_ms = std::chrono::duration<double, std::milli>(end - r.submitted).count();
     return frame;
@@ -217,9 +246,9 @@ private:
   }
 
   /// Whether the last preview took nearly as long as the last full frame: then the full frame
-  /// comes first. (A light field at its cameras' own resolution takes a fast path that a preview
-  /// grid misses: Chess at 1400x800 renders in 100 ms, its 1/9 preview in 200 ms.) A slower full
-  /// frame later (a tilted plane) brings the preview back.
+  /// comes first. (Before previews sampled prefiltered frames, a light field at its cameras' own
+  /// resolution, on a fast path, rendered faster than a preview grid on the full frames.) A
+  /// slower full frame later brings the preview back.
   [[nodiscard]] bool preview_no_faster() const noexcept {
     return last_preview_ms_ > 0 && last_full_ms_ > 0 && last_preview_ms_ >= 0.8 * last_full_ms_;
   }
@@ -253,10 +282,12 @@ private:
   std::optional<RenderRequest> pending_;
   std::optional<RenderedFrame> done_;
   std::atomic<std::uint64_t> latest_{0};
-  std::optional<mpr_cli::SamplerVariant<T>> sampler_; // render thread only
-  std::string sampler_key_;                           // render thread only
+  std::map<int, mpr_cli::Loaded<T>> prefiltered_;        // render thread only: by factor
+  std::optional<mpr_cli::SamplerVariant<T>> sampler_[2]; // render thread only: preview, full
+  std::string sampler_key_[2];                           // render thread only
   std::optional<BandPool> pool_;
   double last_full_ms_ = 0, last_preview_ms_ = 0; // render thread only
+  double prefilter_ms_ = 0;                       // render thread only: spent prefiltering this frame
   std::thread thread_;                            // last: starts after the members above
 };
 

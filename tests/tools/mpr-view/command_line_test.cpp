@@ -92,6 +92,10 @@ TEST_CASE("render_arguments keeps the depth interpolation's depth maps and setti
     CHECK(std::find(a.begin(), a.end(), option) == a.end());
   }
   CHECK_NOTHROW(job_of(a));
+  // A --prefilter factor is kept; auto (the default) is not written, mpr-render's default too.
+  CHECK(round_trip(job_of({"--par", par, "--prefilter", "1"})).prefilter == 1);
+  const std::vector<std::string> plain = mpr_view::render_arguments(job_of({"--par", par}), 0, 64, 48, "out.png");
+  CHECK(std::find(plain.begin(), plain.end(), "--prefilter") == plain.end());
   std::filesystem::remove_all(dir);
 }
 

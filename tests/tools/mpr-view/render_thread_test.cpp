@@ -1,4 +1,5 @@
 #include "mpr-view/render_thread.hpp"
+#include "tools/tools_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -80,6 +81,42 @@ TEST_CASE("RenderThread renders a preview, then exactly mpr-render's image", "[v
       CHECK(c.frames[0].image.width() == job.cols * ((job.width + 1) / 2));
     }
   }
+}
+
+TEST_CASE("RenderThread samples a light field prefiltered to each frame's scale, as mpr-render does", "[view]") {
+  // Three 8 x 6 cameras of random codes 0.1 apart, focal length 8: on the plane z = 2 the side
+  // cameras' texels lie 0.4 pixel off the middle one's, so bilinear sampling of the full frames
+  // and of frames prefiltered to half scale give different images.
+  const std::filesystem::path dir = mpr_tools_test::plane_light_field("view_prefilter", 2.0f);
+  const std::string par = (dir / "tiny_par.txt").string();
+  const auto job_at = [&](const char* size) {
+    return job_of({"--par", par, "--focal-depth", "2", "--interp", "synthetic", "--size", size, "--threads", "2"});
+  };
+  const mpr::Image<mpr::Rgb8> half = mpr_cli::render_frames(job_at("4x3")).at(0); // prefiltered by 2 (auto)
+  CHECK_FALSE(identical(half, mpr_cli::render_frames(job_of({"--par", par, "--focal-depth", "2", "--interp",
+                                                             "synthetic", "--size", "4x3", "--prefilter", "1"}))
+                                  .at(0)));
+  for (const char* size : {"8x6", "4x3"}) {
+    INFO(size);
+    const mpr_cli::Job job = job_at(size);
+    const mpr_cli::Loaded<float> l = mpr_cli::load<float>(job);
+    Collector c;
+    mpr_view::RenderThread<float> thread(l, [&] { c.on_frame(); });
+    {
+      const std::lock_guard lock(c.mutex);
+      c.thread = &thread;
+    }
+    thread.submit(request_of(job, l, 1));
+    const mpr_view::RenderedFrame full = c.wait_full(1);
+    REQUIRE(full.error.empty());
+    CHECK(identical(full.image, mpr_cli::render_frames(job).at(0)));
+    const std::lock_guard lock(c.mutex);
+    REQUIRE(c.frames.size() == 2); // the first request's preview is never skipped
+    CHECK_FALSE(c.frames[0].full);
+    // The 4x3 preview of the 8x6 view is mpr-render's 4x3 image: the frames prefiltered to its scale.
+    if (job.width == 8) CHECK(identical(c.frames[0].image, half));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("RenderThread reports an impossible view as one line and keeps going", "[view]") {
