@@ -26,6 +26,17 @@ mpr::Image<mpr::Rgb8> box_half(const mpr::Image<mpr::Rgb8>& full) {
   return out;
 }
 
+/// The synthetic-aperture refocus of `frames` on the plane z = `depth` seen by `view`.
+template <class T>
+mpr::Image<mpr::Rgb8> refocus(const std::shared_ptr<const mpr::CameraFrameSet<T>>& frames,
+                              const mpr::PinholeCamera<T>& view, T depth) {
+  const mpr::PlanarSurface<T> plane = view.image_plane(depth);
+  mpr::Image<mpr::Rgb8> out(view.width(), view.height());
+  mpr::Renderer(plane, mpr::pinhole_glc(view, plane), mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames))
+      .render(out.view(), mpr::Region(0, 0, view.width(), view.height()), {0});
+  return out;
+}
+
 int level_difference(const mpr::Rgb8& a, const mpr::Rgb8& b) {
   return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
 }
@@ -110,6 +121,49 @@ TEMPLATE_TEST_CASE("downsampled frames average each block in linear light", "[fr
   CHECK(changed == 0);
 }
 
+TEMPLATE_TEST_CASE("downsampled frames of sizes that are not multiples of the factor", "[frame_prefilter]", float,
+                   double) {
+  using T = TestType;
+  // A 7 x 5 image of distinct codes per pixel, and a camera with radial distortion.
+  mpr::Mat3<T> K = mpr::Mat3<T>::Identity();
+  K(0, 0) = K(1, 1) = T(6);
+  K(0, 2) = T(3);
+  K(1, 2) = T(2);
+  const mpr::PinholeCamera<T> camera(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), 7, 5, {T(0.05), T(-0.01)});
+  mpr::Image<mpr::Rgb8> image(7, 5);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x)
+      image(x, y) = mpr::Rgb8{static_cast<std::uint8_t>(30 * x + 7 * y), static_cast<std::uint8_t>(200 - 25 * y),
+                              static_cast<std::uint8_t>((x * 53 + y * 91) % 256)};
+  const mpr::CameraFrameSet<T> frames({camera, camera}, {image, image});
+  for (const int k : {2, 3}) {
+    INFO("factor " << k);
+    const mpr::CameraFrameSet<T> one = mpr::downsampled(frames, k, 1), two = mpr::downsampled(frames, k, 2);
+    REQUIRE(one.image(0).width() == 7 / k);
+    REQUIRE(one.image(0).height() == 5 / k);
+    CHECK(one.camera(1).distortion().k1 == camera.distortion().k1);
+    CHECK(one.camera(1).distortion().k2 == camera.distortion().k2);
+    int wrong = 0, differ = 0;
+    for (int y = 0; y < 5 / k; ++y)
+      for (int x = 0; x < 7 / k; ++x) {
+        mpr::Color sum = mpr::Color::Zero();
+        for (int dy = 0; dy < k; ++dy)
+          for (int dx = 0; dx < k; ++dx) sum += mpr::to_color(image(k * x + dx, k * y + dy));
+        const mpr::Rgb8 want = mpr::to_rgb8(sum / static_cast<float>(k * k));
+        for (std::size_t i = 0; i < 2; ++i) {
+          const mpr::Rgb8 got = one.image(i)(x, y);
+          wrong += std::max({std::abs(want.r - got.r), std::abs(want.g - got.g), std::abs(want.b - got.b)}) > 1;
+          differ += !(two.image(i)(x, y) == got); // workers share cameras, not pixels: the same codes
+        }
+      }
+    CHECK(wrong == 0);
+    CHECK(differ == 0);
+  }
+  CHECK_THROWS_WITH(mpr::downsampled(camera, 0), Catch::Contains("factor"));
+  CHECK_THROWS_WITH(mpr::downsampled(camera, 6), Catch::Contains("factor") && Catch::Contains("7x5"));
+  CHECK(mpr::downsampled(camera, 5).width() == 1);
+}
+
 TEMPLATE_TEST_CASE("downsampled linear frames and depth maps", "[frame_prefilter]", float, double) {
   using T = TestType;
   const auto cams = mpr_test::grid_cameras<T>(1, 1, 1.0, 3, 2, 4.0);
@@ -151,14 +205,7 @@ TEMPLATE_TEST_CASE("a half-scale refocus of prefiltered frames is the box-filter
   // The half-scale view written out, not derived by `downsampled`: focal length 8, the image
   // centre at (7.5, 5.5).
   const mpr::PinholeCamera<T> small = mpr_test::camera_at<T>(mpr::Vec3<T>::Zero(), 16, 12, 8.0);
-  const mpr::PlanarSurface<T> plane = centre.image_plane(T(16));
-  const mpr::PlanarSurface<T> small_plane = small.image_plane(T(16));
-  mpr::Image<mpr::Rgb8> full(32, 24), half(16, 12);
-  mpr::Renderer(plane, mpr::pinhole_glc(centre, plane), mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames))
-      .render(full.view(), mpr::Region(0, 0, 32, 24), {1});
-  mpr::Renderer(small_plane, mpr::pinhole_glc(small, small_plane),
-                mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(half_frames))
-      .render(half.view(), mpr::Region(0, 0, 16, 12), {1});
+  const mpr::Image<mpr::Rgb8> full = refocus(frames, centre, T(16)), half = refocus(half_frames, small, T(16));
   const mpr::Image<mpr::Rgb8> boxed = box_half(full);
   // Away from the border, where every camera sees the block.
   int worst = 0;
@@ -188,16 +235,10 @@ TEST_CASE("Chess at half scale from prefiltered frames", "[frame_prefilter][real
   Kh(0, 2) = T(349.5);
   Kh(1, 2) = T(199.5);
   const mpr::PinholeCamera<T> small(Kh, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), 700, 400);
-  // At the reference plane z = 1000 every camera's shift is a whole pixel, at the full scale:
-  // the half-scale refocus of the prefiltered frames is the box-filtered full refocus up to
-  // rounding (where odd shifts average two blocks, a little blur).
-  const mpr::PlanarSurface<T> plane = centre.image_plane(T(1000)), small_plane = small.image_plane(T(1000));
-  mpr::Image<mpr::Rgb8> full(1400, 800), half(700, 400);
-  mpr::Renderer(plane, mpr::pinhole_glc(centre, plane), mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(lf))
-      .render(full.view(), mpr::Region(0, 0, 1400, 800), {0});
-  mpr::Renderer(small_plane, mpr::pinhole_glc(small, small_plane),
-                mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(lh))
-      .render(half.view(), mpr::Region(0, 0, 700, 400), {0});
+  // At the reference plane z = 1000 every camera's shift is a whole pixel at the full scale: the
+  // half-scale refocus of the prefiltered frames is the box-filtered full refocus up to rounding
+  // and, for odd shifts, the half-scale tent across two blocks.
+  const mpr::Image<mpr::Rgb8> full = refocus(lf, centre, T(1000)), half = refocus(lh, small, T(1000));
   const mpr::Image<mpr::Rgb8> boxed = box_half(full);
   double squared = 0;
   for (int y = 0; y < 400; ++y)

@@ -20,10 +20,10 @@
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -33,10 +33,14 @@ namespace mpr {
 /// so that a pixel of the new image covers the `factor` x `factor` block of old pixels whose
 /// average it holds. With pixel centres at integer coordinates (see `PinholeCamera`), old
 /// coordinate x maps to (x - (factor - 1) / 2) / factor. Size: the old size / factor, rounded
-/// down (the last columns and rows that fill no block are dropped). Precondition: 1 <= factor
-/// <= the camera's width and height.
+/// down (the last columns and rows that fill no block are dropped). Throws `argument_error`
+/// ("factor") unless 1 <= factor <= the camera's width and height.
 template <std::floating_point T>
 [[nodiscard]] PinholeCamera<T> downsampled(const PinholeCamera<T>& camera, int factor) {
+  if (factor < 1) throw argument_error("factor", std::to_string(factor) + " (a downsampling factor is at least 1)");
+  if (factor > camera.width() || factor > camera.height())
+    throw argument_error("factor", std::to_string(factor) + " exceeds the camera's size (" +
+                                       std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + ")");
   const T s = T(1) / static_cast<T>(factor);
   const T shift = -static_cast<T>(factor - 1) / static_cast<T>(2 * factor);
   Mat3<T> A = Mat3<T>::Identity();
