@@ -381,8 +381,9 @@ int main(int argc, char** argv) {
     measure("chess_focus, prefiltered", p825, mpr::pinhole_glc(half, p825), half_full, 700, 400, threads, repeats,
             false);
   }
-  std::printf("\n(prefiltered: the frames box-filtered to half their scale once, in %.0f ms on all threads; the rows sample "
-              "them, a different filter from bilinear sampling of the full frames)\n",
-              prefilter_ms);
+  std::printf(
+      "\n(prefiltered: the frames box-filtered to half their scale once, in %.0f ms on all threads; the rows sample "
+      "them, a different filter from bilinear sampling of the full frames)\n",
+      prefilter_ms);
   return 0;
 }

@@ -13,15 +13,6 @@ namespace {
 
 using mpr_tools_test::job_of;
 
-std::string error_of(const std::vector<std::string>& args) {
-  try {
-    (void)mpr_cli::render_frames(job_of(args));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 /// The prefilter factor of `args` (after the array defaults, as mpr-render computes it).
 int factor_of(const std::vector<std::string>& args) {
   const mpr_cli::Job given = job_of(args);
@@ -58,16 +49,52 @@ TEST_CASE("--prefilter auto is the whole camera pixels an output pixel spans", "
   CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--zoom", "2"}) == 1);
   CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--prefilter", "1"}) == 1);
   CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "8x6", "--prefilter", "2"}) == 2);
-  // The depth proxy samples where its depth maps put the surface: auto leaves its frames alone.
+  // The depth proxy samples where its depth maps put the surface: auto leaves its frames alone;
+  // so does supersampling, which integrates each pixel itself.
   CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--interp", "depth", "--depth-maps",
                    dir.string()}) == 1);
+  CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--spp", "4"}) == 1);
+  // Every frame of an animation counts: a keyframe between the first, middle and last frame that
+  // tilts the plane 60 degrees about its horizontal axis halves the vertical footprint there.
+  CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--tilt-x", "0=0,0.25=60,0.5=0,1=0", "--frames",
+                   "9"}) == 1);
+  CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--tilt-x", "0=0,0.25=20,0.5=0,1=0", "--frames",
+                   "9"}) == 1); // cos 20 deg x 2 = 1.88
+  // A layout of several views: the smallest footprint of any (view A is the reference view here).
+  CHECK(factor_of({"--par", par, "--focal-depth", "2", "--size", "4x3", "--layout", "2x1", "--views",
+                   "default,default"}) == 2);
+}
+
+TEST_CASE("--write-depth reads the full frames' depth maps whatever --prefilter does", "[prefilter]") {
+  // Depth maps of a checkerboard of depths 2 and 3: the nearest of a 2x2 block is 2 everywhere.
+  const std::filesystem::path dir = mpr_tools_test::plane_light_field("prefilter_depth", 2.0f);
+  for (int i = 0; i < 3; ++i) {
+    mpr::Image<float> depth(8, 6);
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 8; ++x) depth(x, y) = (x + y) % 2 == 0 ? 2.0f : 3.0f;
+    mpr::write_pfm(dir / ("view" + std::to_string(i) + ".pfm"), depth);
+  }
+  const std::string par = (dir / "tiny_par.txt").string();
+  const auto depth_of = [&](const char* prefilter, const char* name) {
+    const std::filesystem::path pfm = dir / name;
+    (void)mpr_cli::render_frames(job_of({"--par", par, "--focal-depth", "2.5", "--size", "4x3", "--depth-maps",
+                                         dir.string(), "--write-depth", pfm.string(), "--prefilter", prefilter}));
+    return mpr::read_pfm(pfm);
+  };
+  const mpr::Image<float> full = depth_of("1", "full.pfm"), automatic = depth_of("auto", "auto.pfm");
+  REQUIRE(automatic.width() == full.width());
+  int differ = 0;
+  for (int y = 0; y < full.height(); ++y)
+    for (int x = 0; x < full.width(); ++x) differ += automatic(x, y) == full(x, y) ? 0 : 1;
+  CHECK(differ == 0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("a prefiltered render samples the frames at the output's scale and says so", "[prefilter]") {
   const std::filesystem::path dir = mpr_tools_test::plane_light_field("prefilter_render", 2.0f);
   const std::string par = (dir / "tiny_par.txt").string();
   const auto render = [&](const std::vector<std::string>& extra, std::string& said) {
-    std::vector<std::string> args{"--par", par, "--focal-depth", "2", "--size", "4x3", "--interp", "nearest"};
+    std::vector<std::string> args{"--par", par, "--focal-depth", "2", "--size", "4x3"};
     args.insert(args.end(), extra.begin(), extra.end());
     std::vector<mpr::Image<mpr::Rgb8>> frames;
     std::ostringstream info, warnings;
@@ -78,8 +105,8 @@ TEST_CASE("a prefiltered render samples the frames at the output's scale and say
     return frames[0];
   };
   std::string auto_said, full_said;
-  const mpr::Image<mpr::Rgb8> prefiltered = render({}, auto_said);
-  const mpr::Image<mpr::Rgb8> full = render({"--prefilter", "1"}, full_said);
+  const mpr::Image<mpr::Rgb8> prefiltered = render({"--interp", "nearest"}, auto_said);
+  const mpr::Image<mpr::Rgb8> full = render({"--interp", "nearest", "--prefilter", "1"}, full_said);
   CHECK_THAT(auto_said, Catch::Contains("prefiltered the frames to 1/2 of their scale (4x3)") &&
                             Catch::Contains("2.00 camera pixels"));
   CHECK(full_said.find("prefiltered") == std::string::npos);
@@ -101,7 +128,11 @@ TEST_CASE("a prefiltered render samples the frames at the output's scale and say
     }
   CHECK(worst <= 1);
   CHECK(worst_full <= 1);
+  // Under the synthetic aperture the side cameras' texels lie 0.4 pixel off the middle one's: box
+  // then tent (prefiltered) and tent alone (full frames) give different images.
+  std::string said;
+  CHECK_FALSE(render({"--interp", "synthetic"}, said) == render({"--interp", "synthetic", "--prefilter", "1"}, said));
   // A factor the cameras cannot hold is refused, naming the option and the camera.
-  CHECK_THAT(error_of({"--par", par, "--focal-depth", "2", "--prefilter", "7"}),
-             Catch::Contains("--prefilter") && Catch::Contains("view0.png") && Catch::Contains("8x6"));
+  CHECK_THROWS_WITH(mpr_cli::render_frames(job_of({"--par", par, "--focal-depth", "2", "--prefilter", "7"})),
+                    Catch::Contains("--prefilter") && Catch::Contains("view0.png") && Catch::Contains("8x6"));
 }

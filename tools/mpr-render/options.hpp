@@ -146,8 +146,8 @@ inline const std::vector<OptionSpec>& options() {
        "Light fields: sample the frames box-filtered in linear light to 1/N of their scale (N = 1..8; "
        "mpr::downsampled), so a smaller output averages each pixel's footprint instead of point-sampling it and reads "
        "a quarter of the texels at N = 2. auto (default): N = the camera pixels an output pixel spans on the focal "
-       "surface, rounded down (700x400 from 1400x800 Chess: 2; mpr-view's 960x540: 1), except under --interp depth; "
-       "1: the full frames.",
+       "surface, rounded down, over every frame (700x400 from 1400x800 Chess: 2; mpr-view's 960x540: 1), except under "
+       "--interp depth and --spp N > 1; 1: the full frames.",
        "--stanford $MPR_DATA_DIR/stanford/chess --size 700x400 --prefilter 1"},
       {"plane-centre", "X,Y,Z", "Centre of the image plane (default: depends on the sampler).",
        "--plane-centre 0,3.1,3 --look-at 0,1.6,-8 --plane-size 8,6"},

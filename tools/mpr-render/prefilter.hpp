@@ -24,11 +24,15 @@ namespace mpr_cli {
 
 /// The smallest distance, in the reference camera's pixels, between the focal-surface points of
 /// neighbouring output pixels (a pixel's footprint on the frames), over a 5x5 grid of pixels of
-/// every view of a `w` x `h` image at frame parameters `p`; +inf when no point projects.
+/// every view of a `w` x `h` image at frame parameters `p`; +inf when no point projects into the
+/// reference camera. Measured over up to 8 pixels (inside the image) and divided by their
+/// number, so that float rounding of the points (about 1e-4 of a pixel over one pixel on Chess)
+/// stays far below `auto_prefilter_factor`'s tolerance.
 template <std::floating_point T>
-double footprint_at(const Job& job, const Loaded<T>& l, const FrameParams& p, int w, int h) {
+[[nodiscard]] double footprint_at(const Job& job, const Loaded<T>& l, const FrameParams& p, int w, int h) {
   double smallest = std::numeric_limits<double>::infinity();
   if (!l.reference) return smallest;
+  const int sx = std::min(8, w - 1), sy = std::min(8, h - 1); // the stencils, pixels
   for (std::size_t k = 0; k < job.views.size(); ++k) {
     const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
     std::visit(
@@ -39,11 +43,15 @@ double footprint_at(const Job& job, const Loaded<T>& l, const FrameParams& p, in
           };
           for (int j = 0; j < 5; ++j)
             for (int i = 0; i < 5; ++i) {
-              const double x = 0.5 + (w - 2) * i / 4.0, y = 0.5 + (h - 2) * j / 4.0;
-              const auto a = project(x, y), bx = project(x + 1, y), by = project(x, y + 1);
-              if (!a || !bx || !by) continue;
-              smallest =
-                  std::min({smallest, static_cast<double>((*bx - *a).norm()), static_cast<double>((*by - *a).norm())});
+              const double x = 0.5 + (w - 1 - sx) * i / 4.0, y = 0.5 + (h - 1 - sy) * j / 4.0;
+              const auto a = project(x, y);
+              if (!a) continue;
+              if (sx > 0)
+                if (const auto b = project(x + sx, y))
+                  smallest = std::min(smallest, static_cast<double>((*b - *a).norm()) / sx);
+              if (sy > 0)
+                if (const auto b = project(x, y + sy))
+                  smallest = std::min(smallest, static_cast<double>((*b - *a).norm()) / sy);
             }
         },
         camera);
@@ -51,49 +59,54 @@ double footprint_at(const Job& job, const Loaded<T>& l, const FrameParams& p, in
   return smallest;
 }
 
-/// `footprint_at` at the first, middle and last frame of the job's animation, the smallest.
+/// `footprint_at` at every frame of the job's animation, the smallest.
 template <std::floating_point T>
-double smallest_footprint(const Job& job, const Loaded<T>& l, int w, int h) {
+[[nodiscard]] double smallest_footprint(const Job& job, const Loaded<T>& l, int w, int h) {
   double smallest = std::numeric_limits<double>::infinity();
   const int count = std::max(job.frames, 1);
-  for (const int f : {0, count / 2, count - 1})
+  for (int f = 0; f < count; ++f)
     smallest =
         std::min(smallest, footprint_at(job, l, frame_params(job, l.default_focal_depth, frame_time(f, count)), w, h));
   return smallest;
 }
 
 /// Whether --prefilter auto considers the job: light fields under the nearest, synthetic or
-/// cylinder interpolation. The depth proxy samples where its depth maps put the surface, not on
-/// the focal surface, so `auto` leaves it on the full frames.
+/// cylinder interpolation, one sample per pixel. The depth proxy samples where its depth maps put
+/// the surface, not on the focal surface, and supersampling (--spp) already integrates each
+/// pixel's footprint: `auto` leaves both on the full frames.
 template <std::floating_point T>
-bool auto_prefilter_applies(const Job& job, const Loaded<T>& l) noexcept {
-  return l.frames && l.reference && job.interpolation != Interpolation::depth;
+[[nodiscard]] bool auto_prefilter_applies(const Job& job, const Loaded<T>& l) noexcept {
+  return l.frames && l.reference && job.interpolation != Interpolation::depth && job.spp == 1;
 }
 
-/// The factor of --prefilter auto for a footprint (`footprint_at`): the whole camera pixels it
-/// spans, 1 to 8 (1: the full frames).
-[[nodiscard]] inline int auto_prefilter_factor(double footprint) noexcept {
+/// The factor of --prefilter auto for a footprint (`footprint_at`) on `frames`: the whole camera
+/// pixels it spans (within 1e-3), 1 to 8 and at most the smallest camera's width and height (1:
+/// the full frames).
+template <std::floating_point T>
+[[nodiscard]] int auto_prefilter_factor(double footprint, const mpr::CameraFrameSet<T>& frames) noexcept {
   if (!std::isfinite(footprint)) return 1;
-  return std::clamp(static_cast<int>(std::floor(footprint * (1 + 1e-4))), 1, 8);
+  int most = 8;
+  for (const mpr::PinholeCamera<T>& c : frames.cameras()) most = std::min({most, c.width(), c.height()});
+  return std::clamp(static_cast<int>(std::floor(footprint * (1 + 1e-3))), 1, std::max(most, 1));
 }
 
 /// The downsampling factor of --prefilter for a job rendered at `w` x `h`: the given N, or for
 /// `auto` the `auto_prefilter_factor` of its `smallest_footprint` where `auto_prefilter_applies`,
 /// else 1. `footprint` receives that footprint when auto measured it.
 template <std::floating_point T>
-int prefilter_factor(const Job& job, const Loaded<T>& l, int w, int h, double* footprint = nullptr) {
+[[nodiscard]] int prefilter_factor(const Job& job, const Loaded<T>& l, int w, int h, double* footprint = nullptr) {
   if (job.prefilter) return *job.prefilter;
   if (!auto_prefilter_applies(job, l)) return 1;
   const double f = smallest_footprint(job, l, w, h);
   if (footprint != nullptr) *footprint = f;
-  return auto_prefilter_factor(f);
+  return auto_prefilter_factor(f, *l.frames);
 }
 
 /// `frames` prefiltered by `factor` on `threads` workers, or `frames` itself for factor 1.
 /// Throws `argument_error` ("--prefilter") when the factor exceeds a camera's size.
 template <std::floating_point T>
-std::shared_ptr<const mpr::CameraFrameSet<T>> prefiltered_frames(std::shared_ptr<const mpr::CameraFrameSet<T>> frames,
-                                                                 int factor, int threads) {
+[[nodiscard]] std::shared_ptr<const mpr::CameraFrameSet<T>>
+prefiltered_frames(std::shared_ptr<const mpr::CameraFrameSet<T>> frames, int factor, int threads) {
   if (factor <= 1 || !frames) return frames;
   try {
     return std::make_shared<const mpr::CameraFrameSet<T>>(mpr::downsampled(*frames, factor, threads));
@@ -106,7 +119,7 @@ std::shared_ptr<const mpr::CameraFrameSet<T>> prefiltered_frames(std::shared_ptr
 /// its notes when they were. Throws `argument_error` ("--prefilter") when the factor exceeds a
 /// camera's size.
 template <std::floating_point T>
-Loaded<T> with_prefilter(const Job& job, Loaded<T> l, int w, int h) {
+[[nodiscard]] Loaded<T> with_prefilter(const Job& job, Loaded<T> l, int w, int h) {
   double footprint = 0;
   const int factor = prefilter_factor(job, l, w, h, &footprint);
   if (factor <= 1 || !l.frames) return l;

@@ -73,7 +73,9 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     for (const std::string& note : loaded.notes) *info << note << '\n';
   const Job job = with_focus_at(with_array_defaults(given, loaded), loaded, info); // --focus-at: the focal depth set
   const auto [w, h] = view_size(job, loaded);
-  const Loaded<T> l = with_prefilter(job, loaded, w, h); // --prefilter: the frames at the output's scale
+  // --prefilter: the frames the views sample, at the output's scale. The depth outputs (--focus-at
+  // above, --write-depth below) read the full frames' depth maps.
+  const Loaded<T> l = with_prefilter(job, loaded, w, h);
   if (info != nullptr)
     for (std::size_t n = loaded.notes.size(); n < l.notes.size(); ++n) *info << l.notes[n] << '\n';
 
@@ -101,7 +103,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     }
     sink(f, count, image);
   }
-  write_view_depth(job, l, info); // --write-depth (a single image)
+  write_view_depth(job, loaded, info); // --write-depth (a single image)
 }
 
 /// Runs the job: every frame goes to `sink`; --print-camera text, the depth of --focus-at and the

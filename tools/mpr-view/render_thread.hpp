@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -136,13 +137,16 @@ private:
   /// loaded frames prefiltered as --prefilter says (mpr-render's prefilter.hpp; auto: by the
   /// footprint of the image's pixels at the request's parameters, so a preview reads frames at
   /// its own scale), each factor's frames built once, on first use.
-  const mpr_cli::Loaded<T>& loaded_for(const RenderRequest& r, int scale) {
+  const mpr_cli::Loaded<T>& loaded_for(const RenderRequest& r, int w, int h) {
     int factor = 1;
-    if (r.job.prefilter)
+    if (r.job.prefilter) {
       factor = *r.job.prefilter;
-    else if (mpr_cli::auto_prefilter_applies(r.job, loaded_))
+    } else if (mpr_cli::auto_prefilter_applies(r.job, loaded_)) {
+      // View pixels per image pixel (a preview of an odd size is ceil(size / scale) wide).
+      const double scale = std::min(static_cast<double>(r.view_width) / w, static_cast<double>(r.view_height) / h);
       factor = mpr_cli::auto_prefilter_factor(
-          scale * mpr_cli::footprint_at(r.job, loaded_, r.params, r.view_width, r.view_height));
+          scale * mpr_cli::footprint_at(r.job, loaded_, r.params, r.view_width, r.view_height), *loaded_.frames);
+    }
     if (factor <= 1 || !loaded_.frames) return loaded_;
     if (const auto it = prefiltered_.find(factor); it != prefiltered_.end()) return it->second;
     mpr_cli::Loaded<T> l = loaded_;
@@ -153,8 +157,8 @@ private:
   }
 
   /// The sampler of a request over `l` (`loaded_for`), one kept for previews and one for full
-  /// frames: rebuilt only when its settings change (a rasterized array costs milliseconds per
-  /// camera to build).
+  /// frames (the same one when their settings agree): rebuilt only when its settings change (a
+  /// rasterized array costs milliseconds per camera to build).
   const mpr_cli::SamplerVariant<T>& sampler_for(const RenderRequest& r, const mpr_cli::Loaded<T>& l, bool full) {
     std::string key = std::to_string(static_cast<int>(r.job.interpolation)) + " " + std::to_string(r.params.radius) +
                       " " + std::to_string(reinterpret_cast<std::uintptr_t>(l.frames.get()));
@@ -164,11 +168,15 @@ private:
         key += " " + std::to_string(v.x()) + "," + std::to_string(v.y()) + "," + std::to_string(v.z());
       key += " " + std::to_string(r.job.focal_depth ? r.params.focal_depth : -1.0);
     }
-    std::optional<mpr_cli::SamplerVariant<T>>& sampler = sampler_[full ? 1 : 0];
+    std::shared_ptr<const mpr_cli::SamplerVariant<T>>& sampler = sampler_[full ? 1 : 0];
     std::string& sampler_key = sampler_key_[full ? 1 : 0];
     if (!sampler || key != sampler_key) {
       sampler.reset();
-      sampler.emplace(mpr_cli::make_sampler(r.job, l, r.params, r.view_width, r.view_height));
+      if (sampler_[full ? 0 : 1] && sampler_key_[full ? 0 : 1] == key)
+        sampler = sampler_[full ? 0 : 1];
+      else
+        sampler = std::make_shared<const mpr_cli::SamplerVariant<T>>(
+            mpr_cli::make_sampler(r.job, l, r.params, r.view_width, r.view_height));
       sampler_key = key;
     }
     return *sampler;
@@ -190,7 +198,7 @@ private:
     try {
       for (std::size_t k = 0; k < r.job.views.size(); ++k)
         cameras.push_back(mpr_cli::make_camera(r.job, loaded_, r.params, k, r.view_width, r.view_height));
-      sampler = &sampler_for(r, loaded_for(r, scale), full);
+      sampler = &sampler_for(r, loaded_for(r, w, h), full);
     } catch (const std::exception& e) {
       frame.error = one_line(e.what());
       frame.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - r.submitted).count();
@@ -282,9 +290,9 @@ private:
   std::optional<RenderRequest> pending_;
   std::optional<RenderedFrame> done_;
   std::atomic<std::uint64_t> latest_{0};
-  std::map<int, mpr_cli::Loaded<T>> prefiltered_;        // render thread only: by factor
-  std::optional<mpr_cli::SamplerVariant<T>> sampler_[2]; // render thread only: preview, full
-  std::string sampler_key_[2];                           // render thread only
+  std::map<int, mpr_cli::Loaded<T>> prefiltered_;                // render thread only: by factor
+  std::shared_ptr<const mpr_cli::SamplerVariant<T>> sampler_[2]; // render thread only: preview, full
+  std::string sampler_key_[2];                                   // render thread only
   std::optional<BandPool> pool_;
   double last_full_ms_ = 0, last_preview_ms_ = 0; // render thread only
   double prefilter_ms_ = 0;                       // render thread only: spent prefiltering this frame

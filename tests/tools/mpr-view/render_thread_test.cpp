@@ -43,6 +43,14 @@ struct Collector {
   }
 };
 
+/// Every frame a render thread publishes for `job` (first request: a preview, then the full
+/// frame), and that full frame.
+struct Published {
+  std::vector<mpr_view::RenderedFrame> frames;
+  mpr_view::RenderedFrame full;
+};
+Published render_once(const mpr_cli::Job& job, const mpr_cli::Loaded<float>& l);
+
 mpr_view::RenderRequest request_of(const mpr_cli::Job& job, const mpr_cli::Loaded<float>& l, std::uint64_t gen) {
   mpr_view::RenderRequest r;
   r.job = job;
@@ -51,6 +59,20 @@ mpr_view::RenderRequest request_of(const mpr_cli::Job& job, const mpr_cli::Loade
   r.view_height = job.height;
   r.generation = gen;
   return r;
+}
+Published render_once(const mpr_cli::Job& job, const mpr_cli::Loaded<float>& l) {
+  Collector c;
+  mpr_view::RenderThread<float> thread(l, [&] { c.on_frame(); });
+  {
+    const std::lock_guard lock(c.mutex);
+    c.thread = &thread;
+  }
+  thread.submit(request_of(job, l, 1));
+  Published p;
+  p.full = c.wait_full(1);
+  const std::lock_guard lock(c.mutex);
+  p.frames = c.frames;
+  return p;
 }
 } // namespace
 
@@ -62,18 +84,10 @@ TEST_CASE("RenderThread renders a preview, then exactly mpr-render's image", "[v
                                  "--tilt-x", "10", "--rectify", "plane", "--threads", "2"}}) {
     const mpr_cli::Job job = job_of(args);
     const mpr_cli::Loaded<float> l = mpr_cli::load<float>(job);
-    Collector c;
-    mpr_view::RenderThread<float> thread(l, [&] { c.on_frame(); });
-    {
-      const std::lock_guard lock(c.mutex);
-      c.thread = &thread;
-    }
-    thread.submit(request_of(job, l, 1));
-    const mpr_view::RenderedFrame full = c.wait_full(1);
-    REQUIRE(full.error.empty());
+    const Published c = render_once(job, l);
+    REQUIRE(c.full.error.empty());
     const std::vector<mpr::Image<mpr::Rgb8>> expected = mpr_cli::render_frames(job);
-    CHECK(identical(full.image, expected.at(0)));
-    const std::lock_guard lock(c.mutex);
+    CHECK(identical(c.full.image, expected.at(0)));
     REQUIRE(c.frames.size() >= 1);
     if (c.frames.size() == 2) { // the preview was taken before the full frame replaced it
       CHECK_FALSE(c.frames[0].full);
@@ -99,18 +113,9 @@ TEST_CASE("RenderThread samples a light field prefiltered to each frame's scale,
   for (const char* size : {"8x6", "4x3"}) {
     INFO(size);
     const mpr_cli::Job job = job_at(size);
-    const mpr_cli::Loaded<float> l = mpr_cli::load<float>(job);
-    Collector c;
-    mpr_view::RenderThread<float> thread(l, [&] { c.on_frame(); });
-    {
-      const std::lock_guard lock(c.mutex);
-      c.thread = &thread;
-    }
-    thread.submit(request_of(job, l, 1));
-    const mpr_view::RenderedFrame full = c.wait_full(1);
-    REQUIRE(full.error.empty());
-    CHECK(identical(full.image, mpr_cli::render_frames(job).at(0)));
-    const std::lock_guard lock(c.mutex);
+    const Published c = render_once(job, mpr_cli::load<float>(job));
+    REQUIRE(c.full.error.empty());
+    CHECK(identical(c.full.image, mpr_cli::render_frames(job).at(0)));
     REQUIRE(c.frames.size() == 2); // the first request's preview is never skipped
     CHECK_FALSE(c.frames[0].full);
     // The 4x3 preview of the 8x6 view is mpr-render's 4x3 image: the frames prefiltered to its scale.
