@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
     measure("chess_aperture, prefiltered", p760, mpr::pinhole_glc(half, p760), half_cylinder16, 700, 400, threads,
             repeats, threads == 2);
     measure("chess_focus, prefiltered", p825, mpr::pinhole_glc(half, p825), half_full, 700, 400, threads, repeats,
-            false);
+            threads == 2);
   }
   std::printf(
       "\n(prefiltered: the frames box-filtered to half their scale once, in %.0f ms on all threads; the rows sample "
