@@ -90,16 +90,25 @@ template <std::floating_point T>
   return std::clamp(static_cast<int>(std::floor(footprint * (1 + 1e-3))), 1, std::max(most, 1));
 }
 
-/// The downsampling factor of --prefilter for a job rendered at `w` x `h`: the given N, or for
-/// `auto` the `auto_prefilter_factor` of its `smallest_footprint` where `auto_prefilter_applies`,
-/// else 1. `footprint` receives that footprint when auto measured it.
-template <std::floating_point T>
-[[nodiscard]] int prefilter_factor(const Job& job, const Loaded<T>& l, int w, int h, double* footprint = nullptr) {
+/// The downsampling factor of --prefilter: the given N, or for `auto` where
+/// `auto_prefilter_applies` the `auto_prefilter_factor` of the footprint `measure()` returns
+/// (also stored in `footprint`), else 1. The one decision of mpr-render and mpr-view, which
+/// measure differently (a whole animation; one request at its preview's scale).
+template <std::floating_point T, class Measure>
+[[nodiscard]] int prefilter_factor(const Job& job, const Loaded<T>& l, const Measure& measure,
+                                   double* footprint = nullptr) {
   if (job.prefilter) return *job.prefilter;
   if (!auto_prefilter_applies(job, l)) return 1;
-  const double f = smallest_footprint(job, l, w, h);
+  const double f = measure();
   if (footprint != nullptr) *footprint = f;
   return auto_prefilter_factor(f, *l.frames);
+}
+
+/// `prefilter_factor` of a job rendered at `w` x `h`: auto measures its `smallest_footprint`.
+template <std::floating_point T>
+[[nodiscard]] int prefilter_factor(const Job& job, const Loaded<T>& l, int w, int h, double* footprint = nullptr) {
+  return prefilter_factor(
+      job, l, [&] { return smallest_footprint(job, l, w, h); }, footprint);
 }
 
 /// `frames` prefiltered by `factor` on `threads` workers, or `frames` itself for factor 1.
@@ -111,7 +120,7 @@ prefiltered_frames(std::shared_ptr<const mpr::CameraFrameSet<T>> frames, int fac
   try {
     return std::make_shared<const mpr::CameraFrameSet<T>>(mpr::downsampled(*frames, factor, threads));
   } catch (const mpr::argument_error& e) {
-    throw mpr::argument_error("--prefilter", e.what());
+    throw mpr::argument_error("--prefilter", e.reason());
   }
 }
 

@@ -138,15 +138,11 @@ private:
   /// footprint of the image's pixels at the request's parameters, so a preview reads frames at
   /// its own scale), each factor's frames built once, on first use.
   const mpr_cli::Loaded<T>& loaded_for(const RenderRequest& r, int w, int h) {
-    int factor = 1;
-    if (r.job.prefilter) {
-      factor = *r.job.prefilter;
-    } else if (mpr_cli::auto_prefilter_applies(r.job, loaded_)) {
+    const int factor = mpr_cli::prefilter_factor(r.job, loaded_, [&] {
       // View pixels per image pixel (a preview of an odd size is ceil(size / scale) wide).
       const double scale = std::min(static_cast<double>(r.view_width) / w, static_cast<double>(r.view_height) / h);
-      factor = mpr_cli::auto_prefilter_factor(
-          scale * mpr_cli::footprint_at(r.job, loaded_, r.params, r.view_width, r.view_height), *loaded_.frames);
-    }
+      return scale * mpr_cli::footprint_at(r.job, loaded_, r.params, r.view_width, r.view_height);
+    });
     if (factor <= 1 || !loaded_.frames) return loaded_;
     if (const auto it = prefiltered_.find(factor); it != prefiltered_.end()) return it->second;
     mpr_cli::Loaded<T> l = loaded_;

@@ -39,8 +39,8 @@ template <std::floating_point T>
 [[nodiscard]] PinholeCamera<T> downsampled(const PinholeCamera<T>& camera, int factor) {
   if (factor < 1) throw argument_error("factor", std::to_string(factor) + " (a downsampling factor is at least 1)");
   if (factor > camera.width() || factor > camera.height())
-    throw argument_error("factor", std::to_string(factor) + " exceeds the camera's size (" +
-                                       std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + ")");
+    throw argument_error("factor", std::to_string(factor) + " exceeds the camera's size, " +
+                                       std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
   const T s = T(1) / static_cast<T>(factor);
   const T shift = -static_cast<T>(factor - 1) / static_cast<T>(2 * factor);
   Mat3<T> A = Mat3<T>::Identity();
@@ -122,19 +122,18 @@ template <std::floating_point T, class Px>
   if (factor < 1) throw argument_error("factor", std::to_string(factor) + " (a downsampling factor is at least 1)");
   if (factor == 1) return frames;
   const std::size_t n = frames.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (factor > frames.camera(i).width() || factor > frames.camera(i).height())
-      throw argument_error("factor", std::to_string(factor) + " exceeds the size of " + frames.name(i) + " (" +
-                                         std::to_string(frames.camera(i).width()) + "x" +
-                                         std::to_string(frames.camera(i).height()) + ")");
   std::vector<PinholeCamera<T>> cameras;
+  cameras.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) try {
+      cameras.push_back(downsampled(frames.camera(i), factor));
+    } catch (const argument_error& e) {
+      throw argument_error("factor", frames.name(i) + ": " + e.reason());
+    }
   std::vector<Image<Px>> images;
   std::vector<Image<float>> depths;
   std::vector<std::size_t> scratch_at(n + 1, 0); // each camera's two rows of sums in `scratch`
-  cameras.reserve(n);
   images.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    cameras.push_back(downsampled(frames.camera(i), factor));
     images.emplace_back(cameras.back().width(), cameras.back().height());
     if (frames.has_depth()) depths.emplace_back(cameras.back().width(), cameras.back().height());
     scratch_at[i + 1] = scratch_at[i] + 6 * static_cast<std::size_t>(cameras.back().width());
