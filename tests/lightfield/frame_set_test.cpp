@@ -140,3 +140,38 @@ TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per
     refuse(bad, "b: depth");
   }
 }
+
+TEMPLATE_TEST_CASE("CameraFrameSet::depth_bounds holds every surface point the depth maps show", "[camera_frame_set]",
+                   float, double) {
+  using T = TestType;
+  // Two cameras of 40 x 30 pixels (focal 30, principal point at the centre) at x = 0 and x = 2,
+  // looking along +z. Camera 0 sees z = 5 everywhere: its points span x, y = 5 (p - c) / 30 over
+  // the pixel centres p, i.e. [-3.25, 3.25] x [-2.4167, 2.4167] x {5}, widened by two pixels at
+  // depth 5 (1/3). Camera 1 sees one pixel at depth 10 and nothing elsewhere.
+  const std::vector<mpr::PinholeCamera<T>> cams{mpr_test::camera_at<T>(mpr::Vec3<T>(0, 0, 0), 40, 30, 30.0),
+                                                mpr_test::camera_at<T>(mpr::Vec3<T>(2, 0, 0), 40, 30, 30.0)};
+  const std::vector<mpr::Image<mpr::Rgb8>> images(2, mpr::Image<mpr::Rgb8>(40, 30));
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<mpr::Image<float>> maps{mpr::Image<float>(40, 30, 5.0f), mpr::Image<float>(40, 30, inf)};
+  maps[1](19, 14) = 10.0f; // the ray through (19, 14) leaves the centre at (-0.5, -0.5) / 30
+  const auto set = mpr::CameraFrameSet<T>(cams, images).with_depth(maps);
+  const auto& b = set.depth_bounds();
+  const double m0 = 2.0 * 5.0 / 30.0, m1 = 2.0 * 10.0 / 30.0;
+  const double lo[3] = {-3.25 - m0, -14.5 * 5.0 / 30.0 - m0, 5.0 - m0};
+  const double hi[3] = {3.25 + m0, 14.5 * 5.0 / 30.0 + m0, 10.0 + m1};
+  for (int a = 0; a < 3; ++a) {
+    INFO("axis " << a);
+    CHECK(static_cast<double>(b[0][a]) == Approx(lo[a]).epsilon(1e-5));
+    CHECK(static_cast<double>(b[1][a]) == Approx(hi[a]).epsilon(1e-5));
+  }
+  // Leave-one-out recomputes the box from the remaining maps; maps that show nothing give an
+  // empty box (lower corner above the upper), as does a set without maps.
+  const auto only_pixel = set.without(0);
+  CHECK(static_cast<double>(only_pixel.depth_bounds()[0].x()) == Approx(2.0 - 0.5 * 10.0 / 30.0 - m1).epsilon(1e-5));
+  CHECK(static_cast<double>(only_pixel.depth_bounds()[1].z()) == Approx(10.0 + m1).epsilon(1e-5));
+  const auto unseen = mpr::CameraFrameSet<T>(cams, images)
+                          .with_depth(std::vector<mpr::Image<float>>(2, mpr::Image<float>(40, 30, inf)));
+  CHECK_FALSE(unseen.depth_bounds()[0].z() <= unseen.depth_bounds()[1].z());
+  CHECK_FALSE(mpr::CameraFrameSet<T>(cams, images).depth_bounds()[0].z() <=
+              mpr::CameraFrameSet<T>(cams, images).depth_bounds()[1].z());
+}

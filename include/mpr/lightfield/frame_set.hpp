@@ -167,6 +167,12 @@ public:
   /// saw nothing: no surface lies nearer to camera `i` along its axis, so a search for one can
   /// start there.
   [[nodiscard]] float depth_near(std::size_t i) const noexcept { return depth_near_[i]; }
+  /// The lower and upper corner (world units) of an axis-aligned box holding every surface point
+  /// the depth maps show (each finite depth at its pixel, the point `ray_through(pixel).at(depth)`),
+  /// widened on every side by two pixels' width at the farthest depth of each map: no surface
+  /// a map shows lies outside it, between pixel centres or at an image's border included. Empty
+  /// (lower corner +inf, upper -inf) when no map has a finite depth or the set carries none.
+  [[nodiscard]] const std::array<Vec3<T>, 2>& depth_bounds() const noexcept { return depth_bounds_; }
 
   /// This set, carrying `depths[i]` as camera `i`'s depth map (see `depth`); an empty list drops
   /// the depth maps. Throws `argument_error` ("depth maps") naming the camera when the counts
@@ -177,6 +183,7 @@ public:
       throw argument_error("depth maps", std::to_string(cameras_.size()) + " cameras but " +
                                              std::to_string(depths.size()) + " depth maps");
     std::vector<float> near(depths.size(), std::numeric_limits<float>::infinity());
+    std::vector<std::array<Vec3<T>, 2>> boxes(depths.size());
     for (std::size_t i = 0; i < depths.size(); ++i) {
       const Image<float>& d = depths[i];
       if (d.width() != cameras_[i].width() || d.height() != cameras_[i].height())
@@ -184,17 +191,17 @@ public:
                                                std::to_string(d.height()) + " but its camera expects " +
                                                std::to_string(cameras_[i].width()) + "x" +
                                                std::to_string(cameras_[i].height()));
-      for (int y = 0; y < d.height(); ++y)
-        for (int x = 0; x < d.width(); ++x)
-          if (!(d(x, y) > 0))
-            throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(x, y)) + " at pixel (" +
-                                                   std::to_string(x) + ", " + std::to_string(y) +
-                                                   ") (depths are positive, +inf where nothing was seen)");
-          else
-            near[i] = std::min(near[i], d(x, y));
+      int bad_x = -1, bad_y = -1;
+      boxes[i] = surface_box(cameras_[i], d, near[i], bad_x, bad_y);
+      if (bad_x >= 0)
+        throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(bad_x, bad_y)) + " at pixel (" +
+                                               std::to_string(bad_x) + ", " + std::to_string(bad_y) +
+                                               ") (depths are positive, +inf where nothing was seen)");
     }
     depths_ = std::move(depths);
     depth_near_ = std::move(near);
+    depth_boxes_ = std::move(boxes);
+    depth_bounds_ = union_box(depth_boxes_);
     return std::move(*this);
   }
 
@@ -209,6 +216,8 @@ public:
     if (!out.depths_.empty()) {
       out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
       out.depth_near_.erase(out.depth_near_.begin() + static_cast<std::ptrdiff_t>(i));
+      out.depth_boxes_.erase(out.depth_boxes_.begin() + static_cast<std::ptrdiff_t>(i));
+      out.depth_bounds_ = union_box(out.depth_boxes_);
     }
     return out;
   }
@@ -231,6 +240,61 @@ public:
   }
 
 private:
+  using Box = std::array<Vec3<T>, 2>;
+
+  [[nodiscard]] static Box empty_box() noexcept {
+    return {Vec3<T>::Constant(std::numeric_limits<T>::infinity()),
+            Vec3<T>::Constant(-std::numeric_limits<T>::infinity())};
+  }
+
+  // One pass over camera c's map `d`: the box of its surface points (see `depth_bounds`), its
+  // nearest depth (`near`, lowered), and the first pixel whose depth is not positive (bad_x,
+  // bad_y; left as they are when there is none). Without distortion a pixel's direction is
+  // affine in the pixel, so a point costs a few multiply-adds.
+  [[nodiscard]] static Box surface_box(const camera_type& c, const Image<float>& d, float& near, int& bad_x,
+                                       int& bad_y) noexcept {
+    Box box = empty_box();
+    T far = 0;
+    const Vec3<T> o = c.centre();
+    const Vec3<T> base = c.ray_through(Vec2<T>(0, 0)).direction;
+    const Vec3<T> step_x = c.ray_through(Vec2<T>(1, 0)).direction - base;
+    const Vec3<T> step_y = c.ray_through(Vec2<T>(0, 1)).direction - base;
+    for (int y = 0; y < d.height(); ++y) {
+      const Vec3<T> row = base + static_cast<T>(y) * step_y;
+      const float* line = &d(0, y);
+      for (int x = 0; x < d.width(); ++x) {
+        const float depth = line[x];
+        if (!(depth > 0)) {
+          bad_x = x;
+          bad_y = y;
+          return box;
+        }
+        near = std::min(near, depth);
+        if (depth == std::numeric_limits<float>::infinity()) continue;
+        const Vec3<T> v = c.has_distortion() ? c.ray_through(Vec2<T>(static_cast<T>(x), static_cast<T>(y))).direction
+                                             : Vec3<T>(row + static_cast<T>(x) * step_x);
+        const Vec3<T> p = o + static_cast<T>(depth) * v;
+        box[0] = box[0].cwiseMin(p);
+        box[1] = box[1].cwiseMax(p);
+        far = std::max(far, static_cast<T>(depth));
+      }
+    }
+    if (!(far > 0)) return box;
+    const T margin = 2 * far / std::min(std::abs(c.K()(0, 0)), std::abs(c.K()(1, 1)));
+    box[0].array() -= margin;
+    box[1].array() += margin;
+    return box;
+  }
+
+  [[nodiscard]] static Box union_box(const std::vector<Box>& boxes) noexcept {
+    Box out = empty_box();
+    for (const Box& b : boxes) {
+      out[0] = out[0].cwiseMin(b[0]);
+      out[1] = out[1].cwiseMax(b[1]);
+    }
+    return out;
+  }
+
   [[nodiscard]] static texel_vector decode(const Image<Px>& image) {
     texel_vector out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
     const Px* p = image.data();
@@ -248,6 +312,8 @@ private:
   std::vector<texel_vector> texels_;
   std::vector<Image<float>> depths_;
   std::vector<float> depth_near_;
+  std::vector<Box> depth_boxes_;
+  Box depth_bounds_ = empty_box();
   std::optional<Plane<T>> array_plane_;
 };
 
