@@ -204,13 +204,75 @@ TEMPLATE_TEST_CASE("DepthProxy: a ray that runs to its vanishing point where the
   const mpr::Ray<T> up{mpr::Vec3<T>(T(0.1), T(0.2), 0), mpr::Vec3<T>(T(0.5), 0, 1)};
   CHECK((proxy.sample(up) - config.background).abs().maxCoeff() < 1e-6f);
   CHECK_FALSE(proxy.interpolation().surface(proxy.table(), up).has_value());
-  // 35 degrees: its vanishing point lies outside every image; nothing is known beyond them, so
-  // the colour is the cameras' at the focal point, as without depth (the plane's texture there).
+  // 35 degrees: its vanishing point lies outside every image, but the maps show no surface at
+  // all (their box is empty), so none lies on this ray either: background too.
   const mpr::Ray<T> side{mpr::Vec3<T>(T(0.1), T(0.2), 0), mpr::Vec3<T>(T(0.7), 0, 1)};
-  const mpr::Vec3<T> focal = side.at(T(5));
-  CHECK((proxy.sample(side) - mpr_test::plane_texture(static_cast<double>(focal.x()), static_cast<double>(focal.y())))
+  CHECK((proxy.sample(side) - config.background).abs().maxCoeff() < 1e-6f);
+  CHECK_FALSE(proxy.interpolation().surface(proxy.table(), side).has_value());
+}
+
+TEMPLATE_TEST_CASE("DepthProxy: a ray seen free through everything the maps show is background", "[depth_proxy]", float,
+                   double) {
+  using T = TestType;
+  // An object on an empty backdrop: the 3 x 3 cameras' maps show the square |x|, |y| <= 0.5 of
+  // the plane z = 5 and nothing (+inf) around it, while their images show the plane's texture
+  // everywhere (a backdrop the maps call empty, so that a wrong answer shows).
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps;
+  for (const auto& c : cams) {
+    mpr::Image<float> m(40, 30, std::numeric_limits<float>::infinity());
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) {
+        const mpr::Vec3<T> p = c.ray_through(mpr::Vec2<T>(static_cast<T>(x), static_cast<T>(y))).at(T(5));
+        if (std::abs(static_cast<double>(p.x())) <= 0.5 && std::abs(static_cast<double>(p.y())) <= 0.5) m(x, y) = 5.0f;
+      }
+    maps.push_back(std::move(m));
+  }
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(5);
+  config.background = mpr::Color(0.1f, 0.2f, 0.3f);
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  // 39 degrees off the axis (the cameras see 34 degrees to each side): its vanishing point lies
+  // outside every image, so only the walks through the box of the square's points (z within
+  // 1/3 of 5) tell that it passes beside the square: at z = 5 it is at x = 0.7. Before that rule
+  // it took the cameras' colour at its focal point, the backdrop's texture there.
+  const mpr::Ray<T> beside{mpr::Vec3<T>(T(-3.3), T(0.1), 0), mpr::Vec3<T>(T(0.8), 0, 1)};
+  // Far beside the square it misses the box altogether; through the square it finds it.
+  const mpr::Ray<T> outside{mpr::Vec3<T>(T(-2), T(0.1), 0), mpr::Vec3<T>(T(0.8), 0, 1)};
+  const mpr::Ray<T> through{mpr::Vec3<T>(T(-3.8), T(0.1), 0), mpr::Vec3<T>(T(0.8), 0, 1)};
+  for (const bool whole_line : {true, false}) {
+    mpr::DepthProxy policy{3.0};
+    policy.whole_line = whole_line;
+    const auto s = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, policy);
+    INFO("whole_line " << whole_line);
+    const std::vector<mpr::Ray<T>> rays{beside, outside, through};
+    std::vector<mpr::Color> batch(rays.size());
+    s.sample_rays(rays, batch);
+    for (std::size_t i = 0; i < 2; ++i) {
+      CHECK_FALSE(s.interpolation().surface(s.table(), rays[i]).has_value());
+      CHECK((s.sample(rays[i]) - config.background).abs().maxCoeff() < 1e-6f);
+      CHECK((batch[i] - config.background).abs().maxCoeff() < 1e-6f);
+    }
+    const std::optional<T> t = s.interpolation().surface(s.table(), through);
+    REQUIRE(t.has_value());
+    CHECK(static_cast<double>(*t) == Approx(5.0).epsilon(1e-3));
+    const mpr::Color texture = mpr_test::plane_texture(0.2, 0.1);
+    CHECK((s.sample(through) - texture).abs().maxCoeff() < 2e-3f);
+    CHECK((batch[2] - texture).abs().maxCoeff() < 2e-3f);
+  }
+  // Behind the square (z = 5.2, running along x) the cameras see the square in front of the ray:
+  // that stretch is occluded, not seen free, so the ray is not background; with no surface found
+  // it takes the cameras' colour at its focal point, as without depth.
+  const auto s = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, mpr::DepthProxy{3.0});
+  const mpr::Ray<T> behind{mpr::Vec3<T>(T(-4), T(0.1), T(5.2)), mpr::Vec3<T>(1, 0, 0)};
+  CHECK_FALSE(s.interpolation().surface(s.table(), behind).has_value());
+  const mpr::Color c = s.sample(behind);
+  CHECK((c - config.background).abs().maxCoeff() > 0.05f);
+  CHECK((c - s.table().camera_color(s.table().index().nearest(behind.origin, behind.direction), behind.at(T(5))))
             .abs()
-            .maxCoeff() < 2e-3f);
+            .maxCoeff() < 1e-6f);
 }
 
 TEMPLATE_TEST_CASE("DepthProxy searches what the nearest camera does not see with the next camera", "[depth_proxy]",

@@ -19,6 +19,7 @@
 #include <mpr/lightfield/interpolation.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -36,10 +37,12 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 
 /// Answers a ray from the surface point the depth maps give it (see the file comment).
 ///
-/// Surface: the cameras within `radius` of the ray line are tried nearest first (at most
-/// `march_cameras` of them). In camera c the ray projects to a segment of its image, which is
-/// walked about one pixel at a time from where the ray line enters c's view (`whole_line`) or
-/// from the ray's origin, but never from nearer than the nearest depth of c's map
+/// Surface: only the stretch of the ray inside the box of every point the maps show
+/// (`CameraFrameSet::depth_bounds`) is searched. The cameras within `radius` of the ray line are
+/// tried nearest first (at most `march_cameras` of them). In camera c the ray projects to a
+/// segment of its image, which is walked about one pixel at a time from where the ray line enters
+/// the box and c's view (`whole_line`) or from the ray's origin, but never from nearer than the
+/// nearest depth of c's map
 /// (`CameraFrameSet::depth_near`: nothing c sees lies nearer); the first step where the ray's
 /// depth along c's axis reaches the map's depth brackets the crossing, narrowed to 1/256 of the
 /// step and to ray depths within half the `tolerance` by regula falsi (Illinois) and
@@ -53,9 +56,11 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 /// e.g. a floor near the view's corner, would be skipped), stepping over the stretch c saw free
 /// (one such stretch is kept; walks repeat no lookups there). A ray
 /// whose walk reaches its vanishing point inside c's image with c's map +inf there runs to
-/// infinity unseen (sky): it gets `FrameSamplerConfig::background`. A ray that no tried camera
-/// finds a surface for otherwise uses the table's point (`FrameTable::point_of`: the focal depth
-/// of `FrameSamplerConfig`).
+/// infinity unseen (sky), and so does a ray that misses the box or that the walks see free, one
+/// camera after another, all the way through it (past an object on an empty backdrop): these get
+/// `FrameSamplerConfig::background`. A ray that no tried camera finds a surface for otherwise
+/// (an occluded or unseen stretch is left) uses the table's point (`FrameTable::point_of`: the
+/// focal depth of `FrameSamplerConfig`).
 ///
 /// Blend: every candidate camera that sees the point X -- projects it inside its image, and its
 /// depth map there is not nearer than X's depth by more than `visibility_tolerance` (relative)
@@ -253,13 +258,21 @@ private:
     }
   }
 
-  // The surface point (see the public `surface`); `escaped` is set when a walk follows the ray to
-  // its vanishing point inside a camera's image and that camera sees nothing there.
+  // The surface point (see the public `surface`); `escaped` is set when the ray holds no surface
+  // the maps show: it misses their box, the walks saw it free through the box, or a walk followed
+  // it to its vanishing point inside a camera's image and that camera sees nothing there.
   template <std::floating_point T, class Px>
   [[nodiscard]] std::optional<T> surface(const FrameTable<T, Px>& table, const Ray<T>& ray, const Candidates<T>& c,
                                          bool& escaped) const noexcept {
     const T inf = std::numeric_limits<T>::infinity();
-    detail::DepthSearch<T> search{whole_line ? -inf : T(0), inf, inf};
+    // Outside the box of everything the maps show, the ray holds no surface: the search starts
+    // where the ray enters it and ends where the ray leaves it.
+    const std::array<T, 2> stretch = detail::box_stretch(ray, table.frames().depth_bounds(), whole_line ? -inf : T(0));
+    if (!(stretch[0] < stretch[1])) {
+      escaped = true;
+      return std::nullopt;
+    }
+    detail::DepthSearch<T> search{stretch[0], inf, inf};
     int walked = 0;
     for (int j = 0; j < c.count && walked < march_cameras; ++j) {
       const std::size_t i = static_cast<std::size_t>(c.index[j]);
@@ -268,7 +281,7 @@ private:
       const detail::DepthWalk w = detail::depth_walk<T, Px>(table.camera(i), table.frames().depth(i).data(),
                                                             table.frames().depth_near(i), ray, tolerance, search);
       if (w == detail::DepthWalk::hit) return search.t;
-      if (w == detail::DepthWalk::escaped) {
+      if (w == detail::DepthWalk::escaped || search.t >= stretch[1]) {
         escaped = true;
         return std::nullopt;
       }

@@ -18,6 +18,7 @@
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -130,9 +131,25 @@ struct DepthProxyLanes {
     // The surface of each ray: the rays that share their nearest camera walk its map together;
     // where that camera does not settle it, the search goes on through each ray's next
     // candidates in turn, the rays whose next camera is the same again together.
+    // Each ray's search runs through the box of everything the maps show (`DepthProxy::surface`);
+    // a ray that misses it holds no surface.
     const T inf = std::numeric_limits<T>::infinity();
     WalkLanesResult search;
-    std::fill(search.t, search.t + 16, p.whole_line ? -inf : T(0));
+    alignas(64) T leave[16];
+    for (int l = 0; l < 16; ++l) {
+      search.t[l] = p.whole_line ? -inf : T(0);
+      leave[l] = inf;
+      if (l >= n) continue;
+      const std::array<T, 2> stretch =
+          box_stretch(rays[static_cast<std::size_t>(l)], table.frames().depth_bounds(), search.t[l]);
+      if (stretch[0] < stretch[1]) {
+        search.t[l] = stretch[0];
+        leave[l] = stretch[1];
+      } else {
+        g.escaped[l] = true;
+        walking &= ~(1u << l);
+      }
+    }
     std::fill(search.skip_begin, search.skip_begin + 16, inf);
     std::fill(search.skip_end, search.skip_end + 16, inf);
     unsigned hit = 0;
@@ -153,7 +170,8 @@ struct DepthProxyLanes {
           search.t[l] = w.t[l];
           search.skip_begin[l] = w.skip_begin[l];
           search.skip_end[l] = w.skip_end[l];
-          g.escaped[l] = w.escaped >> l & 1u;
+          g.escaped[l] = (w.escaped >> l & 1u) != 0 || ((w.passed >> l & 1u) != 0 && w.t[l] >= leave[l]);
+          if (g.escaped[l]) w.passed &= ~(1u << l);
         }
         hit |= w.hit;
         passed |= w.passed;

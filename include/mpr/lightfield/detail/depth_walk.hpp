@@ -6,9 +6,11 @@
 /// between the cameras it tries in turn.
 
 #include <mpr/core/ray.hpp>
+#include <mpr/core/vec.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -44,6 +46,28 @@ template <std::floating_point T>
 struct DepthSearch {
   T t, skip_begin, skip_end;
 };
+
+/// The stretch [t0, t1] of `ray` (parameter t, from `from` on) inside the axis-aligned box
+/// `bounds` (lower and upper corner; `CameraFrameSet::depth_bounds`): no surface the depth maps
+/// show lies on the ray outside it. Empty (t0 >= t1, or NaN) when the ray misses the box or the
+/// box is empty.
+template <std::floating_point T>
+[[nodiscard]] inline std::array<T, 2> box_stretch(const Ray<T>& ray, const std::array<Vec3<T>, 2>& bounds,
+                                                  T from) noexcept {
+  T t0 = from, t1 = std::numeric_limits<T>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const T lo = bounds[0][a], hi = bounds[1][a], o = ray.origin[a], d = ray.direction[a];
+    if (!(lo <= hi)) return {T(1), T(0)};
+    if (d == 0) {
+      if (!(o >= lo && o <= hi)) return {T(1), T(0)};
+      continue;
+    }
+    const T u = (lo - o) / d, v = (hi - o) / d;
+    t0 = std::max(t0, std::min(u, v));
+    t1 = std::min(t1, std::max(u, v));
+  }
+  return {t0, t1};
+}
 
 /// Regula-falsi steps that narrow a one-pixel bracket of the surface crossing to 1/256 of it (at
 /// most), and the most steps when the bracket's ray depths still differ by more than half the
