@@ -15,8 +15,9 @@
 //   Chess part is skipped. --depth-cache=DIR reads the 48 maps from DIR when all are there (PFM,
 //   `mpr::read_depth_maps`), else estimates them and writes them there.
 // - The Middlebury temple ring (templeSparseRing) view 3 from the 15 others, their depth
-//   estimated and constrained to the visual hull as in examples/leave_one_out, `DepthProxy{0.3}`
-//   (cached in DIR/temple with --depth-cache).
+//   estimated and constrained to the visual hull as in examples/leave_one_out, with its depth
+//   proxy (radius 0.5, k = 3, every camera in reach searched; cached in DIR/temple with
+//   --depth-cache).
 // - The classroom as a rasterized 8x6 array of 320x240 with exact z-buffer depth, camera 28
 //   held out (--quick: a 4x3 array of 80x60).
 //
@@ -73,14 +74,14 @@ struct Options {
   [[nodiscard]] bool runs(const char* name) const { return only.empty() || only == name; }
 };
 
-// Times the render of `held` (perspective GLC at `depth`) from `frames` through DepthProxy{radius}
+// Times the render of `held` (perspective GLC at `depth`) from `frames` through `proxy`
 // and prints one table row, plus the per-ray check.
 void run(const std::string& label, const std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Rgb8>>& frames,
-         const mpr::PinholeCamera<T>& held, T depth, double radius, const mpr::Image<mpr::Rgb8>& truth,
+         const mpr::PinholeCamera<T>& held, T depth, const mpr::DepthProxy& proxy, const mpr::Image<mpr::Rgb8>& truth,
          const Options& o, const mpr::Color& background = mpr::Color(0, 0, 0)) {
   mpr::FrameSamplerConfig<T> config;
   config.background = background; // what a ray that escapes every depth map gets
-  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8> sampler(frames, mpr::DepthProxy{radius}, config);
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Rgb8> sampler(frames, proxy, config);
   const auto renderer = mpr_loo::held_out_renderer(sampler, held, depth);
   const int w = held.width(), h = held.height();
   const mpr::Region region(0, 0, w, h);
@@ -146,7 +147,7 @@ void classroom(const Options& o) {
   const T spacing = (array.frames.camera(1).centre() - array.frames.camera(0).centre()).norm();
   run("classroom, rasterized " + std::to_string(config.columns) + "x" + std::to_string(config.rows) +
           ", exact depth, camera " + std::to_string(held),
-      others, array.frames.camera(held), array.focal_depth, 2 * spacing, array.frames.image(held), o,
+      others, array.frames.camera(held), array.focal_depth, mpr::DepthProxy{2 * spacing}, array.frames.image(held), o,
       scene.background());
 }
 
@@ -177,11 +178,11 @@ void chess(const std::filesystem::path& data, const Options& o) {
   std::printf("| workload | output | 1 thread, CPU ms | 2 threads, wall ms | PSNR (dB) | batch path against per ray |\n"
               "|---|---|---|---|---|---|\n");
   run("Chess (08,08) from 48 views, estimated depth", with, all.camera(k), setup.depth_of(all.camera(k)),
-      setup.depth_radius, all.image(k), o);
+      setup.depth_proxy, all.image(k), o);
 }
 
 // The Middlebury temple ring, view 3 (templeSR0004) held out: the other 15 views' depth estimated
-// and constrained to the visual hull as in examples/leave_one_out, DepthProxy{0.3}.
+// and constrained to the visual hull as in examples/leave_one_out, with its depth proxy.
 void temple(const std::filesystem::path& data, const Options& o) {
   const auto all = mpr::read_par_file<T>(mpr_loo::temple_par_file<T>(data));
   const mpr_loo::LooSetup<T> setup = mpr_loo::temple_setup<T>();
@@ -217,7 +218,7 @@ void temple(const std::filesystem::path& data, const Options& o) {
   std::printf("| workload | output | 1 thread, CPU ms | 2 threads, wall ms | PSNR (dB) | batch path against per ray |\n"
               "|---|---|---|---|---|---|\n");
   run("temple ring, view 3 from the 15 others, estimated depth and visual hull", with, all.camera(k),
-      setup.depth_of(all.camera(k)), setup.depth_radius, all.image(k), o);
+      setup.depth_of(all.camera(k)), setup.depth_proxy, all.image(k), o);
 }
 
 } // namespace

@@ -13,8 +13,8 @@
 //   cylinder radius 0.3 (the ring's neighbours are about 0.22 apart). Depth proxy: the 15 other
 //   views' depth estimated by a plane sweep over the depths the bounding box spans in front of
 //   the cameras and constrained to the visual hull of the silhouettes against the black backdrop
-//   (brightest channel >= 20), cameras within 0.3 of a ray (0.25, 0.4 and 0.5 measured 0.04-0.99 dB
-//   lower).
+//   (brightest channel >= 20); cameras within 0.5 of a ray, all of them searched for the surface
+//   (march_cameras 8), the 3 best blended (docs/accuracy.md has the others measured).
 
 #include <mpr/lightfield.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
@@ -46,8 +46,8 @@ struct LooSetup {
   mpr::PlaneSweepConfig sweep;
   /// The scene's bounding box (lower and upper corner), when the data set gives one.
   std::optional<std::array<mpr::Vec3<T>, 2>> bounds;
-  /// `DepthProxy::radius`: cameras within this distance of a ray are walked and blended.
-  double depth_radius = 1;
+  /// The depth-proxy interpolation of the geometry-aware row.
+  mpr::DepthProxy depth_proxy;
   /// For objects on a black backdrop: the `BrightnessSilhouette` threshold whose visual hull
   /// constrains the estimated depth (`constrain_to_visual_hull`); unset: no hull.
   std::optional<int> silhouette;
@@ -86,7 +86,7 @@ LooSetup<T> chess_setup() {
   setup.cylinder_radius = 10.0;
   setup.depth_of = [](const mpr::PinholeCamera<T>&) { return T(820); };
   setup.sweep = sweep;
-  setup.depth_radius = 10.0;
+  setup.depth_proxy.radius = 10.0;
   return setup;
 }
 
@@ -109,7 +109,11 @@ LooSetup<T> temple_setup() {
   setup.depth_of = [target](const mpr::PinholeCamera<T>& c) { return c.forward().dot(target - c.centre()); };
   setup.sweep = sweep;
   setup.bounds = std::array<mpr::Vec3<T>, 2>{lo, hi};
-  setup.depth_radius = 0.3;
+  // The ring's cameras are about 0.22 apart: within 0.5 of a ray lie its two or three nearest
+  // on each side; every one of them searches for the surface, and the 3 best are blended.
+  setup.depth_proxy.radius = 0.5;
+  setup.depth_proxy.march_cameras = 8;
+  setup.depth_proxy.k = 3;
   setup.silhouette = 20;
   return setup;
 }

@@ -138,10 +138,9 @@ void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>
     mpr::write_depth_preview(out / ("loo_" + set + "_" + view + "_depth_map.png"), maps[nearest].view());
     const auto with_depth = std::make_shared<const mpr::CameraFrameSet<T, Px>>(
         mpr::CameraFrameSet<T, Px>(*others).with_depth(std::move(maps)));
-    rows.push_back(
-        evaluate(set, view, "depth_proxy",
-                 mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(with_depth, mpr::DepthProxy{setup.depth_radius}), held,
-                 depth, all.image(k), out));
+    rows.push_back(evaluate(set, view, "depth_proxy",
+                            mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(with_depth, setup.depth_proxy), held, depth,
+                            all.image(k), out));
   }
 }
 
