@@ -42,6 +42,26 @@ std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> red_third_set(float th
       mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
 }
 
+// An object on an empty backdrop: the 3 x 3 cameras of `plane_set` with maps that show the
+// square |x|, |y| <= 0.5 of the plane z = 5 and nothing (+inf) around it, while their images show
+// the plane's texture everywhere (a backdrop the maps call empty, so that a wrong answer shows).
+template <class T>
+std::shared_ptr<const mpr::CameraFrameSet<T, mpr::Color>> square_set() {
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps;
+  for (const auto& c : cams) {
+    mpr::Image<float> m(40, 30, std::numeric_limits<float>::infinity());
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) {
+        const mpr::Vec3<T> p = c.ray_through(mpr::Vec2<T>(static_cast<T>(x), static_cast<T>(y))).at(T(5));
+        if (std::abs(static_cast<double>(p.x())) <= 0.5 && std::abs(static_cast<double>(p.y())) <= 0.5) m(x, y) = 5.0f;
+      }
+    maps.push_back(std::move(m));
+  }
+  return std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+}
+
 } // namespace
 
 TEST_CASE("DepthProxy is a frame interpolation with a batch path", "[depth_proxy]") {
@@ -118,7 +138,7 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
   CHECK(worst_proxy < 2e-3); // the texture is linear: bilinear reconstruction is exact
   CHECK(worst_cylinder > 10 * worst_proxy);
   // A ray running back toward the cameras finds nothing (the walk goes along the ray, away from
-  // the cameras), on the line or the half-line: such rays fall back to the focal point.
+  // the cameras), on the line or the half-line (which misses the maps' box altogether).
   const mpr::Ray<T> away{mpr::Vec3<T>(0, 0, 0), mpr::Vec3<T>(0, 0, -1)};
   CHECK_FALSE(proxy.interpolation().surface(proxy.table(), away).has_value());
   mpr::DepthProxy half{2.0};
@@ -214,22 +234,7 @@ TEMPLATE_TEST_CASE("DepthProxy: a ray that runs to its vanishing point where the
 TEMPLATE_TEST_CASE("DepthProxy: a ray seen free through everything the maps show is background", "[depth_proxy]", float,
                    double) {
   using T = TestType;
-  // An object on an empty backdrop: the 3 x 3 cameras' maps show the square |x|, |y| <= 0.5 of
-  // the plane z = 5 and nothing (+inf) around it, while their images show the plane's texture
-  // everywhere (a backdrop the maps call empty, so that a wrong answer shows).
-  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
-  std::vector<mpr::Image<float>> maps;
-  for (const auto& c : cams) {
-    mpr::Image<float> m(40, 30, std::numeric_limits<float>::infinity());
-    for (int y = 0; y < 30; ++y)
-      for (int x = 0; x < 40; ++x) {
-        const mpr::Vec3<T> p = c.ray_through(mpr::Vec2<T>(static_cast<T>(x), static_cast<T>(y))).at(T(5));
-        if (std::abs(static_cast<double>(p.x())) <= 0.5 && std::abs(static_cast<double>(p.y())) <= 0.5) m(x, y) = 5.0f;
-      }
-    maps.push_back(std::move(m));
-  }
-  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
-      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+  const auto frames = square_set<T>(); // the square |x|, |y| <= 0.5 of z = 5 on an empty backdrop
   mpr::FrameSamplerConfig<T> config;
   config.depth = T(5);
   config.background = mpr::Color(0.1f, 0.2f, 0.3f);
@@ -568,6 +573,40 @@ TEMPLATE_TEST_CASE("DepthProxy's batch path answers as sample(ray) on float fram
     rays.push_back({mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
                     mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
   check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>(frames, mpr::DepthProxy{1.5}), rays);
+}
+
+TEMPLATE_TEST_CASE("DepthProxy's batch path answers as sample(ray) past an object on an empty backdrop",
+                   "[depth_proxy]", float, double) {
+  // `square_set`: random rays from the camera plane and from inside the maps' box, steep enough
+  // that some vanishing points leave the images; they hit the square, pass beside it (seen free
+  // through the box), miss the box, or run behind the square (occluded: the focal point). Radii
+  // with no camera, one and all nine in reach; the line and the half-line.
+  using T = TestType;
+  const auto frames = square_set<T>();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-3, 3), slope(-0.9, 0.9), inside(4.8, 5.2);
+  std::vector<mpr::Ray<T>> rays;
+  for (int n = 0; n < 900; ++n) {
+    const double z = n % 3 == 0 ? inside(rng) : 0.0;
+    rays.push_back({mpr::Vec3<T>(static_cast<T>(u(rng) / (z > 0 ? 3 : 1)), static_cast<T>(u(rng) / (z > 0 ? 3 : 1)),
+                                 static_cast<T>(z)),
+                    mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(n % 5 == 0 ? -1 : 1))});
+  }
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(5);
+  config.background = mpr::Color(0.1f, 0.2f, 0.3f);
+  const auto table = std::make_shared<const mpr::FrameTable<T, mpr::Color>>(frames, config);
+  std::size_t background = 0;
+  for (const double radius : {0.05, 1.5, 4.0})
+    for (const bool whole_line : {true, false}) {
+      mpr::DepthProxy p{radius};
+      p.whole_line = whole_line;
+      const auto sampler = mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>::sharing(table, p);
+      INFO("radius " << radius << ", whole_line " << whole_line);
+      check_batch(sampler, rays);
+      for (const auto& r : rays) background += (sampler.sample(r) == config.background).all() ? 1 : 0;
+    }
+  CHECK(background > rays.size()); // the rules that answer the background are exercised
 }
 
 TEST_CASE("DepthProxy's batch path answers as sample(ray) with cameras one pixel tall or wide", "[depth_proxy]") {

@@ -40,9 +40,9 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 /// Surface: only the stretch of the ray inside the box of every point the maps show
 /// (`CameraFrameSet::depth_bounds`) is searched. The cameras within `radius` of the ray line are
 /// tried nearest first (at most `march_cameras` of them). In camera c the ray projects to a
-/// segment of its image, which is walked about one pixel at a time from where the ray line enters
-/// the box and c's view (`whole_line`) or from the ray's origin, but never from nearer than the
-/// nearest depth of c's map
+/// segment of its image, which is walked about one pixel at a time from where the ray enters the
+/// box and c's view (and not before its origin unless `whole_line`), but never from nearer than
+/// the nearest depth of c's map
 /// (`CameraFrameSet::depth_near`: nothing c sees lies nearer); the first step where the ray's
 /// depth along c's axis reaches the map's depth brackets the crossing, narrowed to 1/256 of the
 /// step and to ray depths within half the `tolerance` by regula falsi (Illinois) and

@@ -170,7 +170,10 @@ public:
   /// The lower and upper corner (world units) of an axis-aligned box holding every surface point
   /// the depth maps show (each finite depth at its pixel, the point `ray_through(pixel).at(depth)`),
   /// widened on every side by two pixels' width at the farthest depth of each map: no surface
-  /// a map shows lies outside it, between pixel centres or at an image's border included. Empty
+  /// a map shows lies outside it, between pixel centres or at an image's border included
+  /// (computed in double, rounded outward). A search that accepts points within a depth
+  /// tolerance of a map's surface (`DepthProxy`) may find one that far outside the box at an
+  /// image's border; searched inside the box, it finds the same surface from the box's face. Empty
   /// (lower corner +inf, upper -inf) when no map has a finite depth or the set carries none.
   [[nodiscard]] const std::array<Vec3<T>, 2>& depth_bounds() const noexcept { return depth_bounds_; }
 
@@ -250,40 +253,53 @@ private:
   // One pass over camera c's map `d`: the box of its surface points (see `depth_bounds`), its
   // nearest depth (`near`, lowered), and the first pixel whose depth is not positive (bad_x,
   // bad_y; left as they are when there is none). Without distortion a pixel's direction is
-  // affine in the pixel, so a point costs a few multiply-adds.
+  // affine in the pixel, so a point costs a few multiply-adds; in double, so that the steps'
+  // rounding stays far below the margin on frames of any size, and rounded outward to T.
   [[nodiscard]] static Box surface_box(const camera_type& c, const Image<float>& d, float& near, int& bad_x,
                                        int& bad_y) noexcept {
-    Box box = empty_box();
-    T far = 0;
-    const Vec3<T> o = c.centre();
-    const Vec3<T> base = c.ray_through(Vec2<T>(0, 0)).direction;
-    const Vec3<T> step_x = c.ray_through(Vec2<T>(1, 0)).direction - base;
-    const Vec3<T> step_y = c.ray_through(Vec2<T>(0, 1)).direction - base;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    Vec3<double> lo = Vec3<double>::Constant(inf), hi = Vec3<double>::Constant(-inf);
+    double far = 0;
+    const Vec3<double> o = c.centre().template cast<double>();
+    const Mat3<double> M = c.R().template cast<double>().transpose() * c.K().template cast<double>().inverse();
+    const Vec3<double> base = M.col(2), step_x = M.col(0), step_y = M.col(1); // R^T K^-1 (x, y, 1)
     for (int y = 0; y < d.height(); ++y) {
-      const Vec3<T> row = base + static_cast<T>(y) * step_y;
+      const Vec3<double> row = base + static_cast<double>(y) * step_y;
       const float* line = &d(0, y);
       for (int x = 0; x < d.width(); ++x) {
         const float depth = line[x];
         if (!(depth > 0)) {
           bad_x = x;
           bad_y = y;
-          return box;
+          return empty_box();
         }
         near = std::min(near, depth);
         if (depth == std::numeric_limits<float>::infinity()) continue;
-        const Vec3<T> v = c.has_distortion() ? c.ray_through(Vec2<T>(static_cast<T>(x), static_cast<T>(y))).direction
-                                             : Vec3<T>(row + static_cast<T>(x) * step_x);
-        const Vec3<T> p = o + static_cast<T>(depth) * v;
-        box[0] = box[0].cwiseMin(p);
-        box[1] = box[1].cwiseMax(p);
-        far = std::max(far, static_cast<T>(depth));
+        const Vec3<double> v =
+            c.has_distortion()
+                ? Vec3<double>(
+                      c.ray_through(Vec2<T>(static_cast<T>(x), static_cast<T>(y))).direction.template cast<double>())
+                : Vec3<double>(row + static_cast<double>(x) * step_x);
+        const Vec3<double> p = o + static_cast<double>(depth) * v;
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+        far = std::max(far, static_cast<double>(depth));
       }
     }
-    if (!(far > 0)) return box;
-    const T margin = 2 * far / std::min(std::abs(c.K()(0, 0)), std::abs(c.K()(1, 1)));
-    box[0].array() -= margin;
-    box[1].array() += margin;
+    if (!(far > 0)) return empty_box();
+    const double margin = 2 * far / std::min(std::abs(c.K()(0, 0)), std::abs(c.K()(1, 1)));
+    Box box;
+    for (int a = 0; a < 3; ++a) {
+      box[0][a] = outward(lo[a] - margin, -inf);
+      box[1][a] = outward(hi[a] + margin, inf);
+    }
     return box;
+  }
+
+  // v rounded to T toward `toward` (a box corner that holds v).
+  [[nodiscard]] static T outward(double v, double toward) noexcept {
+    const T r = static_cast<T>(v);
+    return static_cast<double>(r) == v ? r : std::nextafter(r, static_cast<T>(toward));
   }
 
   [[nodiscard]] static Box union_box(const std::vector<Box>& boxes) noexcept {

@@ -49,8 +49,8 @@ struct DepthSearch {
 
 /// The stretch [t0, t1] of `ray` (parameter t, from `from` on) inside the axis-aligned box
 /// `bounds` (lower and upper corner; `CameraFrameSet::depth_bounds`): no surface the depth maps
-/// show lies on the ray outside it. Empty (t0 >= t1, or NaN) when the ray misses the box or the
-/// box is empty.
+/// show lies on the ray outside it. Empty (t0 >= t1) when the ray misses the box, the box is
+/// empty, or the ray or `from` holds a NaN.
 template <std::floating_point T>
 [[nodiscard]] inline std::array<T, 2> box_stretch(const Ray<T>& ray, const std::array<Vec3<T>, 2>& bounds,
                                                   T from) noexcept {
@@ -63,9 +63,11 @@ template <std::floating_point T>
       continue;
     }
     const T u = (lo - o) / d, v = (hi - o) / d;
+    if (std::isnan(u) || std::isnan(v)) return {T(1), T(0)};
     t0 = std::max(t0, std::min(u, v));
     t1 = std::min(t1, std::max(u, v));
   }
+  if (std::isnan(t0)) return {T(1), T(0)};
   return {t0, t1};
 }
 
