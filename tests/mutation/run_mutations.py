@@ -251,7 +251,7 @@ MUTATIONS = [
         "false")],
       ["lightfield"], "the batch path forgets where a ray leaves the box of the maps' points"),
     M("depth_bounds_without_margin", "lightfield",
-      [("include/mpr/lightfield/frame_set.hpp", "const T margin = 2 * far /", "const T margin = 0 * far /")],
+      [("include/mpr/lightfield/frame_set.hpp", "const double margin = 2 * far /", "const double margin = 0 * far /")],
       ["lightfield"], "the box of the maps' points is not widened for points between pixel centres"),
     M("frame_prefilter_principal_point_unshifted", "lightfield",
       [("include/mpr/lightfield/frame_prefilter.hpp", "  A(0, 2) = shift;", "  A(0, 2) = T(0);")],
