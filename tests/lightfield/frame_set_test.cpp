@@ -5,6 +5,7 @@
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 
@@ -69,6 +70,49 @@ TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels togethe
   const mpr::CameraFrameSet<double, mpr::Color> hdr({cams[0]}, linear);
   CHECK(hdr.texels(0)[11].c[1] == 2.0f);
   CHECK(hdr.texels(0)[11].c[2] == -1.0f);
+}
+
+TEST_CASE("CameraFrameSet decodes its images into one buffer, each 64-byte aligned, shared by its copies",
+          "[camera_frame_set]") {
+  // Sizes that are not multiples of 64 texels, 8-bit and linear.
+  const auto cams = mpr_test::grid_cameras<double>(4, 1, 1.0, 7, 5, 4.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  for (int k = 0; k < 4; ++k) {
+    images.emplace_back(7, 5);
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 7; ++x)
+        images.back()(x, y) =
+            mpr::Rgb8{static_cast<std::uint8_t>(k), static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y)};
+  }
+  const mpr::CameraFrameSet<double> frames(cams, images);
+  for (std::size_t k = 0; k < 4; ++k) {
+    INFO("image " << k);
+    const auto t = frames.texels(k);
+    CHECK(t.size() == 35);
+    CHECK(reinterpret_cast<std::uintptr_t>(t.data()) % 64 == 0);
+    if (k > 0) CHECK(t.data() >= frames.texels(k - 1).data() + 35 + 1); // no overlap
+    int wrong = 0;
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 7; ++x) {
+        const mpr::Srgb8Texel& v = t[static_cast<std::size_t>(7 * y + x)];
+        wrong += v.c[0] != k || v.c[1] != x || v.c[2] != y ? 1 : 0;
+      }
+    CHECK(wrong == 0);
+  }
+  // without() and copies keep the decoded images where they are (nothing decoded or copied).
+  const auto three = frames.without(1);
+  CHECK(three.texels(0).data() == frames.texels(0).data());
+  CHECK(three.texels(1).data() == frames.texels(2).data());
+  CHECK(three.texels(2).data() == frames.texels(3).data());
+  const mpr::CameraFrameSet<double> copy = frames;
+  CHECK(copy.texels(3).data() == frames.texels(3).data());
+
+  const std::vector<mpr::Image<mpr::Color>> linear(3, mpr::Image<mpr::Color>(7, 5, mpr::Color(0.5f, 1.5f, -2.0f)));
+  const mpr::CameraFrameSet<double, mpr::Color> hdr({cams[0], cams[1], cams[2]}, linear);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(reinterpret_cast<std::uintptr_t>(hdr.texels(k).data()) % 64 == 0);
+    CHECK(hdr.texels(k)[34].c[1] == 1.5f);
+  }
 }
 
 TEST_CASE("CameraFrameSet::on_plane declares the array plane, checked against the centres", "[camera_frame_set]") {

@@ -16,7 +16,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -92,7 +94,8 @@ public:
   using camera_type = PinholeCamera<T>;
   /// The texel type the samplers read (see `Srgb8Texel`, `LinearTexel`).
   using texel_type = std::conditional_t<std::is_same_v<Px, Rgb8>, Srgb8Texel, LinearTexel>;
-  /// One decoded image: a texel vector in huge pages where the system offers them.
+  /// The decoded images, one after another in one buffer (huge pages where the system offers
+  /// them, whatever the size of each image).
   using texel_vector = std::vector<texel_type, detail::HugePageAllocator<texel_type>>;
 
   CameraFrameSet() = default;
@@ -114,8 +117,7 @@ public:
                                            std::to_string(images_[i].height()) + " but its camera expects " +
                                            std::to_string(cameras_[i].width()) + "x" +
                                            std::to_string(cameras_[i].height()));
-    texels_.reserve(images_.size());
-    for (const Image<Px>& image : images_) texels_.push_back(decode(image));
+    texels_ = decode(images_, offsets_);
   }
 
   [[nodiscard]] std::size_t size() const noexcept { return cameras_.size(); }
@@ -126,9 +128,12 @@ public:
   [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
   [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
-  /// Image `i` as the samplers read it, row-major, `width * height` texels (readable padding
-  /// after the last, see `detail::HugePageAllocator`).
-  [[nodiscard]] const texel_vector& texels(std::size_t i) const noexcept { return texels_[i]; }
+  /// Image `i` as the samplers read it, row-major, `width * height` texels, starting on a
+  /// 64-byte boundary, with at least 64 readable bytes after the last.
+  [[nodiscard]] std::span<const texel_type> texels(std::size_t i) const noexcept {
+    return {texels_->data() + offsets_[i],
+            static_cast<std::size_t>(images_[i].width()) * static_cast<std::size_t>(images_[i].height())};
+  }
 
   /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
   /// and LFCA loaders build rectified planar arrays on z = 0); the samplers then use it instead
@@ -215,7 +220,7 @@ public:
     out.cameras_.erase(out.cameras_.begin() + static_cast<std::ptrdiff_t>(i));
     out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
     out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
-    out.texels_.erase(out.texels_.begin() + static_cast<std::ptrdiff_t>(i));
+    out.offsets_.erase(out.offsets_.begin() + static_cast<std::ptrdiff_t>(i)); // the buffer is shared
     if (!out.depths_.empty()) {
       out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
       out.depth_near_.erase(out.depth_near_.begin() + static_cast<std::ptrdiff_t>(i));
@@ -311,13 +316,31 @@ private:
     return out;
   }
 
-  [[nodiscard]] static texel_vector decode(const Image<Px>& image) {
-    texel_vector out(static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
-    const Px* p = image.data();
-    if constexpr (std::is_same_v<Px, Rgb8>) {
-      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k].r, p[k].g, p[k].b}};
-    } else {
-      for (std::size_t k = 0; k < out.size(); ++k) out[k] = {{p[k][0], p[k][1], p[k][2]}};
+  // Every image decoded into one buffer, image i from texel offsets[i]: a multiple of 64 texels
+  // (64-byte aligned, as the buffer is); the images that follow and the buffer's padding keep at
+  // least 64 bytes readable after each. One buffer rather than one per image: a set of small frames (the 640x480 ones
+  // of the benchmarks, under the allocator's huge-page threshold each) is in huge pages too, and a render that reads a
+  // few rows of each of many frames misses the TLB far less often.
+  [[nodiscard]] static std::shared_ptr<const texel_vector> decode(const std::vector<Image<Px>>& images,
+                                                                  std::vector<std::size_t>& offsets) {
+    constexpr std::size_t kAlign = 64;
+    offsets.clear();
+    std::size_t total = 0;
+    for (const Image<Px>& image : images) {
+      offsets.push_back(total);
+      const std::size_t n = static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height());
+      total += (n + kAlign) / kAlign * kAlign; // at least one texel of gap, a multiple of kAlign
+    }
+    auto out = std::make_shared<texel_vector>(total);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      texel_type* t = out->data() + offsets[i];
+      const Px* p = images[i].data();
+      const std::size_t n = static_cast<std::size_t>(images[i].width()) * static_cast<std::size_t>(images[i].height());
+      if constexpr (std::is_same_v<Px, Rgb8>) {
+        for (std::size_t k = 0; k < n; ++k) t[k] = {{p[k].r, p[k].g, p[k].b}};
+      } else {
+        for (std::size_t k = 0; k < n; ++k) t[k] = {{p[k][0], p[k][1], p[k][2]}};
+      }
     }
     return out;
   }
@@ -325,7 +348,8 @@ private:
   std::vector<camera_type> cameras_;
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
-  std::vector<texel_vector> texels_;
+  std::shared_ptr<const texel_vector> texels_ = std::make_shared<const texel_vector>();
+  std::vector<std::size_t> offsets_; // image i's first texel in *texels_
   std::vector<Image<float>> depths_;
   std::vector<float> depth_near_;
   std::vector<Box> depth_boxes_;

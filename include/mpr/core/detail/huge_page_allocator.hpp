@@ -3,11 +3,12 @@
 /// `mpr::detail::HugePageAllocator<T>`: a standard allocator for large read-mostly buffers (the
 /// texels of light-field frames) that asks Linux for transparent huge pages. A tilted or scaled
 /// focal plane reads each camera image along slanted lines, touching a new 4 KiB page every few
-/// pixels; with 2 MiB pages the same reads fit the TLB. Buffers of at least 1 MiB are aligned and
-/// padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the system's THP setting is
-/// `madvise` or `always`); smaller buffers, other systems and a refused advice get plain memory.
-/// Every buffer has `kPadding` readable bytes after its end, so that vector kernels may load a
-/// whole word that starts at the last element (e.g. a 32-bit gather of a 3-byte texel).
+/// pixels, and an aperture reads a short run of each of many frames; with 2 MiB pages the same
+/// reads fit the TLB (`CameraFrameSet` keeps all its frames in one buffer for that). Buffers of at least 1 MiB are
+/// aligned and padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the system's THP setting is `madvise` or
+/// `always`); smaller buffers, other systems and a refused advice get plain memory. Every buffer has `kPadding`
+/// readable bytes after its end, so that vector kernels may load a whole word that starts at the last element (e.g. a
+/// 32-bit gather of a 3-byte texel), and every buffer starts on a 64-byte boundary.
 
 #include <cstddef>
 #include <cstdlib>
@@ -27,6 +28,8 @@ struct HugePageAllocator {
   static constexpr std::size_t kThreshold = std::size_t(1) << 20;
   /// Readable bytes after the last element.
   static constexpr std::size_t kPadding = 64;
+  /// The alignment of every buffer, bytes.
+  static constexpr std::size_t kAlignment = alignof(T) > 64 ? alignof(T) : 64;
 
   HugePageAllocator() noexcept = default;
   template <class U>
@@ -35,7 +38,7 @@ struct HugePageAllocator {
   [[nodiscard]] T* allocate(std::size_t n) {
     if (n > (static_cast<std::size_t>(-1) - 2 * kHugePage) / sizeof(T)) throw std::bad_alloc();
     const std::size_t bytes = n * sizeof(T) + kPadding;
-    if (bytes < kThreshold) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+    if (bytes < kThreshold) return static_cast<T*>(::operator new(bytes, std::align_val_t(kAlignment)));
     const std::size_t padded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, padded);
     if (p == nullptr) throw std::bad_alloc();
@@ -47,7 +50,7 @@ struct HugePageAllocator {
 
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) + kPadding < kThreshold)
-      ::operator delete(p, std::align_val_t(alignof(T)));
+      ::operator delete(p, std::align_val_t(kAlignment));
     else
       std::free(p);
   }
