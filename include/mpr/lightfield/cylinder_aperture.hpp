@@ -7,6 +7,7 @@
 #include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray_grid.hpp>
+#include <mpr/lightfield/detail/affine_block.hpp>
 #include <mpr/lightfield/detail/cylinder_weights.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
@@ -163,6 +164,10 @@ private:
 
   // Rows taken together by `row_path` (the renderer's tiles have kTileRows).
   static constexpr std::size_t kGroupRows = 8;
+  // How far (pixels) a camera's perspective may move a point of a group from its affine map
+  // for the map to stand in for projecting the runs (`detail::affine_sight`): a tenth of the
+  // shift-and-add's 1e-3 pixel.
+  static constexpr double kSightTolerance = 1e-4;
 
   // Per-thread working memory of `row_path`: each row's crossings and sums, the bounding boxes
   // of its segments' crossings, the cameras within reach of the group.
@@ -260,10 +265,23 @@ private:
         s.cameras.push_back(static_cast<int>(k));
     }
     s.rows.clear(); // rows kept from another group may belong to frames since freed
+    // When the rows' points form one affine grid, a camera that sees it at one depth gives every
+    // run's pixel positions from one map instead of three projections a run.
+    const Vec3<T>* points[kGroupRows];
+    bool block = nrows >= 2 && table.config().filter == PixelFilter::bilinear;
+    for (std::size_t q = 0; q < nrows; ++q) {
+      points[q] = s.row[q].points.data();
+      block = block && s.crosses[q] && s.even[q];
+    }
+    detail::AffineGrid grid;
+    block = block && detail::affine_grid(points, nrows, w, grid);
     for (std::size_t j = 0; j < s.cameras.size(); ++j) {
       const std::size_t k = static_cast<std::size_t>(s.cameras[j]);
       const auto* ahead =
           j + 1 < s.cameras.size() ? &table.camera(static_cast<std::size_t>(s.cameras[j + 1])) : nullptr;
+      detail::AffineSight sight;
+      const bool seen = block && !table.camera(k).distorted &&
+                        detail::affine_sight(table.camera(k).P, grid, w, nrows, kSightTolerance, sight);
       std::size_t span_lo = w, span_hi = 0;
       for (std::size_t q = 0; q < nrows; ++q) {
         weigh(plane, k, w, q, s);
@@ -278,18 +296,25 @@ private:
         float* ray_weight = row.ray_weight.data();
         std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
         std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
+        RunSight<T> at;
+        if (seen) {
+          const double dq = static_cast<double>(q), mid = static_cast<double>(span_lo + (span_hi - span_lo) / 2);
+          sight.at(static_cast<double>(span_lo), dq, at.x0, at.y0);
+          sight.at(mid, dq, at.xm, at.ym);
+          sight.at(static_cast<double>(span_hi - 1), dq, at.x1, at.y1);
+        }
         add_run(table, table.camera(k), row.points.data() + span_lo, span_hi - span_lo, s.even[q],
-                row.acc.data() + 3 * span_lo, row.weight.data() + span_lo, ray_weight + span_lo, &s.rows, ahead);
+                row.acc.data() + 3 * span_lo, row.weight.data() + span_lo, ray_weight + span_lo, &s.rows, ahead,
+                seen ? &at : nullptr);
       }
     }
     for (std::size_t q = 0; q < nrows; ++q) {
       if (!s.crosses[q]) continue;
       const PlaneRowScratch<T>& row = s.row[q];
       Color* o = out.data() + q * w;
+      table.finish_all(row.acc.data(), row.weight.data(), w, o);
       for (std::size_t i = 0; i < w; ++i) {
-        if (row.weight[i] > 0) {
-          o[i] = table.finish(row.acc.data() + 3 * i, row.weight[i]);
-        } else {
+        if (!(row.weight[i] > 0)) {
           const Ray<T> ray = source.ray(r0 + q, i);
           o[i] = table.camera_color(table.index().nearest(ray.origin, ray.direction), row.points[i]);
         }

@@ -52,6 +52,13 @@ template <std::floating_point T>
   return detail::evenly_spaced(relative[0], relative[1], relative[2], static_cast<int>(n), tolerance);
 }
 
+/// Where a camera sees a run of points: continuous pixel coordinates of its first (x0, y0),
+/// middle (index n / 2: xm, ym) and last (x1, y1) points.
+template <std::floating_point T>
+struct RunSight {
+  T x0, y0, xm, ym, x1, y1;
+};
+
 namespace detail {
 /// The texel and offset of the whole-pixel shift that starts at camera coordinate x: i =
 /// floor(x), a = x - i, except that an offset within 1e-4 pixel of a texel is taken as on it (i
@@ -201,17 +208,23 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
 /// With a `cache`, the bilinear blend is done in its separable form on cached rows (see
 /// `LerpRowCache`). `ahead` (nullptr: none): the camera that will be asked for the same run
 /// next (a tile's next camera), whose texels for the run are prefetched while c's rows are
-/// interpolated. Preconditions: n >= 2, c undistorted, bilinear filtering.
+/// interpolated. `sight` (nullptr: projected here): where c sees the run's first, middle (n / 2)
+/// and last points, when the caller knows it (`detail::AffineSight`).
+/// Preconditions: n >= 2, c undistorted, bilinear filtering.
 template <std::floating_point T, class Px>
 bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
                std::size_t n, float* acc, float* weight, const float* ray_weight = nullptr,
-               LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
+               LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr,
+               const RunSight<T>* sight = nullptr) noexcept {
   using Table = FrameTable<T, Px>;
   using texel_type = typename Table::texel_type;
   T x0, y0, x1, y1, xm, ym;
-  if (!Table::project_any(c, points[0], x0, y0) || !Table::project_any(c, points[n - 1], x1, y1) ||
-      !Table::project_any(c, points[n / 2], xm, ym))
+  if (sight != nullptr) {
+    x0 = sight->x0, y0 = sight->y0, xm = sight->xm, ym = sight->ym, x1 = sight->x1, y1 = sight->y1;
+  } else if (!Table::project_any(c, points[0], x0, y0) || !Table::project_any(c, points[n - 1], x1, y1) ||
+             !Table::project_any(c, points[n / 2], xm, ym)) {
     return false;
+  }
   const T span = static_cast<T>(n - 1);
   constexpr T kTolerance = T(1e-3);
   // The step along the camera row: one pixel; or, in the separable form (8-bit codes, or a
@@ -256,9 +269,10 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
   // and added; the others (near or past the left and right edges) go ray by ray.
   const long k = static_cast<long>(stride);
-  const long first = std::max(0L, (-static_cast<long>(ix) + k - 1) / k);
+  // A stride of 1, the common case, without the two divisions.
+  const long first = k == 1 ? std::max(0L, -static_cast<long>(ix)) : std::max(0L, (-static_cast<long>(ix) + k - 1) / k);
   const long room = static_cast<long>(c.width) - 2 - ix; // the last texel pair starts at ix + room
-  const long last = room < 0 ? 0L : std::min(static_cast<long>(n), room / k + 1);
+  const long last = room < 0 ? 0L : std::min(static_cast<long>(n), (k == 1 ? room : room / k) + 1);
   if (first >= last) return false;
   const std::size_t i_begin = static_cast<std::size_t>(first), i_end = static_cast<std::size_t>(last);
   detail::add_run_edges(table, c, points, n, i_begin, i_end, x0, steps, acc, weight, ray_weight);
@@ -392,13 +406,14 @@ bool add_projective_tile(const FrameTable<T, Px>& /*table*/, const typename Fram
 /// Camera c's (weighted) contribution to a run of n points: shift-and-add when the run
 /// qualifies (`even`: its points are evenly spaced, see `evenly_spaced`; bilinear filtering
 /// assumed by the caller), else the projective row (`add_projective`), else ray by ray.
-/// `ray_weight` as in `FrameTable::add_per_ray`; `cache` and `ahead` as in `shift_add`.
+/// `ray_weight` as in `FrameTable::add_per_ray`; `cache`, `ahead` and `sight` as in `shift_add`.
 template <std::floating_point T, class Px>
 void add_run(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
              std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr,
-             LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr) noexcept {
+             LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr,
+             const RunSight<T>* sight = nullptr) noexcept {
   if (even && !c.distorted && n >= 8 &&
-      (shift_add(table, c, points, n, acc, weight, ray_weight, cache, ahead) ||
+      (shift_add(table, c, points, n, acc, weight, ray_weight, cache, ahead, sight) ||
        add_projective(table, c, points, n, acc, weight, ray_weight)))
     return;
   table.add_per_ray(c, points, n, acc, weight, ray_weight);

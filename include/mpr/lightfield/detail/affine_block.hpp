@@ -1,0 +1,97 @@
+#pragma once
+/// \file
+/// A block of rows seen by a camera as one affine map: the points of a tile's rows on a planar
+/// focal surface form an affine grid, and a camera whose depth is constant over that grid (a
+/// focal plane parallel to a rectified array's image planes) sees it as an affine grid of pixel
+/// positions. The interpolations that add a camera to a block of rows row by row
+/// (`CylinderAperture`) then evaluate each run's pixel positions instead of projecting its points.
+
+#include <mpr/core/vec.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace mpr::detail {
+
+/// Points p(i, q) = origin + i step_i + q step_q, double: i the index along a row, q the row.
+struct AffineGrid {
+  Vec3<double> origin = Vec3<double>::Zero(), step_i = Vec3<double>::Zero(), step_q = Vec3<double>::Zero();
+};
+
+/// The grid through rows[q][i] (q < nrows, i < n), when every row's two end points lie on it
+/// within the tolerance `evenly_spaced` allows inside a row (64 ulp of the end points'
+/// magnitude): with rows each evenly spaced (the caller's check), the whole block then is, as a
+/// row is. False for fewer than two rows or points, or a non-finite point.
+template <std::floating_point T>
+[[nodiscard]] bool affine_grid(const Vec3<T>* const* rows, std::size_t nrows, std::size_t n,
+                               AffineGrid& grid) noexcept {
+  if (nrows < 2 || n < 2) return false;
+  const Vec3<double> a = rows[0][0].template cast<double>(), b = rows[0][n - 1].template cast<double>();
+  const Vec3<double> c = rows[nrows - 1][0].template cast<double>();
+  grid.origin = a;
+  grid.step_i = (b - a) / static_cast<double>(n - 1);
+  grid.step_q = (c - a) / static_cast<double>(nrows - 1);
+  for (std::size_t q = 0; q < nrows; ++q)
+    for (const std::size_t i : {std::size_t(0), n - 1}) {
+      const Vec3<double> p = rows[q][i].template cast<double>();
+      const Vec3<double> want =
+          grid.origin + static_cast<double>(i) * grid.step_i + static_cast<double>(q) * grid.step_q;
+      const double scale = rows[q][0].template cast<double>().cwiseAbs().maxCoeff() +
+                           rows[q][n - 1].template cast<double>().cwiseAbs().maxCoeff();
+      const double tolerance = 64 * static_cast<double>(std::numeric_limits<T>::epsilon()) * scale;
+      if (!((p - want).cwiseAbs().maxCoeff() <= tolerance)) return false;
+    }
+  return true;
+}
+
+/// Pixel positions x = x[0] + x[1] i + x[2] q, y likewise, of an `AffineGrid`'s points.
+struct AffineSight {
+  double x[3] = {0, 0, 0}, y[3] = {0, 0, 0};
+
+  /// The position of grid point (i, q), in the sampler's scalar.
+  template <std::floating_point T>
+  void at(double i, double q, T& px, T& py) const noexcept {
+    px = static_cast<T>(x[0] + x[1] * i + x[2] * q);
+    py = static_cast<T>(y[0] + y[1] * i + y[2] * q);
+  }
+};
+
+/// How the undistorted camera with projection P (K [R | t], 3x4 row-major) sees the grid's
+/// points with i in [0, n - 1] and q in [0, nrows - 1]: true, with `sight`, when they all lie in
+/// front of it and its perspective division moves none by more than `tolerance` pixels from the
+/// affine map through the grid's origin (a depth constant over the block up to that). The bound:
+/// with w = w0 + wi i + wq q the depth and x = N / w, |N / w - N / w0| <= max |N / w0| *
+/// (|wi| (n - 1) + |wq| (nrows - 1)) / min w, both taken over the block's corners.
+template <std::floating_point T>
+[[nodiscard]] bool affine_sight(const T* P, const AffineGrid& grid, std::size_t n, std::size_t nrows, double tolerance,
+                                AffineSight& sight) noexcept {
+  double row[3][3];
+  for (int r = 0; r < 3; ++r) {
+    const Vec3<double> m(static_cast<double>(P[4 * r]), static_cast<double>(P[4 * r + 1]),
+                         static_cast<double>(P[4 * r + 2]));
+    row[r][0] = m.dot(grid.origin) + static_cast<double>(P[4 * r + 3]);
+    row[r][1] = m.dot(grid.step_i);
+    row[r][2] = m.dot(grid.step_q);
+  }
+  const double di = static_cast<double>(n - 1), dq = static_cast<double>(nrows - 1);
+  const double w0 = row[2][0];
+  const double spread = std::abs(row[2][1]) * di + std::abs(row[2][2]) * dq;
+  const double w_min = w0 - spread; // the least depth over the block
+  if (!(w_min > 0) || !std::isfinite(spread)) return false;
+  double largest = 0; // max |N / w0| over the corners, both coordinates
+  for (const double ci : {0.0, di})
+    for (const double cq : {0.0, dq})
+      largest = std::max({largest, std::abs(row[0][0] + row[0][1] * ci + row[0][2] * cq),
+                          std::abs(row[1][0] + row[1][1] * ci + row[1][2] * cq)});
+  largest /= w0;
+  if (!(largest * spread / w_min <= tolerance)) return false;
+  for (int k = 0; k < 3; ++k) {
+    sight.x[k] = row[0][k] / w0;
+    sight.y[k] = row[1][k] / w0;
+  }
+  return true;
+}
+
+} // namespace mpr::detail

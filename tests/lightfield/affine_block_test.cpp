@@ -1,0 +1,165 @@
+#include <catch2/catch.hpp>
+
+#include <mpr/camera/pinhole_camera.hpp>
+#include <mpr/lightfield/detail/affine_block.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace {
+
+// Row q of an nrows x n block on p(i, q) = origin + i si + q sq, rounded to T.
+template <class T>
+std::vector<std::vector<mpr::Vec3<T>>> block(const mpr::Vec3<double>& origin, const mpr::Vec3<double>& si,
+                                             const mpr::Vec3<double>& sq, std::size_t nrows, std::size_t n) {
+  std::vector<std::vector<mpr::Vec3<T>>> rows(nrows, std::vector<mpr::Vec3<T>>(n));
+  for (std::size_t q = 0; q < nrows; ++q)
+    for (std::size_t i = 0; i < n; ++i)
+      rows[q][i] = (origin + static_cast<double>(i) * si + static_cast<double>(q) * sq).template cast<T>();
+  return rows;
+}
+
+template <class T>
+std::vector<const mpr::Vec3<T>*> pointers(const std::vector<std::vector<mpr::Vec3<T>>>& rows) {
+  std::vector<const mpr::Vec3<T>*> out;
+  for (const auto& r : rows) out.push_back(r.data());
+  return out;
+}
+
+// The camera's 3x4 projection, row-major, in T (as `FrameTable::Camera::P`).
+template <class T>
+std::vector<T> projection(const mpr::PinholeCamera<double>& c) {
+  Eigen::Matrix<double, 3, 4> Rt;
+  Rt.leftCols<3>() = c.R();
+  Rt.col(3) = c.t();
+  const Eigen::Matrix<double, 3, 4> P = c.K() * Rt;
+  std::vector<T> out(12);
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 4; ++k) out[static_cast<std::size_t>(4 * r + k)] = static_cast<T>(P(r, k));
+  return out;
+}
+
+// The largest distance (pixels, both coordinates) between the sight and the exact projection
+// (double) of the grid's points.
+template <class T>
+double sight_error(const mpr::detail::AffineSight& sight, const std::vector<T>& P, const mpr::detail::AffineGrid& g,
+                   std::size_t nrows, std::size_t n) {
+  double worst = 0;
+  for (std::size_t q = 0; q < nrows; ++q)
+    for (std::size_t i = 0; i < n; ++i) {
+      const mpr::Vec3<double> p = g.origin + static_cast<double>(i) * g.step_i + static_cast<double>(q) * g.step_q;
+      double h[3];
+      for (int r = 0; r < 3; ++r)
+        h[r] = static_cast<double>(P[static_cast<std::size_t>(4 * r)]) * p.x() +
+               static_cast<double>(P[static_cast<std::size_t>(4 * r + 1)]) * p.y() +
+               static_cast<double>(P[static_cast<std::size_t>(4 * r + 2)]) * p.z() +
+               static_cast<double>(P[static_cast<std::size_t>(4 * r + 3)]);
+      const double x = sight.x[0] + sight.x[1] * static_cast<double>(i) + sight.x[2] * static_cast<double>(q);
+      const double y = sight.y[0] + sight.y[1] * static_cast<double>(i) + sight.y[2] * static_cast<double>(q);
+      worst = std::max({worst, std::abs(x - h[0] / h[2]), std::abs(y - h[1] / h[2])});
+    }
+  return worst;
+}
+
+mpr::PinholeCamera<double> camera_at(const mpr::Vec3<double>& centre, double yaw) {
+  mpr::Mat3<double> K = mpr::Mat3<double>::Identity();
+  K(0, 0) = K(1, 1) = 640;
+  K(0, 2) = 319.5;
+  K(1, 2) = 239.5;
+  const mpr::Mat3<double> R = Eigen::AngleAxisd(yaw, mpr::Vec3<double>::UnitY()).toRotationMatrix();
+  return mpr::PinholeCamera<double>(K, R, -R * centre, 640, 480);
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("affine_grid: a block of evenly spaced rows is one grid; a row off it is not",
+                   "[camera_frame_kernels]", float, double) {
+  using T = TestType;
+  const std::size_t nrows = 8, n = 300;
+  const mpr::Vec3<double> origin(-3.25, 1.5, 10), si(0.0125, 0.0003, 0), sq(0.0002, -0.0125, 0);
+  auto rows = block<T>(origin, si, sq, nrows, n);
+  mpr::detail::AffineGrid g;
+  REQUIRE(mpr::detail::affine_grid(pointers(rows).data(), nrows, n, g));
+  const double tol = 64 * static_cast<double>(std::numeric_limits<T>::epsilon()) * 20;
+  CHECK((g.origin - origin).cwiseAbs().maxCoeff() <= tol);
+  CHECK((g.step_i - si).cwiseAbs().maxCoeff() * static_cast<double>(n - 1) <= 2 * tol);
+  CHECK((g.step_q - sq).cwiseAbs().maxCoeff() * static_cast<double>(nrows - 1) <= 2 * tol);
+  CHECK_FALSE(mpr::detail::affine_grid(pointers(rows).data(), 1, n, g));
+  CHECK_FALSE(mpr::detail::affine_grid(pointers(rows).data(), nrows, 1, g));
+
+  // A middle row moved across (its start, its end, both) by a twentieth of a row step: off the
+  // grid, although each row alone stays evenly spaced.
+  for (const int which : {0, 1, 2}) {
+    auto moved = rows;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = which == 0   ? 1.0 - static_cast<double>(i) / static_cast<double>(n - 1)
+                       : which == 1 ? static_cast<double>(i) / static_cast<double>(n - 1)
+                                    : 1.0;
+      moved[3][i] = (moved[3][i].template cast<double>() + t * 0.05 * sq).template cast<T>();
+    }
+    INFO("moved end " << which);
+    CHECK_FALSE(mpr::detail::affine_grid(pointers(moved).data(), nrows, n, g));
+  }
+  // Rows spaced unevenly across (the last row twice as far).
+  auto uneven = block<T>(origin, si, sq, nrows, n);
+  for (std::size_t i = 0; i < n; ++i)
+    uneven[nrows - 1][i] = (uneven[nrows - 1][i].template cast<double>() + sq).template cast<T>();
+  CHECK_FALSE(mpr::detail::affine_grid(pointers(uneven).data(), nrows, n, g));
+  // A non-finite point.
+  auto bad = rows;
+  bad[5][n - 1].x() = std::numeric_limits<T>::quiet_NaN();
+  CHECK_FALSE(mpr::detail::affine_grid(pointers(bad).data(), nrows, n, g));
+}
+
+TEMPLATE_TEST_CASE("affine_sight: a camera that sees a block at one depth maps it within the tolerance; "
+                   "a turned one is refused",
+                   "[camera_frame_kernels]", float, double) {
+  using T = TestType;
+  const std::size_t nrows = 8, n = 400;
+  // A block on the plane z = 10 in front of cameras on z = 0 looking along +z.
+  const auto rows = block<T>({-3, -0.2, 10}, {0.015, 0, 0}, {0, 0.015, 0}, nrows, n);
+  mpr::detail::AffineGrid g;
+  REQUIRE(mpr::detail::affine_grid(pointers(rows).data(), nrows, n, g));
+  const double tolerance = 1e-4;
+  int accepted = 0, refused = 0;
+  for (const double yaw : {0.0, 1e-9, 1e-7, 1e-5, 1e-3, 0.05, 0.3}) {
+    for (const double cx : {-1.0, 0.0, 2.5}) {
+      const mpr::PinholeCamera<double> cam = camera_at({cx, 0.3, 0}, yaw);
+      const std::vector<T> P = projection<T>(cam);
+      mpr::detail::AffineSight sight;
+      const bool ok = mpr::detail::affine_sight(P.data(), g, n, nrows, tolerance, sight);
+      INFO("yaw " << yaw << ", camera x " << cx);
+      if (yaw == 0.0) CHECK(ok); // a rectified camera: exactly one depth
+      if (yaw >= 1e-3) CHECK_FALSE(ok);
+      if (ok) {
+        ++accepted;
+        CHECK(sight_error(sight, P, g, nrows, n) <= tolerance);
+        // `at` gives the positions in the sampler's scalar.
+        T x, y;
+        sight.at(2.0, 3.0, x, y);
+        CHECK(static_cast<double>(x) == Approx(sight.x[0] + 2 * sight.x[1] + 3 * sight.x[2]).margin(1e-3));
+        CHECK(static_cast<double>(y) == Approx(sight.y[0] + 2 * sight.y[1] + 3 * sight.y[2]).margin(1e-3));
+      } else {
+        ++refused;
+      }
+    }
+  }
+  CHECK(accepted >= 6);
+  CHECK(refused >= 6);
+
+  // Behind the camera, or with the block reaching behind it: refused.
+  const auto behind = block<T>({-3, -0.2, -10}, {0.015, 0, 0}, {0, 0.015, 0}, nrows, n);
+  mpr::detail::AffineGrid gb;
+  REQUIRE(mpr::detail::affine_grid(pointers(behind).data(), nrows, n, gb));
+  mpr::detail::AffineSight sight;
+  CHECK_FALSE(mpr::detail::affine_sight(projection<T>(camera_at({0, 0, 0}, 0)).data(), gb, n, nrows, 1.0, sight));
+  const auto across = block<T>({-3, -0.2, -1}, {0, 0, 0.01}, {0.015, 0, 0}, nrows, n);
+  mpr::detail::AffineGrid ga;
+  REQUIRE(mpr::detail::affine_grid(pointers(across).data(), nrows, n, ga));
+  CHECK_FALSE(mpr::detail::affine_sight(projection<T>(camera_at({0, 0, 0}, 0)).data(), ga, n, nrows, 1e9, sight));
+}
