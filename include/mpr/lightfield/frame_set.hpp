@@ -348,8 +348,8 @@ private:
   std::vector<camera_type> cameras_;
   std::vector<Image<Px>> images_;
   std::vector<std::string> names_;
-  std::shared_ptr<const texel_vector> texels_ = std::make_shared<const texel_vector>();
-  std::vector<std::size_t> offsets_; // image i's first texel in *texels_
+  std::shared_ptr<const texel_vector> texels_; // null in a default-constructed (empty) set
+  std::vector<std::size_t> offsets_;           // image i's first texel in *texels_
   std::vector<Image<float>> depths_;
   std::vector<float> depth_near_;
   std::vector<Box> depth_boxes_;

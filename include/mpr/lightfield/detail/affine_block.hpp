@@ -15,15 +15,19 @@
 
 namespace mpr::detail {
 
-/// Points p(i, q) = origin + i step_i + q step_q, double: i the index along a row, q the row.
+/// Points p(i, q) = origin + i step_i + q step_q, double: i the index along a row, q the row;
+/// `deviation`: the largest distance (world units, per coordinate) of a row's end point from
+/// its grid point.
 struct AffineGrid {
   Vec3<double> origin = Vec3<double>::Zero(), step_i = Vec3<double>::Zero(), step_q = Vec3<double>::Zero();
+  double deviation = 0;
 };
 
 /// The grid through rows[q][i] (q < nrows, i < n), when every row's two end points lie on it
 /// within the tolerance `evenly_spaced` allows inside a row (64 ulp of the end points'
 /// magnitude): with rows each evenly spaced (the caller's check), the whole block then is, as a
-/// row is. False for fewer than two rows or points, or a non-finite point.
+/// row is (the points inside a row are taken to lie on its line, as a run's shift-and-add takes
+/// them). False for fewer than two rows or points, or a non-finite point.
 template <std::floating_point T>
 [[nodiscard]] bool affine_grid(const Vec3<T>* const* rows, std::size_t nrows, std::size_t n,
                                AffineGrid& grid) noexcept {
@@ -33,6 +37,7 @@ template <std::floating_point T>
   grid.origin = a;
   grid.step_i = (b - a) / static_cast<double>(n - 1);
   grid.step_q = (c - a) / static_cast<double>(nrows - 1);
+  grid.deviation = 0;
   for (std::size_t q = 0; q < nrows; ++q)
     for (const std::size_t i : {std::size_t(0), n - 1}) {
       const Vec3<double> p = rows[q][i].template cast<double>();
@@ -41,7 +46,9 @@ template <std::floating_point T>
       const double scale = rows[q][0].template cast<double>().cwiseAbs().maxCoeff() +
                            rows[q][n - 1].template cast<double>().cwiseAbs().maxCoeff();
       const double tolerance = 64 * static_cast<double>(std::numeric_limits<T>::epsilon()) * scale;
-      if (!((p - want).cwiseAbs().maxCoeff() <= tolerance)) return false;
+      const double off = (p - want).cwiseAbs().maxCoeff();
+      if (!(off <= tolerance)) return false;
+      grid.deviation = std::max(grid.deviation, off);
     }
   return true;
 }
@@ -60,10 +67,13 @@ struct AffineSight {
 
 /// How the undistorted camera with projection P (K [R | t], 3x4 row-major) sees the grid's
 /// points with i in [0, n - 1] and q in [0, nrows - 1]: true, with `sight`, when they all lie in
-/// front of it and its perspective division moves none by more than `tolerance` pixels from the
-/// affine map through the grid's origin (a depth constant over the block up to that). The bound:
-/// with w = w0 + wi i + wq q the depth and x = N / w, |N / w - N / w0| <= max |N / w0| *
-/// (|wi| (n - 1) + |wq| (nrows - 1)) / min w, both taken over the block's corners.
+/// front of it and the affine map through the grid's origin places every row's end points
+/// within `tolerance` pixels of their projections (a depth constant over the block up to that).
+/// The bound, with w = w0 + wi i + wq q the depth, x = N / w and w_min a lower bound of w over
+/// the block: the perspective division moves a grid point by |N / w - N / w0| <= max |N / w0| *
+/// max |w - w0| / w_min (both maxima at the block's corners), and a point `deviation` away from
+/// its grid point projects at most (|P_x| + |x| |P_w|) deviation / (w_min - |P_w| deviation)
+/// further (|.| the sums of the rows' first three magnitudes).
 template <std::floating_point T>
 [[nodiscard]] bool affine_sight(const T* P, const AffineGrid& grid, std::size_t n, std::size_t nrows, double tolerance,
                                 AffineSight& sight) noexcept {
@@ -77,8 +87,8 @@ template <std::floating_point T>
   }
   const double di = static_cast<double>(n - 1), dq = static_cast<double>(nrows - 1);
   const double w0 = row[2][0];
-  const double spread = std::abs(row[2][1]) * di + std::abs(row[2][2]) * dq;
-  const double w_min = w0 - spread; // the least depth over the block
+  const double spread = std::abs(row[2][1]) * di + std::abs(row[2][2]) * dq; // max |w - w0|
+  const double w_min = w0 + std::min(row[2][1] * di, 0.0) + std::min(row[2][2] * dq, 0.0);
   if (!(w_min > 0) || !std::isfinite(spread)) return false;
   double largest = 0; // max |N / w0| over the corners, both coordinates
   for (const double ci : {0.0, di})
@@ -86,7 +96,16 @@ template <std::floating_point T>
       largest = std::max({largest, std::abs(row[0][0] + row[0][1] * ci + row[0][2] * cq),
                           std::abs(row[1][0] + row[1][1] * ci + row[1][2] * cq)});
   largest /= w0;
-  if (!(largest * spread / w_min <= tolerance)) return false;
+  const auto magnitude = [P](int r) {
+    return std::abs(static_cast<double>(P[4 * r])) + std::abs(static_cast<double>(P[4 * r + 1])) +
+           std::abs(static_cast<double>(P[4 * r + 2]));
+  };
+  const double perspective = largest * spread / w_min;
+  const double reach = largest + perspective;                 // max |x|, |y| of the projections
+  const double w_off = w_min - magnitude(2) * grid.deviation; // the least depth of a point off the grid
+  if (!(w_off > 0)) return false;
+  const double off = (std::max(magnitude(0), magnitude(1)) + reach * magnitude(2)) * grid.deviation / w_off;
+  if (!(perspective + off <= tolerance)) return false;
   for (int k = 0; k < 3; ++k) {
     sight.x[k] = row[0][k] / w0;
     sight.y[k] = row[1][k] / w0;
