@@ -45,6 +45,24 @@ std::vector<T> projection(const mpr::PinholeCamera<double>& c) {
   return out;
 }
 
+// The exact projection (double) of p by P.
+template <class T>
+mpr::Vec2<double> project_exact(const std::vector<T>& P, const mpr::Vec3<double>& p) {
+  double h[3];
+  for (int r = 0; r < 3; ++r)
+    h[r] = static_cast<double>(P[static_cast<std::size_t>(4 * r)]) * p.x() +
+           static_cast<double>(P[static_cast<std::size_t>(4 * r + 1)]) * p.y() +
+           static_cast<double>(P[static_cast<std::size_t>(4 * r + 2)]) * p.z() +
+           static_cast<double>(P[static_cast<std::size_t>(4 * r + 3)]);
+  return {h[0] / h[2], h[1] / h[2]};
+}
+
+// How far (pixels, the larger coordinate) the sight places grid point (i, q) from pixel x.
+double off_by(const mpr::detail::AffineSight& sight, double i, double q, const mpr::Vec2<double>& x) {
+  return std::max(std::abs(sight.x[0] + sight.x[1] * i + sight.x[2] * q - x.x()),
+                  std::abs(sight.y[0] + sight.y[1] * i + sight.y[2] * q - x.y()));
+}
+
 // The largest distance (pixels, both coordinates) between the sight and the exact projection
 // (double) of the grid's points.
 template <class T>
@@ -54,15 +72,7 @@ double sight_error(const mpr::detail::AffineSight& sight, const std::vector<T>& 
   for (std::size_t q = 0; q < nrows; ++q)
     for (std::size_t i = 0; i < n; ++i) {
       const mpr::Vec3<double> p = g.origin + static_cast<double>(i) * g.step_i + static_cast<double>(q) * g.step_q;
-      double h[3];
-      for (int r = 0; r < 3; ++r)
-        h[r] = static_cast<double>(P[static_cast<std::size_t>(4 * r)]) * p.x() +
-               static_cast<double>(P[static_cast<std::size_t>(4 * r + 1)]) * p.y() +
-               static_cast<double>(P[static_cast<std::size_t>(4 * r + 2)]) * p.z() +
-               static_cast<double>(P[static_cast<std::size_t>(4 * r + 3)]);
-      const double x = sight.x[0] + sight.x[1] * static_cast<double>(i) + sight.x[2] * static_cast<double>(q);
-      const double y = sight.y[0] + sight.y[1] * static_cast<double>(i) + sight.y[2] * static_cast<double>(q);
-      worst = std::max({worst, std::abs(x - h[0] / h[2]), std::abs(y - h[1] / h[2])});
+      worst = std::max(worst, off_by(sight, static_cast<double>(i), static_cast<double>(q), project_exact(P, p)));
     }
   return worst;
 }
@@ -185,15 +195,7 @@ TEMPLATE_TEST_CASE("affine_sight: a camera that sees a block at one depth maps e
     for (std::size_t q = 0; q < nrows; ++q)
       for (const std::size_t i : {std::size_t(0), n - 1}) {
         const mpr::Vec3<double> p = moved[q][i].template cast<double>();
-        double h[3];
-        for (int r = 0; r < 3; ++r)
-          h[r] = static_cast<double>(P[static_cast<std::size_t>(4 * r)]) * p.x() +
-                 static_cast<double>(P[static_cast<std::size_t>(4 * r + 1)]) * p.y() +
-                 static_cast<double>(P[static_cast<std::size_t>(4 * r + 2)]) * p.z() +
-                 static_cast<double>(P[static_cast<std::size_t>(4 * r + 3)]);
-        const double di = static_cast<double>(i), dq = static_cast<double>(q);
-        worst = std::max({worst, std::abs(sight.x[0] + sight.x[1] * di + sight.x[2] * dq - h[0] / h[2]),
-                          std::abs(sight.y[0] + sight.y[1] * di + sight.y[2] * dq - h[1] / h[2])});
+        worst = std::max(worst, off_by(sight, static_cast<double>(i), static_cast<double>(q), project_exact(P, p)));
       }
     INFO("row moved by " << ulps << " ulp");
     CHECK(worst <= tolerance);
