@@ -164,9 +164,9 @@ private:
 
   // Rows taken together by `row_path` (the renderer's tiles have kTileRows).
   static constexpr std::size_t kGroupRows = 8;
-  // How far (pixels) a camera's perspective may move a point of a group from its affine map
-  // for the map to stand in for projecting the runs (`detail::affine_sight`): a tenth of the
-  // shift-and-add's 1e-3 pixel.
+  // How far (pixels) a camera's affine map of a group may place the rows' points from their
+  // projections for it to stand in for projecting the runs (`detail::affine_sight`): a tenth of
+  // the shift-and-add's 1e-3 pixel.
   static constexpr double kSightTolerance = 1e-4;
 
   // Per-thread working memory of `row_path`: each row's crossings and sums, the bounding boxes
@@ -279,9 +279,6 @@ private:
       const std::size_t k = static_cast<std::size_t>(s.cameras[j]);
       const auto* ahead =
           j + 1 < s.cameras.size() ? &table.camera(static_cast<std::size_t>(s.cameras[j + 1])) : nullptr;
-      detail::AffineSight sight;
-      const bool seen = block && !table.camera(k).distorted &&
-                        detail::affine_sight(table.camera(k).P, grid, w, nrows, kSightTolerance, sight);
       std::size_t span_lo = w, span_hi = 0;
       for (std::size_t q = 0; q < nrows; ++q) {
         weigh(plane, k, w, q, s);
@@ -290,6 +287,10 @@ private:
           span_hi = std::max(span_hi, s.hi[q]);
         }
       }
+      if (span_lo >= span_hi) continue; // the camera weighs no ray of the group
+      detail::AffineSight sight;
+      const bool seen = block && !table.camera(k).distorted &&
+                        detail::affine_sight(table.camera(k).P, grid, w, nrows, kSightTolerance, sight);
       for (std::size_t q = 0; q < nrows; ++q) {
         if (s.lo[q] >= s.hi[q]) continue;
         PlaneRowScratch<T>& row = s.row[q];

@@ -318,9 +318,9 @@ private:
 
   // Every image decoded into one buffer, image i from texel offsets[i]: a multiple of 64 texels
   // (64-byte aligned, as the buffer is); the images that follow and the buffer's padding keep at
-  // least 64 bytes readable after each. One buffer rather than one per image: a set of small frames (the 640x480 ones
-  // of the benchmarks, under the allocator's huge-page threshold each) is in huge pages too, and a render that reads a
-  // few rows of each of many frames misses the TLB far less often.
+  // least 64 bytes readable after each. One buffer rather than one per image: frames each under
+  // the allocator's huge-page threshold are in huge pages too, and a render that reads a few rows
+  // of each of many frames misses the TLB far less often.
   [[nodiscard]] static std::shared_ptr<const texel_vector> decode(const std::vector<Image<Px>>& images,
                                                                   std::vector<std::size_t>& offsets) {
     constexpr std::size_t kAlign = 64;

@@ -4,11 +4,12 @@
 /// texels of light-field frames) that asks Linux for transparent huge pages. A tilted or scaled
 /// focal plane reads each camera image along slanted lines, touching a new 4 KiB page every few
 /// pixels, and an aperture reads a short run of each of many frames; with 2 MiB pages the same
-/// reads fit the TLB (`CameraFrameSet` keeps all its frames in one buffer for that). Buffers of at least 1 MiB are
-/// aligned and padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the system's THP setting is `madvise` or
-/// `always`); smaller buffers, other systems and a refused advice get plain memory. Every buffer has `kPadding`
-/// readable bytes after its end, so that vector kernels may load a whole word that starts at the last element (e.g. a
-/// 32-bit gather of a 3-byte texel), and every buffer starts on a 64-byte boundary.
+/// reads fit the TLB (`CameraFrameSet` keeps all its frames in one buffer for that). Buffers of
+/// at least 1 MiB are aligned and padded to 2 MiB and advised `MADV_HUGEPAGE` (honoured when the
+/// system's THP setting is `madvise` or `always`); smaller buffers, other systems and a refused
+/// advice get plain memory. Every buffer starts on a 64-byte boundary and has `kPadding` readable
+/// bytes after its end, so that vector kernels may load a whole word that starts at the last
+/// element (e.g. a 32-bit gather of a 3-byte texel).
 
 #include <cstddef>
 #include <cstdlib>
