@@ -180,6 +180,8 @@ private:
     bool crosses[kGroupRows], even[kGroupRows];
     std::size_t lo[kGroupRows], hi[kGroupRows]; // the rays a camera weighs, [lo, hi) per row
     std::vector<int> cameras;
+    std::vector<detail::AffineSight> sights; // per entry of `cameras`: its affine map, when `seen`
+    std::vector<unsigned char> seen;
     LerpRowCache rows; // camera rows interpolated once for the two output rows that read them
 
     [[nodiscard]] bool reserve(std::size_t w, std::size_t cameras_in_table) noexcept {
@@ -187,6 +189,8 @@ private:
         if (!r.reserve(w)) return false;
       try {
         cameras.reserve(cameras_in_table);
+        sights.resize(cameras_in_table);
+        seen.resize(cameras_in_table);
       } catch (...) {
         return false;
       }
@@ -275,6 +279,12 @@ private:
     }
     detail::AffineGrid grid;
     block = block && detail::affine_grid(points, nrows, w, grid);
+    // Every camera's map, in one loop before any is added: a camera's runs are placed by its own
+    // map, and the next camera's texels for them, prefetched meanwhile, by the next one's.
+    for (std::size_t j = 0; j < s.cameras.size(); ++j) {
+      const auto& c = table.camera(static_cast<std::size_t>(s.cameras[j]));
+      s.seen[j] = block && !c.distorted && detail::affine_sight(c.P, grid, w, nrows, kSightTolerance, s.sights[j]);
+    }
     for (std::size_t j = 0; j < s.cameras.size(); ++j) {
       const std::size_t k = static_cast<std::size_t>(s.cameras[j]);
       const auto* ahead =
@@ -288,9 +298,8 @@ private:
         }
       }
       if (span_lo >= span_hi) continue; // the camera weighs no ray of the group
-      detail::AffineSight sight;
-      const bool seen = block && !table.camera(k).distorted &&
-                        detail::affine_sight(table.camera(k).P, grid, w, nrows, kSightTolerance, sight);
+      const detail::AffineSight* sight = s.seen[j] ? &s.sights[j] : nullptr;
+      const detail::AffineSight* next = ahead != nullptr && s.seen[j + 1] ? &s.sights[j + 1] : nullptr;
       for (std::size_t q = 0; q < nrows; ++q) {
         if (s.lo[q] >= s.hi[q]) continue;
         PlaneRowScratch<T>& row = s.row[q];
@@ -298,15 +307,20 @@ private:
         std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
         std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
         RunSight<T> at;
-        if (seen) {
+        if (sight != nullptr) {
           const double dq = static_cast<double>(q), mid = static_cast<double>(span_lo + (span_hi - span_lo) / 2);
-          sight.at(static_cast<double>(span_lo), dq, at.x0, at.y0);
-          sight.at(mid, dq, at.xm, at.ym);
-          sight.at(static_cast<double>(span_hi - 1), dq, at.x1, at.y1);
+          sight->at(static_cast<double>(span_lo), dq, at.x0, at.y0);
+          sight->at(mid, dq, at.xm, at.ym);
+          sight->at(static_cast<double>(span_hi - 1), dq, at.x1, at.y1);
+          if (next != nullptr) { // the next camera's texels for the run, prefetched meanwhile
+            next->at(static_cast<double>(span_lo), dq, at.ahead_x, at.ahead_y);
+            at.ahead_dx = static_cast<T>(next->x[1]);
+            at.ahead_dy = static_cast<T>(next->y[1]);
+          }
         }
         add_run(table, table.camera(k), row.points.data() + span_lo, span_hi - span_lo, s.even[q],
                 row.acc.data() + 3 * span_lo, row.weight.data() + span_lo, ray_weight + span_lo, &s.rows, ahead,
-                seen ? &at : nullptr);
+                sight != nullptr ? &at : nullptr);
       }
     }
     for (std::size_t q = 0; q < nrows; ++q) {

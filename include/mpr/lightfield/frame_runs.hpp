@@ -53,10 +53,13 @@ template <std::floating_point T>
 }
 
 /// Where a camera sees a run of points: continuous pixel coordinates of its first (x0, y0),
-/// middle (index n / 2: xm, ym) and last (x1, y1) points.
+/// middle (index n / 2: xm, ym) and last (x1, y1) points; and, when known, where the camera
+/// asked next (`shift_add`'s `ahead`) sees point i, about (ahead_x + ahead_dx i, ahead_y +
+/// ahead_dy i): for its prefetches only (ahead_x NaN: not known, projected instead).
 template <std::floating_point T>
 struct RunSight {
   T x0, y0, xm, ym, x1, y1;
+  T ahead_x = std::numeric_limits<T>::quiet_NaN(), ahead_y = 0, ahead_dx = 0, ahead_dy = 0;
 };
 
 namespace detail {
@@ -99,14 +102,24 @@ void add_texel_rows(const Texel* a, const Texel* b, RowWeights w, const float* r
 } // namespace detail
 
 namespace detail {
-// Where camera `ahead` (nullptr: none) sees X: the channels of its texel at the pixel and of the
-// one below it, the pixel clamped to the image so that both exist; {nullptr, nullptr} when there
-// is no camera or X is not in front of it. For prefetches only.
+// Where camera `ahead` (nullptr: none) sees X, point i of a run: the channels of its texel at
+// the pixel and of the one below it, the pixel clamped to the image so that both exist;
+// {nullptr, nullptr} when there is no camera or X is not in front of it. The position comes from
+// `sight` when it holds the ahead camera's (`RunSight::ahead_x`), else X is projected. For
+// prefetches only.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::array<const typename FrameTable<T, Px>::texel_type::channel_type*, 2>
-ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X) noexcept {
+ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X, const RunSight<T>* sight = nullptr,
+           std::size_t i = 0) noexcept {
   T x, y;
-  if (ahead == nullptr || ahead->height < 2 || !FrameTable<T, Px>::project_any(*ahead, X, x, y)) return {};
+  if (ahead == nullptr || ahead->height < 2) return {};
+  if (sight != nullptr && !std::isnan(sight->ahead_x)) {
+    x = sight->ahead_x + sight->ahead_dx * static_cast<T>(i);
+    y = sight->ahead_y + sight->ahead_dy * static_cast<T>(i);
+    if (!(std::abs(x) < T(1e8) && std::abs(y) < T(1e8))) return {}; // keeps the conversions in range
+  } else if (!FrameTable<T, Px>::project_any(*ahead, X, x, y)) {
+    return {};
+  }
   const auto ix = static_cast<std::ptrdiff_t>(std::clamp(std::floor(x), T(0), static_cast<T>(ahead->width - 1)));
   const auto iy = static_cast<std::ptrdiff_t>(std::clamp(std::floor(y), T(0), static_cast<T>(ahead->height - 2)));
   const auto* texel = ahead->texels + iy * ahead->width + ix;
@@ -153,7 +166,7 @@ template <std::floating_point T, class Px>
 bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
                          const Vec3<T>* points, std::size_t n, T x0, T step, int iy, int iy1, float ay, float* acc,
                          float* weight, const float* ray_weight, LerpRowCache* cache,
-                         const typename FrameTable<T, Px>::Camera* ahead) noexcept {
+                         const typename FrameTable<T, Px>::Camera* ahead, const RunSight<T>* sight) noexcept {
   using texel_type = typename FrameTable<T, Px>::texel_type;
   const std::array<std::size_t, 2> span = resampled_span(x0, step, n, c.width);
   const std::size_t first = span[0], last = span[1];
@@ -184,7 +197,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
       return true;
     }
   }
-  const auto next = ahead_rows<T, Px>(ahead, points[first]);
+  const auto next = ahead_rows<T, Px>(ahead, points[first], sight, first);
   const float* h0 = rows.resampled(row0, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[0]);
   const float* h1 = h0 != nullptr
                         ? rows.resampled(row1, width, lut, m, x, static_cast<double>(step), texel_type::scale, next[1])
@@ -209,7 +222,7 @@ bool shift_add_resampled(const FrameTable<T, Px>& table, const typename FrameTab
 /// `LerpRowCache`). `ahead` (nullptr: none): the camera that will be asked for the same run
 /// next (a tile's next camera), whose texels for the run are prefetched while c's rows are
 /// interpolated. `sight` (nullptr: projected here): where c sees the run's first, middle (n / 2)
-/// and last points, when the caller knows it (`detail::AffineSight`).
+/// and last points, when the caller knows it (`detail::AffineSight`), and where `ahead` does.
 /// Preconditions: n >= 2, c undistorted, bilinear filtering.
 template <std::floating_point T, class Px>
 bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
@@ -233,7 +246,9 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   constexpr bool codes = std::is_same_v<typename texel_type::channel_type, std::uint8_t>;
   const bool separable = codes || cache != nullptr;
   if (!(std::abs(y1 - y0) <= kTolerance && std::abs(ym - y0) <= kTolerance)) return false;
-  const T step = (x1 - x0) / span, steps = std::round(step);
+  // The nearest whole step (floor: inlined where std::round is a library call; ties cannot pass
+  // the tolerance test below).
+  const T step = (x1 - x0) / span, steps = std::floor(step + T(0.5));
   // Steps of 2 resample too: computing only the pixels kept beats a whole row then thinned (9%
   // on Chess at 700x400, docs/performance.md).
   const bool whole = (steps == 1 || (separable && steps >= 3 && steps <= 8)) &&
@@ -264,7 +279,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   const int row_a = std::clamp(iy, 0, c.height - 1), row_b = std::clamp(iy + 1, 0, c.height - 1);
   if (resample)
     return detail::shift_add_resampled(table, c, points, n, x0, step, row_a, row_b, static_cast<float>(ay_t), acc,
-                                       weight, ray_weight, cache, ahead);
+                                       weight, ray_weight, cache, ahead, sight);
   const std::size_t stride = static_cast<std::size_t>(steps);
   // Pixels i whose two texels ix + k i, ix + k i + 1 (k the stride) lie inside the row are shifted
   // and added; the others (near or past the left and right edges) go ray by ray.
@@ -291,10 +306,10 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
   // One camera row (a vertical offset of 0) one pixel apart: decoded, interpolated and added
   // (times the rays' weights, whose sums are added too) in one pass where the level has it.
-  const bool one_pass =
-      ay == 0 && stride == 1 &&
-      detail::add_row_one_pass(a[i_begin].c, texel_decode_table<texel_type>(), ax, sc, rw, acc + 3 * i_begin,
-                               weight + i_begin, 3 * m, detail::ahead_rows<T, Px>(ahead, points[i_begin])[0]);
+  const bool one_pass = ay == 0 && stride == 1 &&
+                        detail::add_row_one_pass(a[i_begin].c, texel_decode_table<texel_type>(), ax, sc, rw,
+                                                 acc + 3 * i_begin, weight + i_begin, 3 * m,
+                                                 detail::ahead_rows<T, Px>(ahead, points[i_begin], sight, i_begin)[0]);
   if (one_pass && rw != nullptr) return true; // the weights added too
   if (!one_pass && (codes || cache != nullptr)) {
     // The separable form: always for 8-bit codes, whose decode is then done once per texel.
@@ -303,7 +318,7 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     if (cache == nullptr) own.clear();
     const std::uint16_t* lut = texel_decode_table<texel_type>();
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
-    const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin]);
+    const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin], sight, i_begin);
     const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next[0]);
     // At a vertical offset of 0 (snapped) the second row has weight 0 and is not read.
     const float* h1 = h0 == nullptr || ay == 0 ? h0 : rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next[1]);
