@@ -99,13 +99,25 @@ TEST_CASE("CameraFrameSet decodes its images into one buffer, each 64-byte align
       }
     CHECK(wrong == 0);
   }
-  // without() and copies keep the decoded images where they are (nothing decoded or copied).
+  // without(), copies and cast<U>() keep the images and their texels where they are (nothing
+  // decoded or copied).
   const auto three = frames.without(1);
   CHECK(three.texels(0).data() == frames.texels(0).data());
   CHECK(three.texels(1).data() == frames.texels(2).data());
   CHECK(three.texels(2).data() == frames.texels(3).data());
+  CHECK(three.image(1).data() == frames.image(2).data());
   const mpr::CameraFrameSet<double> copy = frames;
   CHECK(copy.texels(3).data() == frames.texels(3).data());
+  CHECK(copy.image(3).data() == frames.image(3).data());
+  const mpr::CameraFrameSet<float> single = frames.cast<float>();
+  REQUIRE(single.size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    CHECK(single.texels(k).data() == frames.texels(k).data());
+    CHECK(single.texels(k).size() == 35);
+    CHECK(single.image(k).data() == frames.image(k).data());
+    CHECK(single.name(k) == frames.name(k));
+    CHECK(single.camera(k).centre().template cast<double>().isApprox(frames.camera(k).centre(), 1e-6));
+  }
 
   const std::vector<mpr::Image<mpr::Color>> linear(3, mpr::Image<mpr::Color>(7, 5, mpr::Color(0.5f, 1.5f, -2.0f)));
   const mpr::CameraFrameSet<double, mpr::Color> hdr({cams[0], cams[1], cams[2]}, linear);
@@ -141,7 +153,6 @@ TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per
   const std::vector<mpr::Image<mpr::Rgb8>> images(3, mpr::Image<mpr::Rgb8>(4, 3));
   const mpr::CameraFrameSet<T> plain(cams, images);
   CHECK_FALSE(plain.has_depth());
-  CHECK(plain.depths().empty());
   std::vector<mpr::Image<float>> maps;
   for (int k = 0; k < 3; ++k) maps.emplace_back(4, 3, 2.0f + static_cast<float>(k));
   maps[1](3, 2) = std::numeric_limits<float>::infinity(); // nothing seen
@@ -152,8 +163,10 @@ TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per
   // Leave-one-out and the scalar cast keep the maps in step with the cameras.
   const auto without = with.without(1);
   REQUIRE(without.has_depth());
-  CHECK(without.depths().size() == 2);
+  CHECK(without.size() == 2);
+  CHECK(without.depth(0)(0, 0) == 2.0f);
   CHECK(without.depth(1)(0, 0) == 4.0f);
+  CHECK(&without.depth(1)(0, 0) == &with.depth(2)(0, 0)); // shared, not copied
   // The nearest depth of each map (where a surface search may start), kept in step too.
   maps[0](1, 1) = 1.5f;
   const auto nearest = mpr::CameraFrameSet<T>(cams, images).with_depth(maps);
@@ -166,6 +179,9 @@ TEMPLATE_TEST_CASE("CameraFrameSet::with_depth carries one checked depth map per
   const auto other = with.template cast<std::conditional_t<std::is_same_v<T, float>, double, float>>();
   REQUIRE(other.has_depth());
   CHECK(other.depth(0)(1, 1) == 2.0f);
+  CHECK(&other.depth(1)(0, 0) == &with.depth(1)(0, 0));
+  CHECK(std::isinf(other.depth(1)(3, 2)));
+  CHECK(other.depth_near(2) == 4.0f);
   // An empty list drops them.
   CHECK_FALSE(mpr::CameraFrameSet<T>(with).with_depth({}).has_depth());
 

@@ -83,7 +83,9 @@ static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(Srgb8Texel) == 
 /// At construction every image is also decoded once into linear texels, which the samplers read:
 /// `Srgb8Texel` (3 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
 /// this is the bulk of the memory a frame set takes. Optionally the set carries one depth map per
-/// camera (`with_depth`), read only by geometry-aware interpolations (`DepthProxy`).
+/// camera (`with_depth`), read only by geometry-aware interpolations (`DepthProxy`). Images,
+/// texels and depth maps are immutable once in a set and shared: a copy, `without(i)` and
+/// `cast<U>()` copy no pixel.
 template <std::floating_point T, class Px = Rgb8>
 class CameraFrameSet {
   static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
@@ -104,35 +106,36 @@ public:
   /// empty nor of the same length, or when an image's size differs from its camera's.
   /// Empty `names` are replaced by "frame <i>".
   CameraFrameSet(std::vector<camera_type> cameras, std::vector<Image<Px>> images, std::vector<std::string> names = {})
-      : cameras_(std::move(cameras)), images_(std::move(images)), names_(std::move(names)) {
-    if (cameras_.size() != images_.size())
-      throw argument_error("frames", std::to_string(cameras_.size()) + " cameras but " +
-                                         std::to_string(images_.size()) + " images");
+      : cameras_(std::move(cameras)), names_(std::move(names)) {
+    if (cameras_.size() != images.size())
+      throw argument_error("frames", std::to_string(cameras_.size()) + " cameras but " + std::to_string(images.size()) +
+                                         " images");
     if (names_.empty())
       for (std::size_t i = 0; i < cameras_.size(); ++i) names_.push_back("frame " + std::to_string(i));
     if (names_.size() != cameras_.size()) throw argument_error("frames", "names and cameras differ in number");
     for (std::size_t i = 0; i < cameras_.size(); ++i)
-      if (images_[i].width() != cameras_[i].width() || images_[i].height() != cameras_[i].height())
-        throw argument_error("frames", names_[i] + ": image is " + std::to_string(images_[i].width()) + "x" +
-                                           std::to_string(images_[i].height()) + " but its camera expects " +
+      if (images[i].width() != cameras_[i].width() || images[i].height() != cameras_[i].height())
+        throw argument_error("frames", names_[i] + ": image is " + std::to_string(images[i].width()) + "x" +
+                                           std::to_string(images[i].height()) + " but its camera expects " +
                                            std::to_string(cameras_[i].width()) + "x" +
                                            std::to_string(cameras_[i].height()));
+    images_.reserve(images.size());
+    for (Image<Px>& image : images) images_.push_back(std::make_shared<const Image<Px>>(std::move(image)));
     texels_ = decode(images_, offsets_);
   }
 
   [[nodiscard]] std::size_t size() const noexcept { return cameras_.size(); }
   [[nodiscard]] bool empty() const noexcept { return cameras_.empty(); }
   [[nodiscard]] const camera_type& camera(std::size_t i) const noexcept { return cameras_[i]; }
-  [[nodiscard]] const Image<Px>& image(std::size_t i) const noexcept { return images_[i]; }
+  [[nodiscard]] const Image<Px>& image(std::size_t i) const noexcept { return *images_[i]; }
   [[nodiscard]] const std::string& name(std::size_t i) const noexcept { return names_[i]; }
   [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
-  [[nodiscard]] const std::vector<Image<Px>>& images() const noexcept { return images_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
   /// Image `i` as the samplers read it, row-major, `width * height` texels, starting on a
   /// 64-byte boundary, with at least 64 readable bytes after the last.
   [[nodiscard]] std::span<const texel_type> texels(std::size_t i) const noexcept {
     return {texels_->data() + offsets_[i],
-            static_cast<std::size_t>(images_[i].width()) * static_cast<std::size_t>(images_[i].height())};
+            static_cast<std::size_t>(images_[i]->width()) * static_cast<std::size_t>(images_[i]->height())};
   }
 
   /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
@@ -165,9 +168,7 @@ public:
   /// Camera `i`'s depth map (precondition: `has_depth()`): per pixel, the depth of the surface
   /// the pixel sees along the camera's optical axis (camera-space z, world units, > 0), +inf
   /// where nothing was seen. Same size as image `i`.
-  [[nodiscard]] const Image<float>& depth(std::size_t i) const noexcept { return depths_[i]; }
-  /// Every depth map, in camera order; empty when the set carries none.
-  [[nodiscard]] const std::vector<Image<float>>& depths() const noexcept { return depths_; }
+  [[nodiscard]] const Image<float>& depth(std::size_t i) const noexcept { return *depths_[i]; }
   /// The smallest depth in camera `i`'s map (precondition: `has_depth()`), +inf when the camera
   /// saw nothing: no surface lies nearer to camera `i` along its axis, so a search for one can
   /// start there.
@@ -187,30 +188,10 @@ public:
   /// differ, a map's size differs from its camera's, or a depth is NaN, zero, negative or -inf.
   /// Samplers that do not read depth never look at the maps.
   [[nodiscard]] CameraFrameSet with_depth(std::vector<Image<float>> depths) && {
-    if (!depths.empty() && depths.size() != cameras_.size())
-      throw argument_error("depth maps", std::to_string(cameras_.size()) + " cameras but " +
-                                             std::to_string(depths.size()) + " depth maps");
-    std::vector<float> near(depths.size(), std::numeric_limits<float>::infinity());
-    std::vector<std::array<Vec3<T>, 2>> boxes(depths.size());
-    for (std::size_t i = 0; i < depths.size(); ++i) {
-      const Image<float>& d = depths[i];
-      if (d.width() != cameras_[i].width() || d.height() != cameras_[i].height())
-        throw argument_error("depth maps", names_[i] + ": depth map is " + std::to_string(d.width()) + "x" +
-                                               std::to_string(d.height()) + " but its camera expects " +
-                                               std::to_string(cameras_[i].width()) + "x" +
-                                               std::to_string(cameras_[i].height()));
-      int bad_x = -1, bad_y = -1;
-      boxes[i] = surface_box(cameras_[i], d, near[i], bad_x, bad_y);
-      if (bad_x >= 0)
-        throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(bad_x, bad_y)) + " at pixel (" +
-                                               std::to_string(bad_x) + ", " + std::to_string(bad_y) +
-                                               ") (depths are positive, +inf where nothing was seen)");
-    }
-    depths_ = std::move(depths);
-    depth_near_ = std::move(near);
-    depth_boxes_ = std::move(boxes);
-    depth_bounds_ = union_box(depth_boxes_);
-    return std::move(*this);
+    std::vector<std::shared_ptr<const Image<float>>> shared;
+    shared.reserve(depths.size());
+    for (Image<float>& d : depths) shared.push_back(std::make_shared<const Image<float>>(std::move(d)));
+    return std::move(*this).with_shared_depth(std::move(shared));
   }
 
   /// The same frames without frame `i` (for leave-one-out evaluation).
@@ -230,7 +211,8 @@ public:
     return out;
   }
 
-  /// The frames with their cameras converted to scalar `U` (images are copied unchanged).
+  /// The frames with their cameras converted to scalar `U`; the images, texels and depth maps
+  /// are shared, not copied (the depth maps' bounds are computed again in `U`).
   template <std::floating_point U>
   [[nodiscard]] CameraFrameSet<U, Px> cast() const {
     std::vector<PinholeCamera<U>> cameras;
@@ -240,7 +222,13 @@ public:
           c.K().template cast<U>(), c.R().template cast<U>(), c.t().template cast<U>(), c.width(), c.height(),
           typename PinholeCamera<U>::Distortion{static_cast<U>(c.distortion().k1), static_cast<U>(c.distortion().k2)},
           std::is_same_v<U, float> ? U(1e-4) : PinholeCamera<U>::default_rotation_tolerance());
-    CameraFrameSet<U, Px> out = CameraFrameSet<U, Px>(std::move(cameras), images_, names_).with_depth(depths_);
+    CameraFrameSet<U, Px> out;
+    out.cameras_ = std::move(cameras);
+    out.images_ = images_;
+    out.names_ = names_;
+    out.texels_ = texels_;
+    out.offsets_ = offsets_;
+    out = std::move(out).with_shared_depth(depths_);
     if (array_plane_)
       return std::move(out).on_plane(
           Plane<U>{array_plane_->point.template cast<U>(), array_plane_->normal.template cast<U>()});
@@ -248,6 +236,37 @@ public:
   }
 
 private:
+  template <std::floating_point, class>
+  friend class CameraFrameSet;
+
+  // `with_depth` for maps already shared.
+  [[nodiscard]] CameraFrameSet with_shared_depth(std::vector<std::shared_ptr<const Image<float>>> depths) && {
+    if (!depths.empty() && depths.size() != cameras_.size())
+      throw argument_error("depth maps", std::to_string(cameras_.size()) + " cameras but " +
+                                             std::to_string(depths.size()) + " depth maps");
+    std::vector<float> near(depths.size(), std::numeric_limits<float>::infinity());
+    std::vector<std::array<Vec3<T>, 2>> boxes(depths.size());
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+      const Image<float>& d = *depths[i];
+      if (d.width() != cameras_[i].width() || d.height() != cameras_[i].height())
+        throw argument_error("depth maps", names_[i] + ": depth map is " + std::to_string(d.width()) + "x" +
+                                               std::to_string(d.height()) + " but its camera expects " +
+                                               std::to_string(cameras_[i].width()) + "x" +
+                                               std::to_string(cameras_[i].height()));
+      int bad_x = -1, bad_y = -1;
+      boxes[i] = surface_box(cameras_[i], d, near[i], bad_x, bad_y);
+      if (bad_x >= 0)
+        throw argument_error("depth maps", names_[i] + ": depth " + std::to_string(d(bad_x, bad_y)) + " at pixel (" +
+                                               std::to_string(bad_x) + ", " + std::to_string(bad_y) +
+                                               ") (depths are positive, +inf where nothing was seen)");
+    }
+    depths_ = std::move(depths);
+    depth_near_ = std::move(near);
+    depth_boxes_ = std::move(boxes);
+    depth_bounds_ = union_box(depth_boxes_);
+    return std::move(*this);
+  }
+
   using Box = std::array<Vec3<T>, 2>;
 
   [[nodiscard]] static Box empty_box() noexcept {
@@ -321,21 +340,22 @@ private:
   // least 64 bytes readable after each. One buffer rather than one per image: frames each under
   // the allocator's huge-page threshold are in huge pages too, and a render that reads a few rows
   // of each of many frames misses the TLB far less often.
-  [[nodiscard]] static std::shared_ptr<const texel_vector> decode(const std::vector<Image<Px>>& images,
-                                                                  std::vector<std::size_t>& offsets) {
+  [[nodiscard]] static std::shared_ptr<const texel_vector>
+  decode(const std::vector<std::shared_ptr<const Image<Px>>>& images, std::vector<std::size_t>& offsets) {
     constexpr std::size_t kAlign = 64;
     offsets.clear();
     std::size_t total = 0;
-    for (const Image<Px>& image : images) {
+    for (const auto& image : images) {
       offsets.push_back(total);
-      const std::size_t n = static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height());
+      const std::size_t n = static_cast<std::size_t>(image->width()) * static_cast<std::size_t>(image->height());
       total += (n + kAlign) / kAlign * kAlign; // at least one texel of gap, a multiple of kAlign
     }
     auto out = std::make_shared<texel_vector>(total);
     for (std::size_t i = 0; i < images.size(); ++i) {
       texel_type* t = out->data() + offsets[i];
-      const Px* p = images[i].data();
-      const std::size_t n = static_cast<std::size_t>(images[i].width()) * static_cast<std::size_t>(images[i].height());
+      const Px* p = images[i]->data();
+      const std::size_t n =
+          static_cast<std::size_t>(images[i]->width()) * static_cast<std::size_t>(images[i]->height());
       if constexpr (std::is_same_v<Px, Rgb8>) {
         for (std::size_t k = 0; k < n; ++k) t[k] = {{p[k].r, p[k].g, p[k].b}};
       } else {
@@ -346,11 +366,11 @@ private:
   }
 
   std::vector<camera_type> cameras_;
-  std::vector<Image<Px>> images_;
+  std::vector<std::shared_ptr<const Image<Px>>> images_;
   std::vector<std::string> names_;
   std::shared_ptr<const texel_vector> texels_; // null in a default-constructed (empty) set
   std::vector<std::size_t> offsets_;           // image i's first texel in *texels_
-  std::vector<Image<float>> depths_;
+  std::vector<std::shared_ptr<const Image<float>>> depths_;
   std::vector<float> depth_near_;
   std::vector<Box> depth_boxes_;
   Box depth_bounds_ = empty_box();
