@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -70,4 +71,42 @@ TEMPLATE_TEST_CASE("shift_add adds runs in the image's half-pixel border rows as
     }
     CHECK(worse == 0);
   }
+}
+
+TEMPLATE_TEST_CASE("ahead_rows points at the next camera's texel rows from a known position or a projection",
+                   "[frame_runs]", float, double) {
+  using T = TestType;
+  // Camera pixel (x, y) sees the point ((x - 99.5) / 20, (y - 29.5) / 20, 10), as above.
+  const auto cams = mpr_test::grid_cameras<T>(1, 1, 0.5, 200, 60, 200.0);
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
+      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 5, 31, 63, 15));
+  const mpr::FrameTable<T> table(frames);
+  const auto& c = table.camera(0);
+  const auto channels = [&](int x, int y) { return c.texels[static_cast<std::ptrdiff_t>(y) * c.width + x].c; };
+  const mpr::Vec3<T> X(static_cast<T>((12.5 - 99.5) / 20), static_cast<T>((7.5 - 29.5) / 20), T(10));
+  using Rows = decltype(mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X));
+  const Rows projected = mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X);
+  CHECK(projected[0] == channels(12, 7));
+  CHECK(projected[1] == channels(12, 8));
+  // A known position for point i stands in for the projection (here a different one, to tell).
+  mpr::RunSight<T> sight{};
+  sight.ahead_x = T(40.25);
+  sight.ahead_y = T(20.5);
+  sight.ahead_dx = T(2);
+  sight.ahead_dy = T(0.25);
+  const Rows known = mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X, &sight, 3); // (46.25, 21.25)
+  CHECK(known[0] == channels(46, 21));
+  CHECK(known[1] == channels(46, 22));
+  // Outside the image it is clamped to the last texel pair; NaN means unknown (projected).
+  sight.ahead_x = T(500);
+  sight.ahead_y = T(-7);
+  CHECK(mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X, &sight, 0)[0] == channels(199, 0));
+  sight.ahead_x = std::numeric_limits<T>::quiet_NaN();
+  CHECK(mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X, &sight, 3) == projected);
+  // No camera, or a position too large for the texel arithmetic: nothing.
+  CHECK(mpr::detail::ahead_rows<T, mpr::Rgb8>(nullptr, X) == Rows{});
+  sight.ahead_x = std::numeric_limits<T>::infinity();
+  CHECK(mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X, &sight, 0) == Rows{});
+  sight.ahead_x = T(1e9);
+  CHECK(mpr::detail::ahead_rows<T, mpr::Rgb8>(&c, X, &sight, 0) == Rows{});
 }

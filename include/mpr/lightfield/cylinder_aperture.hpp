@@ -327,8 +327,7 @@ private:
       if (!s.crosses[q]) continue;
       const PlaneRowScratch<T>& row = s.row[q];
       Color* o = out.data() + q * w;
-      table.finish_all(row.acc.data(), row.weight.data(), w, o);
-      if (detail::min_of(row.weight.data(), w) > 0) continue; // every ray weighed
+      if (table.finish_all(row.acc.data(), row.weight.data(), w, o)) continue; // every ray weighed
       for (std::size_t i = 0; i < w; ++i) {
         if (!(row.weight[i] > 0)) {
           const Ray<T> ray = source.ray(r0 + q, i);

@@ -103,10 +103,10 @@ void add_texel_rows(const Texel* a, const Texel* b, RowWeights w, const float* r
 
 namespace detail {
 // Where camera `ahead` (nullptr: none) sees X, point i of a run: the channels of its texel at
-// the pixel and of the one below it, the pixel clamped to the image so that both exist;
-// {nullptr, nullptr} when there is no camera or X is not in front of it. The position comes from
-// `sight` when it holds the ahead camera's (`RunSight::ahead_x`), else X is projected. For
-// prefetches only.
+// the pixel and of the one below it, the pixel clamped to the image so that both exist. The
+// position comes from `sight` when it holds the ahead camera's (`RunSight::ahead_x`), else X is
+// projected. {nullptr, nullptr} when there is no camera, X is not in front of it, or the position
+// is not finite or beyond 1e8 pixels. For prefetches only.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::array<const typename FrameTable<T, Px>::texel_type::channel_type*, 2>
 ahead_rows(const typename FrameTable<T, Px>::Camera* ahead, const Vec3<T>& X, const RunSight<T>* sight = nullptr,

@@ -185,13 +185,16 @@ public:
     return Color(acc[0] * inv, acc[1] * inv, acc[2] * inv);
   }
 
-  /// `finish` for n pixels at once: out[i] = finish(acc + 3 i, weight[i]), vectorised.
-  void finish_all(const float* acc, const float* weight, std::size_t n, Color* out) const noexcept {
+  /// `finish` for n pixels at once: out[i] = finish(acc + 3 i, weight[i]), vectorised. Returns
+  /// whether every weight was positive (no pixel took the background). Precondition: no weight
+  /// is NaN (the adders add only positive weights).
+  bool finish_all(const float* acc, const float* weight, std::size_t n, Color* out) const noexcept {
     // Color is three packed floats (static_assert in color.hpp): the outputs are one flat array.
     detail::average_rows(acc, weight, out->data(), n);
-    if (detail::min_of(weight, n) > 0) return; // every pixel seen: no background to put in
+    if (detail::min_of(weight, n) > 0) return true; // every pixel seen: no background to put in
     for (std::size_t i = 0; i < n; ++i)
       if (!(weight[i] > 0)) out[i] = config_.background;
+    return false;
   }
 
   /// Camera `camera`'s colour at X: the background when `camera < 0` or it does not see X.

@@ -343,8 +343,8 @@ inline void prove_nearest(const PlaneRays<T>& rays, std::size_t n, const Nearest
   run_at(level, [&]() MPR_INLINE_LAMBDA { prove_nearest_body(rays, n, k, pass, scratch); });
 }
 
-/// The least of v[0, n) (+inf when n = 0), with eight independent running minima so that the
-/// loop is not one chain of dependent comparisons.
+/// The least of v[0, n) (+inf when n = 0; NaNs ignored), with eight independent running minima
+/// so that the loop is not one chain of dependent comparisons.
 template <class T>
 [[nodiscard]] inline T min_of(const T* v, std::size_t n) noexcept {
   T m[8];
