@@ -17,15 +17,21 @@
 #include <memory>
 #include <vector>
 
+namespace {
+// One camera at the origin, 200 x 60 pixels, focal length 200: on the plane z = 10, camera pixel
+// (x, y) is the point (x - 99.5, y - 29.5) / 20.
+template <class T>
+mpr::FrameTable<T> one_camera() {
+  const auto cams = mpr_test::grid_cameras<T>(1, 1, 0.5, 200, 60, 200.0);
+  return mpr::FrameTable<T>(std::make_shared<const mpr::CameraFrameSet<T>>(
+      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 5, 31, 63, 15)));
+}
+} // namespace
+
 TEMPLATE_TEST_CASE("shift_add adds runs in the image's half-pixel border rows as the rays do", "[frame_runs]", float,
                    double) {
   using T = TestType;
-  // One camera at the origin, 200 x 60 pixels, focal length 200: on the plane z = 10, camera
-  // pixel (x, y) is the point (x - 99.5, y - 29.5) / 20.
-  const auto cams = mpr_test::grid_cameras<T>(1, 1, 0.5, 200, 60, 200.0);
-  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 5, 31, 63, 15));
-  const mpr::FrameTable<T> table(frames);
+  const mpr::FrameTable<T> table = one_camera<T>();
   const auto& c = table.camera(0);
   struct Case {
     const char* name;
@@ -76,11 +82,7 @@ TEMPLATE_TEST_CASE("shift_add adds runs in the image's half-pixel border rows as
 TEMPLATE_TEST_CASE("ahead_rows points at the next camera's texel rows from a known position or a projection",
                    "[frame_runs]", float, double) {
   using T = TestType;
-  // Camera pixel (x, y) sees the point ((x - 99.5) / 20, (y - 29.5) / 20, 10), as above.
-  const auto cams = mpr_test::grid_cameras<T>(1, 1, 0.5, 200, 60, 200.0);
-  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
-      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 5, 31, 63, 15));
-  const mpr::FrameTable<T> table(frames);
+  const mpr::FrameTable<T> table = one_camera<T>(); // pixel (x, y) sees ((x, y) - (99.5, 29.5)) / 20
   const auto& c = table.camera(0);
   const auto channels = [&](int x, int y) { return c.texels[static_cast<std::ptrdiff_t>(y) * c.width + x].c; };
   const mpr::Vec3<T> X(static_cast<T>((12.5 - 99.5) / 20), static_cast<T>((7.5 - 29.5) / 20), T(10));
