@@ -59,8 +59,9 @@ mpr::Vec2<double> project_exact(const std::vector<T>& P, const mpr::Vec3<double>
 
 // How far (pixels, the larger coordinate) the sight places grid point (i, q) from pixel x.
 double off_by(const mpr::detail::AffineSight& sight, double i, double q, const mpr::Vec2<double>& x) {
-  return std::max(std::abs(sight.x[0] + sight.x[1] * i + sight.x[2] * q - x.x()),
-                  std::abs(sight.y[0] + sight.y[1] * i + sight.y[2] * q - x.y()));
+  double px = 0, py = 0;
+  sight.at(i, q, px, py);
+  return std::max(std::abs(px - x.x()), std::abs(py - x.y()));
 }
 
 // The largest distance (pixels, both coordinates) between the sight and the exact projection
