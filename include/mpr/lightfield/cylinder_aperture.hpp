@@ -31,10 +31,11 @@ namespace mpr {
 /// is never NaN.
 ///
 /// Batch, on a planar array: the cameras that can reach a run are collected once from the run's
-/// plane crossings. Tile, on a planar array: eight rows at a time, cameras outer, each tried only
-/// on the 64-ray segments it can reach, weights vectorised (`detail::cylinder_weights`), weighted
-/// shift-and-add over the rows' common span, each camera row interpolated once. Equal to
-/// `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
+/// plane crossings. Tile, on a planar array: eight rows at a time, each camera tried only on the
+/// 64-ray segments it can reach, weights vectorised (`detail::cylinder_weights`), weighted
+/// shift-and-add; cameras outer over the rows' common span, each camera row interpolated once,
+/// or, where every run reads one camera row and the rows are short, rows outer (each row's sums
+/// stay in cache). Equal to `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
 struct CylinderAperture {
   /// Radius of the aperture around the ray line, world units, positive and finite.
   double radius = 1.0;
@@ -168,6 +169,11 @@ private:
   // projections for it to stand in for projecting the runs (`detail::affine_sight`): a tenth of
   // the shift-and-add's 1e-3 pixel.
   static constexpr double kSightTolerance = 1e-4;
+  // The most a row of the group may hold of crossings, weights and sums (5 scalars and 5 floats a
+  // ray) for its cameras to be added rows outer: within 32 KiB it stays in the L1 data cache while
+  // every camera is added to it. Longer rows take cameras outer, which also reads each camera's
+  // rows one after another (docs/performance.md: Chess's 1400-ray rows lose 10% rows outer).
+  static constexpr std::size_t kRowsOuterBytes = 32 * 1024;
 
   // Per-thread working memory of `row_path`: each row's crossings and sums, the bounding boxes
   // of its segments' crossings, the cameras within reach of the group.
@@ -178,7 +184,8 @@ private:
     T lo_v[kGroupRows][kMaxSegments], hi_v[kGroupRows][kMaxSegments];
     T reach[kGroupRows];
     bool crosses[kGroupRows], even[kGroupRows];
-    std::size_t lo[kGroupRows], hi[kGroupRows]; // the rays a camera weighs, [lo, hi) per row
+    std::size_t lo[kGroupRows], hi[kGroupRows];             // the rays a camera weighs, [lo, hi) per row
+    std::size_t tried_lo[kGroupRows], tried_hi[kGroupRows]; // the rays it was weighed on
     std::vector<int> cameras;
     std::vector<detail::AffineSight> sights; // per entry of `cameras`: its affine map, when `seen`
     std::vector<unsigned char> seen;
@@ -198,15 +205,16 @@ private:
     }
   };
 
-  // Up to kGroupRows rows at a time on a planar array, cameras outer. A camera can weigh only
-  // rays whose plane crossing lies within radius / cos_min of its centre, so each camera is tried
-  // only on the 64-ray segments whose crossings' bounding box is that close; there its weights
-  // are computed for all rays at once (`detail::cylinder_weights`). The rays it weighs in any row
-  // of the group give one span, added in every such row by a weighted shift-and-add (weight 0
-  // outside the row's own rays): each camera row is then interpolated once for the two output
-  // rows that read it, and the next camera's texels are fetched meanwhile. Rays that no camera
-  // weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the plane
-  // goes ray by ray through `sample`.
+  // Up to kGroupRows rows at a time on a planar array. A camera can weigh only rays whose plane
+  // crossing lies within radius / cos_min of its centre, so each camera is tried only on the
+  // 64-ray segments whose crossings' bounding box is that close; there its weights are computed
+  // for all rays at once (`detail::cylinder_weights`). Cameras outer, the rays a camera weighs in
+  // any row of the group give one span, added in every such row by a weighted shift-and-add
+  // (weight 0 outside the row's own rays): each camera row is then interpolated once for the two
+  // output rows that read it. Rows outer (every run one camera row, short rows), each row gets
+  // each camera on its own rays. The next camera's texels are fetched meanwhile. Rays that no
+  // camera weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the
+  // plane goes ray by ray through `sample`.
   //
   // `source` gives the rows (`TileRows` or `GridRows`).
   template <std::floating_point T, class Px, class Rows>
@@ -285,42 +293,39 @@ private:
       const auto& c = table.camera(static_cast<std::size_t>(s.cameras[j]));
       s.seen[j] = block && !c.distorted && detail::affine_sight(c.P, grid, w, nrows, kSightTolerance, s.sights[j]);
     }
-    for (std::size_t j = 0; j < s.cameras.size(); ++j) {
-      const std::size_t k = static_cast<std::size_t>(s.cameras[j]);
-      const auto* ahead =
-          j + 1 < s.cameras.size() ? &table.camera(static_cast<std::size_t>(s.cameras[j + 1])) : nullptr;
-      std::size_t span_lo = w, span_hi = 0;
-      for (std::size_t q = 0; q < nrows; ++q) {
-        weigh(plane, k, w, q, s);
-        if (s.lo[q] < s.hi[q]) {
-          span_lo = std::min(span_lo, s.lo[q]);
-          span_hi = std::max(span_hi, s.hi[q]);
+    const std::size_t ncam = s.cameras.size();
+    bool one_row = block && w * (5 * sizeof(T) + 5 * sizeof(float)) <= kRowsOuterBytes;
+    for (std::size_t j = 0; j < ncam && one_row; ++j) one_row = s.seen[j] && one_row_runs(s.sights[j], w, nrows);
+    if (one_row) {
+      // Rows outer: each run is added in one pass (no camera row shared between output rows), so
+      // nothing is lost by visiting a camera's rows apart, and the row stays in cache meanwhile.
+      for (std::size_t q = 0; q < nrows; ++q)
+        for (std::size_t j = 0; j < ncam; ++j) {
+          weigh(plane, static_cast<std::size_t>(s.cameras[j]), w, q, s);
+          if (s.lo[q] >= s.hi[q]) continue;
+          // At least 8 rays (`add_run`'s shortest shift-and-add), padded with weights of 0.
+          const std::size_t hi = std::min(s.tried_hi[q], std::max(s.hi[q], s.lo[q] + 8));
+          const std::size_t lo = std::max(s.tried_lo[q], std::min(s.lo[q], hi > 8 ? hi - 8 : 0));
+          const bool last = j + 1 == ncam;
+          add_camera(table, s, j, q, lo, hi, last ? 0 : j + 1, last ? q + 1 : q, nrows);
         }
-      }
-      if (span_lo >= span_hi) continue; // the camera weighs no ray of the group
-      const detail::AffineSight* sight = s.seen[j] ? &s.sights[j] : nullptr;
-      const detail::AffineSight* next = ahead != nullptr && s.seen[j + 1] ? &s.sights[j + 1] : nullptr;
-      for (std::size_t q = 0; q < nrows; ++q) {
-        if (s.lo[q] >= s.hi[q]) continue;
-        PlaneRowScratch<T>& row = s.row[q];
-        float* ray_weight = row.ray_weight.data();
-        std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
-        std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
-        RunSight<T> at;
-        if (sight != nullptr) {
-          const double dq = static_cast<double>(q), mid = static_cast<double>(span_lo + (span_hi - span_lo) / 2);
-          sight->at(static_cast<double>(span_lo), dq, at.x0, at.y0);
-          sight->at(mid, dq, at.xm, at.ym);
-          sight->at(static_cast<double>(span_hi - 1), dq, at.x1, at.y1);
-          if (next != nullptr) { // the next camera's texels for the run, prefetched meanwhile
-            next->at(static_cast<double>(span_lo), dq, at.ahead_x, at.ahead_y);
-            at.ahead_dx = static_cast<T>(next->x[1]);
-            at.ahead_dy = static_cast<T>(next->y[1]);
+    } else {
+      for (std::size_t j = 0; j < ncam; ++j) {
+        std::size_t span_lo = w, span_hi = 0;
+        for (std::size_t q = 0; q < nrows; ++q) {
+          weigh(plane, static_cast<std::size_t>(s.cameras[j]), w, q, s);
+          if (s.lo[q] < s.hi[q]) {
+            span_lo = std::min(span_lo, s.lo[q]);
+            span_hi = std::max(span_hi, s.hi[q]);
           }
         }
-        add_run(table, table.camera(k), row.points.data() + span_lo, span_hi - span_lo, s.even[q],
-                row.acc.data() + 3 * span_lo, row.weight.data() + span_lo, ray_weight + span_lo, &s.rows, ahead,
-                sight != nullptr ? &at : nullptr);
+        for (std::size_t q = 0; q < nrows && span_lo < span_hi; ++q) {
+          if (s.lo[q] >= s.hi[q]) continue;
+          float* ray_weight = s.row[q].ray_weight.data();
+          std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
+          std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
+          add_camera(table, s, j, q, span_lo, span_hi, j + 1, q, nrows);
+        }
       }
     }
     for (std::size_t q = 0; q < nrows; ++q) {
@@ -335,6 +340,51 @@ private:
         }
       }
     }
+  }
+
+  // Camera j of the group (entry j of `s.cameras`) added to rays [lo, hi) of row q, each weighed
+  // by its `ray_weight` (set there), its pixel positions from its map when it has one. The camera
+  // added next is entry next_j on row next_q (none past the group): its texels for the run are
+  // prefetched meanwhile, placed by its own map where it has one.
+  template <std::floating_point T, class Px>
+  void add_camera(const FrameTable<T, Px>& table, GroupScratch<T>& s, std::size_t j, std::size_t q, std::size_t lo,
+                  std::size_t hi, std::size_t next_j, std::size_t next_q, std::size_t nrows) const noexcept {
+    const bool has_next = next_j < s.cameras.size() && next_q < nrows;
+    const auto* ahead = has_next ? &table.camera(static_cast<std::size_t>(s.cameras[next_j])) : nullptr;
+    const detail::AffineSight* sight = s.seen[j] ? &s.sights[j] : nullptr;
+    const detail::AffineSight* next = has_next && s.seen[next_j] ? &s.sights[next_j] : nullptr;
+    RunSight<T> at;
+    if (sight != nullptr) {
+      const double dq = static_cast<double>(q), mid = static_cast<double>(lo + (hi - lo) / 2);
+      sight->at(static_cast<double>(lo), dq, at.x0, at.y0);
+      sight->at(mid, dq, at.xm, at.ym);
+      sight->at(static_cast<double>(hi - 1), dq, at.x1, at.y1);
+      if (next != nullptr) {
+        next->at(static_cast<double>(lo), static_cast<double>(next_q), at.ahead_x, at.ahead_y);
+        at.ahead_dx = static_cast<T>(next->x[1]);
+        at.ahead_dy = static_cast<T>(next->y[1]);
+      }
+    }
+    PlaneRowScratch<T>& row = s.row[q];
+    add_run(table, table.camera(static_cast<std::size_t>(s.cameras[j])), row.points.data() + lo, hi - lo, s.even[q],
+            row.acc.data() + 3 * lo, row.weight.data() + lo, row.ray_weight.data() + lo, &s.rows, ahead,
+            sight != nullptr ? &at : nullptr);
+  }
+
+  // Whether a camera that sees a group of nrows rows of w rays by `sight` reads each run from one
+  // camera row: one pixel a ray along its rows, and every row's height on a texel
+  // (`detail::snap_to_texel`), so that `shift_add` adds it in one pass.
+  static bool one_row_runs(const detail::AffineSight& sight, std::size_t w, std::size_t nrows) noexcept {
+    const double span = static_cast<double>(w);
+    if (!(std::abs(sight.x[1] - 1) * span <= 1e-4 && std::abs(sight.y[1]) * span <= 1e-4)) return false;
+    for (std::size_t q = 0; q < nrows; ++q) {
+      const double y = sight.y[0] + sight.y[2] * static_cast<double>(q);
+      long texel = 0;
+      double offset = 1;
+      if (std::abs(y) < 1e8) detail::snap_to_texel(y, texel, offset);
+      if (offset != 0) return false;
+    }
+    return true;
   }
 
   // Camera k's weights for row q of the group, on the segments within the row's reach of its
@@ -356,6 +406,8 @@ private:
       }
     }
     if (first >= last) return;
+    s.tried_lo[q] = first;
+    s.tried_hi[q] = last;
     PlaneRowScratch<T>& row = s.row[q];
     float* ray_weight = row.ray_weight.data();
     const std::array<std::size_t, 2> positive = detail::cylinder_weights(
