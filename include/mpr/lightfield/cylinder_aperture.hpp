@@ -395,17 +395,21 @@ private:
              GroupScratch<T>& s) const noexcept {
     s.lo[q] = s.hi[q] = 0;
     if (!s.crosses[q]) return;
-    const T cu = plane.centre_u[k], cv = plane.centre_v[k], reach = s.reach[q];
-    std::size_t first = w, last = 0;
-    for (std::size_t g = 0; g * kSegment < w; ++g) {
-      const T gu = std::max({s.lo_u[q][g] - cu, cu - s.hi_u[q][g], T(0)});
-      const T gv = std::max({s.lo_v[q][g] - cv, cv - s.hi_v[q][g], T(0)});
-      if (gu * gu + gv * gv < reach * reach) {
-        first = std::min(first, g * kSegment);
-        last = std::min(w, (g + 1) * kSegment);
-      }
+    const T cu = plane.centre_u[k], cv = plane.centre_v[k], reach2 = s.reach[q] * s.reach[q];
+    // The squared distance from the centre to each segment's box (a loop the compiler
+    // vectorises), then the first and last segment within reach.
+    const std::size_t segments = (w + kSegment - 1) / kSegment;
+    T gap2[kMaxSegments];
+    for (std::size_t g = 0; g < segments; ++g) {
+      const T gu = std::max(std::max(s.lo_u[q][g] - cu, cu - s.hi_u[q][g]), T(0));
+      const T gv = std::max(std::max(s.lo_v[q][g] - cv, cv - s.hi_v[q][g]), T(0));
+      gap2[g] = gu * gu + gv * gv;
     }
-    if (first >= last) return;
+    std::size_t g0 = 0, g1 = segments;
+    while (g0 < segments && !(gap2[g0] < reach2)) ++g0;
+    if (g0 == segments) return;
+    while (!(gap2[g1 - 1] < reach2)) --g1;
+    const std::size_t first = g0 * kSegment, last = std::min(w, g1 * kSegment);
     s.tried_lo[q] = first;
     s.tried_hi[q] = last;
     PlaneRowScratch<T>& row = s.row[q];
