@@ -250,6 +250,61 @@ MPR_TARGET_AVX512_VBMI inline void lerp_add_row_codes_vbmi(const std::uint8_t* a
     lerp_row_codes_vbmi_impl<RowPass::add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc);
 }
 
+// Channel l of the 48 of 16 pixels, in the vector o (16 o + l), belongs to pixel (16 o + l) / 3:
+// the permutes that spread the 16 pixels' weights over their three vectors.
+struct PixelSpread {
+  std::int32_t index[3][16];
+};
+
+constexpr PixelSpread make_pixel_spread() noexcept {
+  PixelSpread s{};
+  for (int o = 0; o < 3; ++o)
+    for (int l = 0; l < 16; ++l) s.index[o][l] = (16 * o + l) / 3;
+  return s;
+}
+
+inline constexpr PixelSpread kPixelSpread = make_pixel_spread();
+
+// `lerp_add_weighted_row_codes_vbmi` at ax = 0, 64 pixels (three 64-code decodes) a step: each
+// 16 pixels' weights are loaded once, summed into `weight`, scaled by `unit` and spread over
+// their 48 channels by three permutes. Reads a[0, 3 pixels).
+MPR_TARGET_AVX512_VBMI inline void add_weighted_codes_vbmi(const std::uint8_t* a, const std::uint16_t* lut, float unit,
+                                                           const float* rw, float* acc, float* weight,
+                                                           std::size_t pixels, const std::uint8_t* ahead) noexcept {
+  const DecodeBytes d = load_decode_bytes(lut);
+  __m512i spread[3];
+  for (int o = 0; o < 3; ++o) spread[o] = _mm512_loadu_si512(kPixelSpread.index[o]);
+  const __m512 scale = _mm512_set1_ps(unit), zero = _mm512_setzero_ps();
+  for (std::size_t p = 0; p < pixels; p += 64) {
+    const std::size_t left = std::min<std::size_t>(64, pixels - p), codes = 3 * left, j = 3 * p;
+    __m512 v[12];
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (ahead != nullptr) prefetch_l2(ahead, j + 64 * k);
+      __m512 part[4] = {zero, zero, zero, zero};
+      if (64 * k < codes) decode_floats64(d, a + j + 64 * k, std::min<std::size_t>(64, codes - 64 * k), part);
+      for (std::size_t q = 0; q < 4; ++q) v[4 * k + q] = part[q];
+    }
+    for (std::size_t b = 0; 16 * b < left; ++b) {
+      const std::size_t px = std::min<std::size_t>(16, left - 16 * b), at = j + 48 * b;
+      const __mmask16 have = px == 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << px) - 1);
+      const __m512 r = _mm512_maskz_loadu_ps(have, rw + p + 16 * b);
+      float* sum = weight + p + 16 * b;
+      _mm512_mask_storeu_ps(sum, have,
+                            _mm512_add_ps(_mm512_maskz_loadu_ps(have, sum), _mm512_maskz_max_ps(0xFFFF, r, zero)));
+      const __m512 scaled = _mm512_mul_ps(r, scale);
+      for (std::size_t o = 0; o < 3; ++o) {
+        const std::size_t first = 16 * o, count = 3 * px;
+        if (count <= first) break;
+        const __mmask16 keep =
+            count >= first + 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << (count - first)) - 1);
+        const __m512 w = _mm512_maskz_permutexvar_ps(0xFFFF, spread[o], scaled);
+        float* out = acc + at + first;
+        _mm512_mask_storeu_ps(out, keep, _mm512_fmadd_ps(w, v[3 * b + o], _mm512_maskz_loadu_ps(keep, out)));
+      }
+    }
+  }
+}
+
 /// acc[j] += rw[j / 3] scale ((1 - ax) v(a[j]) + ax v(a[j + 3])) for j in [0, m), m a multiple of
 /// 3: `lerp_add_row_codes_vbmi` with a weight per pixel (rw[0, m / 3)), spread over its three
 /// channels by a permute; and weight[i] += max(rw[i], 0) for the m / 3 pixels (a NaN weight adds
@@ -258,11 +313,8 @@ MPR_TARGET_AVX512_VBMI inline void lerp_add_weighted_row_codes_vbmi(const std::u
                                                                     float ax, float scale, const float* rw, float* acc,
                                                                     float* weight, std::size_t m,
                                                                     const std::uint8_t* ahead = nullptr) noexcept {
-  if (ax == 0)
-    lerp_row_codes_vbmi_impl<RowPass::weighted_add, false>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc,
-                                                           rw);
-  else
-    lerp_row_codes_vbmi_impl<RowPass::weighted_add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc, rw);
+  if (ax == 0) return add_weighted_codes_vbmi(a, lut, scale / kDecodedScale, rw, acc, weight, m / 3, ahead);
+  lerp_row_codes_vbmi_impl<RowPass::weighted_add, true>(a, lut, ax, scale, nullptr, m, ahead, nullptr, 0, 0, acc, rw);
   const std::size_t pixels = m / 3;
   const __m512 zero = _mm512_setzero_ps();
   for (std::size_t i = 0; i < pixels; i += 16) {
