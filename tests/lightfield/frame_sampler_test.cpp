@@ -514,14 +514,17 @@ TEMPLATE_TEST_CASE("tiles of rows wider than one batch give the per-pixel image,
   compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames), sweep);
   // At z = 16 every camera sees the plane's points at whole-pixel shifts (20 pixels per unit of
   // the centres' offsets from the view's): each run reads one camera row, and the cylinder adds
-  // its short rows rows outer, each camera on the stretch it weighs (padded to 8 rays).
+  // its short rows rows outer, each camera on the stretch it weighs, padded to 8 rays. Rays whose
+  // origins sweep 1.6 or 8 units along a row: a narrow cylinder then weighs 4 to 40 rays of one.
   const mpr::PlanarSurface<T> whole = straight.image_plane(T(16));
-  const auto d16 = [&](T u, T v) {
-    return mpr::Vec3<T>(whole.point_at({u, v}) - mpr::Vec3<T>(T(-0.8) + T(1.6) * u, T(-0.4) + T(0.8) * v, 0));
-  };
-  const mpr::GlcSelector<T> sweep16(whole, d16(0, 0), d16(1, 0), d16(0, 1));
-  for (const double r : {0.2, 0.35, 0.6})
-    compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{r}), sweep16, &whole);
+  for (const T spread : {T(1.6), T(8)}) {
+    const auto d16 = [&](T u, T v) {
+      return mpr::Vec3<T>(whole.point_at({u, v}) - mpr::Vec3<T>(spread * (u - T(0.5)), T(-0.4) + T(0.8) * v, 0));
+    };
+    const mpr::GlcSelector<T> sweep16(whole, d16(0, 0), d16(1, 0), d16(0, 1));
+    for (const double r : {0.06, 0.1, 0.2, 0.35, 0.6})
+      compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{r}), sweep16, &whole);
+  }
 
   // Each interpolation's grid path (what the renderer takes under a plane and a GLC) against its
   // tile path on the same tile's rays; on a non-planar array the nearest camera and the cylinder

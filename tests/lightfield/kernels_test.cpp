@@ -612,23 +612,26 @@ TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated 
   const mpr_test::ChannelValues<std::uint8_t> channels;
   int failures = 0, runs = 0;
   for (const std::size_t n : kLengths)
-    for (int trial = 0; trial < 3; ++trial) {
+    for (int trial = 0; trial < 4; ++trial) {
       const std::size_t m = 3 * n;
-      // Exactly the codes the kernel may read (a[0, m + 3)), so that sanitizers see an overread.
-      std::vector<std::uint8_t> a(m + 3);
+      // At a whole-pixel offset (even trials) and a fractional one, without and with a negative
+      // weight and the next row's prefetch.
+      const float ax = trial % 2 == 0 ? 0.0f : static_cast<float>(unit(rng));
+      // Exactly the codes the kernel may read (a[0, m + 3), a[0, m) at ax = 0), so that
+      // sanitizers see an overread.
+      std::vector<std::uint8_t> a(m + (ax == 0 ? 0 : 3));
       for (std::uint8_t& c : a) c = static_cast<std::uint8_t>(rng() % 256);
-      const float ax = trial == 0 ? 0.0f : static_cast<float>(unit(rng));
       std::vector<float> rw(n);
       for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
       std::vector<float> acc0(m + kGuard, kSentinel<float>);
       for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
-      if (trial == 1 && n > 0) rw[n / 2] = -0.5f; // a negative weight: not counted in the sums
+      if (trial >= 2 && n > 0) rw[n / 2] = -0.5f; // a negative weight: not counted in the sums
       std::vector<float> acc = acc0;
       std::vector<float> weight0(n + kGuard, kSentinel<float>);
       for (std::size_t i = 0; i < n; ++i) weight0[i] = static_cast<float>(unit(rng));
       std::vector<float> weight = weight0;
       mpr::detail::lerp_add_weighted_row_codes_vbmi(a.data(), channels.lut, ax, channels.scale, rw.data(), acc.data(),
-                                                    weight.data(), m, trial == 2 ? a.data() : nullptr);
+                                                    weight.data(), m, trial >= 2 ? a.data() : nullptr);
       ++runs;
       for (std::size_t j = m; j < m + kGuard; ++j) failures += acc[j] != kSentinel<float> ? 1 : 0;
       for (std::size_t i = n; i < n + kGuard; ++i) failures += weight[i] != kSentinel<float> ? 1 : 0;

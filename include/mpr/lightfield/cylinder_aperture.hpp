@@ -171,8 +171,9 @@ private:
   static constexpr double kSightTolerance = 1e-4;
   // The most a row of the group may hold of crossings, weights and sums (5 scalars and 5 floats a
   // ray) for its cameras to be added rows outer: within 32 KiB it stays in the L1 data cache while
-  // every camera is added to it. Longer rows take cameras outer, which also reads each camera's
-  // rows one after another (docs/performance.md: Chess's 1400-ray rows lose 10% rows outer).
+  // every camera is added to it (819 rays in float, 546 in double). Longer rows take cameras
+  // outer, which also reads each camera's rows one after another (where rows outer was measured
+  // to lose: docs/performance.md).
   static constexpr std::size_t kRowsOuterBytes = 32 * 1024;
 
   // Per-thread working memory of `row_path`: each row's crossings and sums, the bounding boxes
@@ -184,8 +185,9 @@ private:
     T lo_v[kGroupRows][kMaxSegments], hi_v[kGroupRows][kMaxSegments];
     T reach[kGroupRows];
     bool crosses[kGroupRows], even[kGroupRows];
-    std::size_t lo[kGroupRows], hi[kGroupRows];             // the rays a camera weighs, [lo, hi) per row
-    std::size_t tried_lo[kGroupRows], tried_hi[kGroupRows]; // the rays it was weighed on
+    std::size_t lo[kGroupRows], hi[kGroupRows]; // the rays a camera weighs, [lo, hi) per row
+    // The rays it was weighed on (`weigh`), around [lo, hi); set only when lo < hi.
+    std::size_t tried_lo[kGroupRows], tried_hi[kGroupRows];
     std::vector<int> cameras;
     std::vector<detail::AffineSight> sights; // per entry of `cameras`: its affine map, when `seen`
     std::vector<unsigned char> seen;
@@ -388,8 +390,9 @@ private:
   }
 
   // Camera k's weights for row q of the group, on the segments within the row's reach of its
-  // centre (`ray_weight` there; elsewhere untouched), and the rays it weighs, [s.lo[q], s.hi[q])
-  // (empty: none), from the span of positive weights the weights kernel returns.
+  // centre ([s.tried_lo[q], s.tried_hi[q]) of `ray_weight`, each >= 0; elsewhere untouched), and
+  // the rays it weighs, [s.lo[q], s.hi[q]) (empty: none, and `tried_*` not set), from the span of
+  // positive weights the weights kernel returns.
   template <std::floating_point T>
   void weigh(const ArrayPlane<T>& plane, std::size_t k, std::size_t w, std::size_t q,
              GroupScratch<T>& s) const noexcept {

@@ -9,7 +9,9 @@
 /// 32-bit lanes and converted to floats (`decode_floats64`). And the horizontal row interpolation
 /// of the separable shift-and-add on top of it (`lerp_row_codes_vbmi`), alone, fused with the
 /// vertical blend of the row above (`lerp_blend_row_codes_vbmi`, the 2-D shift of
-/// shift_tile.hpp) or added to accumulators (`lerp_add_row_codes_vbmi`).
+/// shift_tile.hpp) or added to accumulators (`lerp_add_row_codes_vbmi`), also times a weight per
+/// pixel (`lerp_add_weighted_row_codes_vbmi`; at a whole-pixel offset `add_weighted_codes_vbmi`,
+/// which sums the weights in the same pass).
 
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
