@@ -305,9 +305,9 @@ private:
         for (std::size_t j = 0; j < ncam; ++j) {
           weigh(plane, static_cast<std::size_t>(s.cameras[j]), w, q, s);
           if (s.lo[q] >= s.hi[q]) continue;
-          // At least 8 rays (`add_run`'s shortest shift-and-add), padded with weights of 0.
-          const std::size_t hi = std::min(s.tried_hi[q], std::max(s.hi[q], s.lo[q] + 8));
-          const std::size_t lo = std::max(s.tried_lo[q], std::min(s.lo[q], hi > 8 ? hi - 8 : 0));
+          // At least `kShortestRun` rays, padded with weights of 0 inside the rays weighed.
+          const std::size_t hi = std::min(s.tried_hi[q], std::max(s.hi[q], s.lo[q] + kShortestRun));
+          const std::size_t lo = std::max(s.tried_lo[q], std::min(s.lo[q], hi > kShortestRun ? hi - kShortestRun : 0));
           const bool last = j + 1 == ncam;
           add_camera(table, s, j, q, lo, hi, last ? 0 : j + 1, last ? q + 1 : q, nrows);
         }

@@ -418,6 +418,10 @@ bool add_projective_tile(const FrameTable<T, Px>& /*table*/, const typename Fram
   return true;
 }
 
+/// The fewest points `add_run` adds as a run (shift-and-add or projective row); shorter runs go
+/// ray by ray.
+inline constexpr std::size_t kShortestRun = 8;
+
 /// Camera c's (weighted) contribution to a run of n points: shift-and-add when the run
 /// qualifies (`even`: its points are evenly spaced, see `evenly_spaced`; bilinear filtering
 /// assumed by the caller), else the projective row (`add_projective`), else ray by ray.
@@ -427,7 +431,7 @@ void add_run(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::C
              std::size_t n, bool even, float* acc, float* weight, const float* ray_weight = nullptr,
              LerpRowCache* cache = nullptr, const typename FrameTable<T, Px>::Camera* ahead = nullptr,
              const RunSight<T>* sight = nullptr) noexcept {
-  if (even && !c.distorted && n >= 8 &&
+  if (even && !c.distorted && n >= kShortestRun &&
       (shift_add(table, c, points, n, acc, weight, ray_weight, cache, ahead, sight) ||
        add_projective(table, c, points, n, acc, weight, ray_weight)))
     return;

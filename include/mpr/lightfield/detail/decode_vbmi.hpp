@@ -253,7 +253,8 @@ MPR_TARGET_AVX512_VBMI inline void lerp_add_row_codes_vbmi(const std::uint8_t* a
 }
 
 // Channel l of the 48 of 16 pixels, in the vector o (16 o + l), belongs to pixel (16 o + l) / 3:
-// the permutes that spread the 16 pixels' weights over their three vectors.
+// the permutes that spread the 16 pixels' weights over their three vectors (`kWeightSpread`'s
+// offset o, from 5 o pixels further on, over one load of 16 weights instead of three).
 struct PixelSpread {
   std::int32_t index[3][16];
 };
