@@ -265,6 +265,8 @@ int main(int argc, char** argv) {
     measure("synthetic aperture (all cameras)", plane, glc, full, size, size, threads, repeats, true, 2500.0);
     measure("synthetic aperture, tilted plane", tilted, tilted_glc, full, size, size, threads, repeats, true, 2500.0);
     measure("cylinder aperture", plane, glc, cylinder, size, size, threads, repeats, true, 0.0);
+    measure("cylinder aperture, tilted plane", tilted, tilted_glc, cylinder, size, size, threads, repeats, true, 0.0);
+    measure("nearest camera, tilted plane", tilted, tilted_glc, nearest, size, size, threads, repeats, true, 0.0);
   }
 
   const std::filesystem::path chess = std::filesystem::path(data) / "stanford" / "chess";

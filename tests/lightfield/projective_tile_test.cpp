@@ -2,7 +2,8 @@
 // long-double reference of each row's points, on tiles of a tilted plane (rows nearly level in
 // the camera, a few crossing camera rows), steep and sheared tiles (groups too spread for the
 // box windows), tiles that leave the image or pass behind the camera, and images narrower and
-// wider than one chunk's box. Nothing past a tile's end is written.
+// wider than one chunk's box; every other trial weighs each ray (some weights zero or negative:
+// those rays are skipped). Nothing past a tile's end is written.
 #include "lightfield/projective_reference.hpp"
 #include "simd_levels.hpp"
 
@@ -96,25 +97,36 @@ void check_tiles(int width, int height) {
         std::vector<float> acc0(3 * n * rows + kGuard, kSentinel), seen0(n * rows + kGuard, kSentinel);
         for (std::size_t j = 0; j < 3 * n * rows; ++j) acc0[j] = static_cast<float>(unit(rng));
         for (std::size_t j = 0; j < n * rows; ++j) seen0[j] = static_cast<float>(unit(rng));
+        const bool weighted = trial % 2 == 1;
+        std::vector<float> rw(n * rows);
+        for (float& x : rw) {
+          const double u = unit(rng);
+          x = u < 0.15 ? 0.0f : u < 0.2 ? -1.0f : static_cast<float>(2 * unit(rng));
+        }
+        const auto weight_of = [&](std::size_t at) { return weighted ? static_cast<LD>(rw[at]) : 1.0L; };
         mpr_test::for_each_simd_level([&](SimdLevel level) {
           std::vector<float> acc = acc0, seen = seen0;
-          mpr::detail::projective_tile(std::span<const ProjectiveRow<T, C>>(tile), n, acc.data(), seen.data(), level);
+          std::vector<mpr::detail::TileRowOut> out;
+          for (std::size_t r = 0; r < rows; ++r)
+            out.push_back({acc.data() + 3 * n * r, seen.data() + n * r, weighted ? rw.data() + n * r : nullptr});
+          mpr::detail::projective_tile(std::span<const ProjectiveRow<T, C>>(tile),
+                                       std::span<const mpr::detail::TileRowOut>(out), n, level);
           for (std::size_t j = 3 * n * rows; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
           for (std::size_t j = n * rows; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
           for (std::size_t r = 0; r < rows; ++r)
             for (std::size_t i = 0; i < n; ++i) {
-              const mpr_test::Expected e = mpr_test::expected(tile[r], i, 1.0L, margin);
+              const std::size_t at = n * r + i;
+              const mpr_test::Expected e = mpr_test::expected(tile[r], i, weight_of(at), margin);
               if (e.ambiguous) continue;
               ++compared;
               seen_points += e.seen ? 1 : 0;
-              const std::size_t at = n * r + i;
               std::string why;
-              if (!mpr_test::matches(e, 1.0L, std::is_same_v<T, float>, seen[at], seen0[at], &acc[3 * at],
+              if (!mpr_test::matches(e, weight_of(at), std::is_same_v<T, float>, seen[at], seen0[at], &acc[3 * at],
                                      &acc0[3 * at], why) &&
                   ++failures <= 5)
                 FAIL_CHECK(mpr::detail::simd_level_name(level)
                            << " " << width << "x" << height << " rows=" << rows << " n=" << n << " trial=" << trial
-                           << " row " << r << " i=" << i << ": " << why);
+                           << (weighted ? " weighted" : "") << " row " << r << " i=" << i << ": " << why);
             }
         });
       }

@@ -35,7 +35,9 @@ namespace mpr {
 /// 64-ray segments it can reach, weights vectorised (`detail::cylinder_weights`), weighted
 /// shift-and-add; cameras outer over the rows' common span, each camera row interpolated once,
 /// or, where every run reads one camera row and the rows are short, rows outer (each row's sums
-/// stay in cache). Equal to `sample` up to float rounding and the shift-and-add's 1e-3 pixel.
+/// stay in cache); a camera whose rows are not shifts of its image (a tilted plane) takes all of
+/// them at once (`add_projective_tile`). Equal to `sample` up to float rounding and the
+/// shift-and-add's 1e-3 pixel.
 struct CylinderAperture {
   /// Radius of the aperture around the ray line, world units, positive and finite.
   double radius = 1.0;
@@ -297,7 +299,8 @@ private:
     }
     const std::size_t ncam = s.cameras.size();
     bool one_row = block && w * (5 * sizeof(T) + 5 * sizeof(float)) <= kRowsOuterBytes;
-    for (std::size_t j = 0; j < ncam && one_row; ++j) one_row = s.seen[j] && one_row_runs(s.sights[j], w, nrows);
+    for (std::size_t j = 0; j < ncam && one_row; ++j)
+      one_row = s.seen[j] && detail::one_row_runs(s.sights[j], w, nrows);
     if (one_row) {
       // Rows outer: each run is added in one pass (no camera row shared between output rows), so
       // nothing is lost by visiting a camera's rows apart, and the row stays in cache meanwhile.
@@ -321,13 +324,16 @@ private:
             span_hi = std::max(span_hi, s.hi[q]);
           }
         }
-        for (std::size_t q = 0; q < nrows && span_lo < span_hi; ++q) {
+        if (span_lo >= span_hi) continue;
+        for (std::size_t q = 0; q < nrows; ++q) {
           if (s.lo[q] >= s.hi[q]) continue;
           float* ray_weight = s.row[q].ray_weight.data();
           std::fill(ray_weight + span_lo, ray_weight + s.lo[q], 0.0f);
           std::fill(ray_weight + s.hi[q], ray_weight + span_hi, 0.0f);
-          add_camera(table, s, j, q, span_lo, span_hi, j + 1, q, nrows);
         }
+        if (add_tile(table, s, j, span_lo, span_hi, nrows)) continue;
+        for (std::size_t q = 0; q < nrows; ++q)
+          if (s.lo[q] < s.hi[q]) add_camera(table, s, j, q, span_lo, span_hi, j + 1, q, nrows);
       }
     }
     for (std::size_t q = 0; q < nrows; ++q) {
@@ -373,20 +379,33 @@ private:
             sight != nullptr ? &at : nullptr);
   }
 
-  // Whether a camera that sees a group of nrows rows of w rays by `sight` reads each run from one
-  // camera row: one pixel a ray along its rows, and every row's height on a texel
-  // (`detail::snap_to_texel`), so that `shift_add` adds it in one pass.
-  static bool one_row_runs(const detail::AffineSight& sight, std::size_t w, std::size_t nrows) noexcept {
-    const double span = static_cast<double>(w);
-    if (!(std::abs(sight.x[1] - 1) * span <= 1e-4 && std::abs(sight.y[1]) * span <= 1e-4)) return false;
+  // Camera j added to rays [lo, hi) of the group's rows it weighs, all at once when it has no
+  // affine map of the group and its rows are not shifts of its image (a plane tilted off the
+  // cameras' rows): `add_projective_tile` decodes their texels once. False: nothing added.
+  template <std::floating_point T, class Px>
+  bool add_tile(const FrameTable<T, Px>& table, GroupScratch<T>& s, std::size_t j, std::size_t lo, std::size_t hi,
+                std::size_t nrows) const noexcept {
+    const auto& c = table.camera(static_cast<std::size_t>(s.cameras[j]));
+    if (s.seen[j] || c.distorted || hi - lo < kShortestRun) return false;
+    const Vec3<T>* points[kGroupRows];
+    detail::TileRowOut out[kGroupRows];
+    std::size_t rows = 0, first = nrows;
     for (std::size_t q = 0; q < nrows; ++q) {
-      const double y = sight.y[0] + sight.y[2] * static_cast<double>(q);
-      long texel = 0;
-      double offset = 1;
-      if (std::abs(y) < 1e8) detail::snap_to_texel(y, texel, offset);
-      if (offset != 0) return false;
+      if (s.lo[q] >= s.hi[q]) continue;
+      if (!s.even[q]) return false;
+      first = std::min(first, q);
+      PlaneRowScratch<T>& row = s.row[q];
+      points[rows] = row.points.data() + lo;
+      out[rows++] = {row.acc.data() + 3 * lo, row.weight.data() + lo, row.ray_weight.data() + lo};
     }
-    return true;
+    if (rows < 2) return false;
+    if (shift_add(table, c, points[0], hi - lo, out[0].acc, out[0].seen, out[0].rw, &s.rows)) {
+      for (std::size_t q = first + 1; q < nrows; ++q)
+        if (s.lo[q] < s.hi[q]) add_camera(table, s, j, q, lo, hi, j + 1, q, nrows);
+      return true;
+    }
+    return add_projective_tile(table, c, std::span<const Vec3<T>* const>(points, rows),
+                               std::span<const detail::TileRowOut>(out, rows), hi - lo);
   }
 
   // Camera k's weights for row q of the group, on the segments within the row's reach of its

@@ -7,6 +7,7 @@
 /// Vaish et al. 2004), else ray by ray. An interpolation decides which cameras weigh which rays;
 /// these functions add them.
 
+#include <mpr/lightfield/detail/affine_block.hpp>
 #include <mpr/lightfield/detail/kernels.hpp>
 #include <mpr/lightfield/detail/projective_row.hpp>
 #include <mpr/lightfield/detail/projective_tile.hpp>
@@ -63,22 +64,6 @@ struct RunSight {
 };
 
 namespace detail {
-/// The texel and offset of the whole-pixel shift that starts at camera coordinate x: i =
-/// floor(x), a = x - i, except that an offset within 1e-4 pixel of a texel is taken as on it (i
-/// the nearer texel, a = 0; an error of at most 1e-4 pixel, inside the shift-and-add's 1e-3
-/// contract). Integer shifts -- a focus on the reference plane of rectified data, e.g. every
-/// camera of Chess at z = 1000 and of the reference workload -- then read one texel per pixel
-/// and one camera row per output row instead of interpolating. Precondition: |x| < 1e8.
-template <std::floating_point T>
-void snap_to_texel(T x, long& i, T& a) noexcept {
-  constexpr T kSnap = T(1e-4);
-  const T f = std::floor(x);
-  i = static_cast<long>(f);
-  a = x - f;
-  if (a > 1 - kSnap) ++i;
-  if (a < kSnap || a > 1 - kSnap) a = 0;
-}
-
 // The shift-and-add kernel over the n pixels of texel rows a and b (flat channel arrays); with
 // per-ray weights, those are spread over the three channel slots of each pixel first, a stack
 // buffer at a time.
@@ -399,22 +384,23 @@ bool add_projective(const FrameTable<T, Px>& /*table*/, const typename FrameTabl
   return true;
 }
 
-/// Camera c's unweighted contribution to `rows` runs of n evenly spaced points each (row r at
-/// points + n r, adding to acc + 3 n r and weight + n r), each run as in `add_projective`, all
-/// at once (`detail::projective_tile`: on AVX-512 with VBMI the texels the rows share are
-/// decoded once). False (nothing added) when any run does not qualify, or rows > 64.
-/// Preconditions: n >= 2, c undistorted, bilinear filtering, every run `evenly_spaced`.
+/// Camera c's contribution to runs of n evenly spaced points each (run r at points[r], adding to
+/// out[r]: acc, weight and ray weights as in `add_projective`), each run as in `add_projective`,
+/// all at once (`detail::projective_tile`: on AVX-512 with VBMI the texels the runs share are
+/// decoded once). False (nothing added) when any run does not qualify, or more than 64 runs.
+/// Preconditions: n >= 2, c undistorted, bilinear filtering, every run `evenly_spaced`,
+/// out.size() == points.size().
 template <std::floating_point T, class Px>
 bool add_projective_tile(const FrameTable<T, Px>& /*table*/, const typename FrameTable<T, Px>::Camera& c,
-                         const Vec3<T>* points, std::size_t rows, std::size_t n, float* acc, float* weight) noexcept {
+                         std::span<const Vec3<T>* const> points, std::span<const detail::TileRowOut> out,
+                         std::size_t n) noexcept {
   constexpr std::size_t kMaxRows = 64;
-  detail::ProjectiveRow<T, typename FrameTable<T, Px>::texel_type::channel_type> row[kMaxRows];
-  if (rows > kMaxRows) return false;
-  for (std::size_t r = 0; r < rows; ++r)
-    if (!detail::projective_row_of<T, Px>(c, points + n * r, n, row[r])) return false;
-  detail::projective_tile(
-      std::span<const detail::ProjectiveRow<T, typename FrameTable<T, Px>::texel_type::channel_type>>(row, rows), n,
-      acc, weight);
+  using Row = detail::ProjectiveRow<T, typename FrameTable<T, Px>::texel_type::channel_type>;
+  Row row[kMaxRows];
+  if (points.size() > kMaxRows) return false;
+  for (std::size_t r = 0; r < points.size(); ++r)
+    if (!detail::projective_row_of<T, Px>(c, points[r], n, row[r])) return false;
+  detail::projective_tile(std::span<const Row>(row, points.size()), out, n);
   return true;
 }
 

@@ -145,7 +145,7 @@ private:
         if (scratch.even[r] && !c.distorted) {
           if (shift_add(table, c, points + o, w, acc + 3 * o, weight + o, nullptr, &scratch.rows, ahead)) continue;
           // Rows off the camera's rows (a tilted plane): the whole tile at once when it can.
-          if (r == 0 && rows > 1 && all_even && add_projective_tile(table, c, points, rows, w, acc, weight)) break;
+          if (r == 0 && rows > 1 && all_even && add_tile(table, c, points, rows, w, acc, weight)) break;
           if (add_projective(table, c, points + o, w, acc + 3 * o, weight + o)) continue;
         }
         table.add_per_ray(c, points + o, w, acc + 3 * o, weight + o);
@@ -159,6 +159,23 @@ private:
     add_weight_steps(steps, rows, w, weight);
     table.finish_all(acc, weight, n, out.data());
     return true;
+  }
+
+  // Camera c's contribution to all `rows` rows of w points of the tile at once, unweighted
+  // (`add_projective_tile`); false (nothing added) as there.
+  template <std::floating_point T, class Px>
+  static bool add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
+                       const Vec3<T>* points, std::size_t rows, std::size_t w, float* acc, float* weight) noexcept {
+    constexpr std::size_t kMaxRows = 64;
+    if (rows > kMaxRows) return false;
+    const Vec3<T>* run[kMaxRows];
+    detail::TileRowOut out[kMaxRows];
+    for (std::size_t r = 0; r < rows; ++r) {
+      run[r] = points + r * w;
+      out[r] = {acc + 3 * r * w, weight + r * w, nullptr};
+    }
+    return add_projective_tile(table, c, std::span<const Vec3<T>* const>(run, rows),
+                               std::span<const detail::TileRowOut>(out, rows), w);
   }
 };
 

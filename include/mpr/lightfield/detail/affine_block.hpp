@@ -4,7 +4,8 @@
 /// focal surface form an affine grid, and a camera whose depth is constant over that grid (a
 /// focal plane parallel to a rectified array's image planes) sees it as an affine grid of pixel
 /// positions. The interpolations that add a camera to a block of rows row by row
-/// (`CylinderAperture`) then evaluate each run's pixel positions instead of projecting its points.
+/// (`CylinderAperture`) then evaluate each run's pixel positions instead of projecting its points,
+/// and whole-pixel shifts (`snap_to_texel`) read one camera row per output row.
 
 #include <mpr/core/vec.hpp>
 
@@ -53,6 +54,22 @@ template <std::floating_point T>
   return true;
 }
 
+/// The texel and offset of the whole-pixel shift that starts at camera coordinate x: i =
+/// floor(x), a = x - i, except that an offset within 1e-4 pixel of a texel is taken as on it (i
+/// the nearer texel, a = 0; an error of at most 1e-4 pixel, inside the shift-and-add's 1e-3
+/// contract). Integer shifts -- a focus on the reference plane of rectified data, e.g. every
+/// camera of Chess at z = 1000 and of the reference workload -- then read one texel per pixel
+/// and one camera row per output row instead of interpolating. Precondition: |x| < 1e8.
+template <std::floating_point T>
+void snap_to_texel(T x, long& i, T& a) noexcept {
+  constexpr T kSnap = T(1e-4);
+  const T f = std::floor(x);
+  i = static_cast<long>(f);
+  a = x - f;
+  if (a > 1 - kSnap) ++i;
+  if (a < kSnap || a > 1 - kSnap) a = 0;
+}
+
 /// Pixel positions x = x[0] + x[1] i + x[2] q, y likewise, of an `AffineGrid`'s points.
 struct AffineSight {
   double x[3] = {0, 0, 0}, y[3] = {0, 0, 0};
@@ -64,6 +81,22 @@ struct AffineSight {
     py = static_cast<T>(y[0] + y[1] * i + y[2] * q);
   }
 };
+
+/// Whether a camera that sees a group of nrows rows of w points by `sight` reads each row from
+/// one camera row: one pixel a point along its rows, and every row's height on a texel
+/// (`snap_to_texel`), so that `shift_add` adds it in one pass.
+[[nodiscard]] inline bool one_row_runs(const AffineSight& sight, std::size_t w, std::size_t nrows) noexcept {
+  const double span = static_cast<double>(w);
+  if (!(std::abs(sight.x[1] - 1) * span <= 1e-4 && std::abs(sight.y[1]) * span <= 1e-4)) return false;
+  for (std::size_t q = 0; q < nrows; ++q) {
+    const double y = sight.y[0] + sight.y[2] * static_cast<double>(q);
+    long texel = 0;
+    double offset = 1;
+    if (std::abs(y) < 1e8) snap_to_texel(y, texel, offset);
+    if (offset != 0) return false;
+  }
+  return true;
+}
 
 /// How the undistorted camera with projection P (K [R | t], 3x4 row-major) sees the grid's
 /// points with i in [0, n - 1] and q in [0, nrows - 1]: true, with `sight`, when they all lie in

@@ -1,9 +1,10 @@
 #pragma once
 /// \file
 /// Several projective rows of one camera at once: the rows of a tile of a tilted focal plane (or
-/// of any planar focal surface seen off the cameras' rows). Each row is a `ProjectiveRow`; the
-/// result is that of `projective_row` on every row, unweighted. On AVX-512 with VBMI and 8-bit
-/// codes the tile is walked in chunks of columns: the texels the chunk's rows read (a small box
+/// of any planar focal surface seen off the cameras' rows). Each row is a `ProjectiveRow` with
+/// its own outputs and ray weights (`TileRowOut`); the result is that of `projective_row` on
+/// every row. On AVX-512 with VBMI and 8-bit codes the tile is walked in chunks of columns: the
+/// texels the chunk's rows read (a small box
 /// of the image, found from the rows' end points) are decoded to linear light once into planar
 /// float rows, and each group of 16 points then takes its bilinear taps from that box with
 /// in-register float permutes instead of four gathers from the codes. A chunk whose box is too
@@ -24,12 +25,19 @@
 
 namespace mpr::detail {
 
-/// The reference: `projective_row` (unweighted) on row r of `rows` with acc + 3 n r and seen + n r.
+/// Where one row of a tile adds its n points: `acc` (3 floats a point) and `seen` (one a point),
+/// each point weighed by `rw` (n weights; nullptr: 1 each), as `projective_row` takes them.
+struct TileRowOut {
+  float* acc;
+  float* seen;
+  const float* rw;
+};
+
+/// The reference: `projective_row` on row r of `rows` with the outputs of `out[r]`.
 template <class T, class C>
-inline void projective_tile_rows(std::span<const ProjectiveRow<T, C>> rows, std::size_t n, float* acc, float* seen,
-                                 SimdLevel level) noexcept {
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    projective_row(rows[r], n, nullptr, acc + 3 * n * r, seen + n * r, level);
+inline void projective_tile_rows(std::span<const ProjectiveRow<T, C>> rows, std::span<const TileRowOut> out,
+                                 std::size_t n, SimdLevel level) noexcept {
+  for (std::size_t r = 0; r < rows.size(); ++r) projective_row(rows[r], n, out[r].rw, out[r].acc, out[r].seen, level);
 }
 
 #if defined(MPR_SIMD_X86)
@@ -145,7 +153,7 @@ MPR_TARGET_AVX512_VBMI MPR_ALWAYS_INLINE bool box_step(const TileBox& box, int x
       previous[k] = h;
     }
   }
-  const __m512 s = _mm512_maskz_mov_ps(p.m, _mm512_set1_ps(scale));
+  const __m512 s = _mm512_maskz_mul_ps(p.m, p.wt, _mm512_set1_ps(scale));
   __m512 sum[3];
   for (int k = 0; k < 3; ++k) sum[k] = _mm512_mul_ps(s, _mm512_fmadd_ps(ay, _mm512_sub_ps(bottom[k], top[k]), top[k]));
   add_rgb_sums(sum, count, acc);
@@ -224,7 +232,7 @@ MPR_ALWAYS_INLINE void prefetch_box(const ProjectiveRow<float, std::uint8_t>& im
 // (then along the whole chunk: w is affine in the point index); else the chunk's rows take the
 // gather step.
 MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const ProjectiveRow<float, std::uint8_t>> rows,
-                                                              std::size_t n, float* acc, float* seen) noexcept {
+                                                              std::span<const TileRowOut> out, std::size_t n) noexcept {
   thread_local TileBox box;
   const DecodeBytes d = load_decode_bytes(rows[0].lut);
   const ProjectiveRow<float, std::uint8_t>& image = rows[0];
@@ -248,11 +256,11 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
     const int x0 = b.x0, y0 = b.y0, texels = b.texels, box_rows = b.rows;
     if (boxed) decode_box(image, d, x0, y0, texels, box_rows, box);
     for (std::size_t r = 0; r < rows.size(); ++r) {
-      float* acc_row = acc + 3 * n * r;
-      float* seen_row = seen + n * r;
+      float* acc_row = out[r].acc;
+      float* seen_row = out[r].seen;
       if (prefetch) prefetch_box(image, after, static_cast<int>(r) * per_row, static_cast<int>(r + 1) * per_row);
       for (std::size_t i = i0; i < i1; i += 16) {
-        const ProjectiveLanes p = projective_lanes(rows[r], i, i1, nullptr);
+        const ProjectiveLanes p = projective_lanes(rows[r], i, i1, out[r].rw);
         if (p.m == 0) continue;
         const std::size_t count = std::min<std::size_t>(16, i1 - i);
         if (!boxed || !box_step(box, x0, y0, texels, box_rows, image.scale, p, count, acc_row + 3 * i)) {
@@ -266,11 +274,12 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
 }
 #endif
 
-/// `projective_row` (unweighted) on every row of `rows` (one camera: the same image in each),
-/// row r adding to acc + 3 n r and seen + n r; the chunked kernel on AVX-512 with VBMI for 8-bit
-/// codes and float coordinates (images `gather_indexable`), else row by row.
+/// `projective_row` on every row of `rows` (one camera: the same image in each), row r over its
+/// points [0, n) with the outputs and weights of `out[r]` (as many entries as rows); the chunked
+/// kernel on AVX-512 with VBMI for 8-bit codes and float coordinates (images
+/// `gather_indexable`), else row by row.
 template <class T, class C>
-inline void projective_tile(std::span<const ProjectiveRow<T, C>> rows, std::size_t n, float* acc, float* seen,
+inline void projective_tile(std::span<const ProjectiveRow<T, C>> rows, std::span<const TileRowOut> out, std::size_t n,
                             SimdLevel level = simd_level()) noexcept {
   if (rows.empty() || n == 0) return;
 #if defined(MPR_SIMD_X86)
@@ -279,10 +288,10 @@ inline void projective_tile(std::span<const ProjectiveRow<T, C>> rows, std::size
     // could then disagree by a point; such rows go row by row.
     if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && gather_indexable(rows[0].width, rows[0].height) &&
         n <= (std::size_t(1) << 24))
-      return projective_tile_codes_vbmi(rows, n, acc, seen);
+      return projective_tile_codes_vbmi(rows, out, n);
   }
 #endif
-  projective_tile_rows(rows, n, acc, seen, level);
+  projective_tile_rows(rows, out, n, level);
 }
 
 } // namespace mpr::detail
