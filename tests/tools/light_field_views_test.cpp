@@ -1,8 +1,8 @@
 // mpr-render's views of camera arrays (tools/mpr-render/light_field_views.hpp): the nine gallery
 // letters on a light field and on a rasterized array render nine different images whose rays
 // stay inside the array; the defaults (synthetic aperture for refocusing, a cylinder of the
-// camera spacing for other views); the warnings for rays off the array and for a ray-independent
-// interpolation under non-pinhole views.
+// camera spacing for other views); the warnings for rays off the array, for a focal surface
+// outside every camera's frame and for a ray-independent interpolation under non-pinhole views.
 #include "io/light_field_test_files.hpp"
 #include "mpr-render/render_job.hpp"
 #include "tools_test_support.hpp"
@@ -181,4 +181,32 @@ TEST_CASE("light-field views: Stanford Chess, nine letters inside the array", "[
   const std::regex coverage("array coverage: 49 cameras .* 0\\.0% off it");
   CHECK(std::distance(std::sregex_iterator(text.begin(), text.end(), coverage), std::sregex_iterator()) == 9);
   CHECK(warnings.str().find("off the array") == std::string::npos);
+  CHECK(warnings.str().find("outside every camera's frame") == std::string::npos);
+
+  // A plane tilted 20 degrees about its vertical axis in the untilted framing: its near side
+  // leaves every camera's frame (black), and the warning says how much and what keeps it in.
+  for (const bool rectify : {false, true}) {
+    std::vector<std::string> args = {"--stanford", chess.string(), "--size", "140x80", "--tilt-y", "20"};
+    if (rectify) args.insert(args.end(), {"--rectify", "plane"});
+    std::ostringstream tilt_info, tilt_warnings;
+    const Image tilted = render(job_of(args), tilt_info, tilt_warnings);
+    const std::string w = tilt_warnings.str();
+    INFO(w);
+    const std::regex unseen("view default: ([0-9]+)% of its focal surface lies outside every camera's frame: those "
+                            "pixels have nothing to show \\(black\\); --rectify plane keeps");
+    std::smatch m;
+    int black = 0;
+    for (int y = 0; y < tilted.height(); ++y)
+      for (int x = 0; x < tilted.width(); ++x) black += tilted(x, y) == mpr::Rgb8{0, 0, 0} ? 1 : 0;
+    const double share = static_cast<double>(black) / (tilted.width() * tilted.height());
+    if (rectify) {
+      CHECK(w.find("outside every camera's frame") == std::string::npos);
+      CHECK(share < 0.001);
+    } else {
+      REQUIRE(std::regex_search(w, m, unseen));
+      const int percent = std::stoi(m[1].str());
+      CHECK(percent >= 3);
+      CHECK(std::abs(100 * share - percent) <= 2); // the black pixels, as announced
+    }
+  }
 }

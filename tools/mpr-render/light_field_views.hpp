@@ -1,8 +1,9 @@
 #pragma once
 // mpr-render's views of camera arrays (light fields and --raster): the interpolation and radius
 // a view gets when none is given, and the warnings a view earns before it is rendered -- rays
-// that miss the array, a ray-independent interpolation under a non-pinhole view, a gallery view
-// whose type the array cannot hold (lightfield/array_view.hpp, docs/mpr-render.md).
+// that miss the array, a focal surface outside every camera's frame, a ray-independent
+// interpolation under a non-pinhole view, a gallery view whose type the array cannot hold
+// (lightfield/array_view.hpp, docs/mpr-render.md).
 
 #include "framing.hpp"
 #include "job.hpp"
@@ -12,6 +13,7 @@
 #include <mpr/glc.hpp>
 #include <mpr/lightfield/array_view.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -136,6 +138,45 @@ void warn_view(std::ostream& warn, const Job& job, const Loaded<T>& l, const std
   else
     std::snprintf(line, sizeof line, "mpr-render: note: view %s (%s) is a %s on this array\n", spec.c_str(),
                   std::string(entry.name).c_str(), now.c_str());
+  warn << line;
+}
+
+/// The share of a view's focal surface (its image surface, at a samples x samples grid of uv cell
+/// centres) that no camera of `frames` sees: the nearest camera, the synthetic and the cylinder
+/// aperture have nothing to show there (black).
+template <std::floating_point T>
+double unseen_share(const CameraVariant<T>& camera, const mpr::CameraFrameSet<T>& frames, int samples = 48) {
+  return std::visit(
+      [&](const auto& cam) {
+        int unseen = 0;
+        for (int j = 0; j < samples; ++j)
+          for (int i = 0; i < samples; ++i) {
+            const mpr::Vec2<T> uv((T(i) + T(0.5)) / T(samples), (T(j) + T(0.5)) / T(samples));
+            const mpr::Vec3<T> X = cam.surface.point_at(uv);
+            const auto& cams = frames.cameras();
+            unseen += std::none_of(cams.begin(), cams.end(), [&](const auto& c) { return c.project(X).has_value(); });
+          }
+        return static_cast<double>(unseen) / (static_cast<double>(samples) * samples);
+      },
+      camera);
+}
+
+/// The warning for a view whose focal surface lies partly outside every camera's frame (share of
+/// its surface, at `frame` of `count` frames).
+inline void warn_unseen(std::ostream& warn, const Job& job, const std::string& spec, double share, int frame,
+                        int count) {
+  char line[320];
+  const std::string at = count > 1 ? " at frame " + std::to_string(frame) : std::string();
+  const auto tilts = [](const Track& t) {
+    return std::any_of(t.keys().begin(), t.keys().end(), [](const Track::Key& k) { return k.value != 0; });
+  };
+  const bool tilted = tilts(job.tilt_x) || tilts(job.tilt_y);
+  std::snprintf(line, sizeof line,
+                "mpr-render: warning: view %s: %.0f%% of its focal surface%s lies outside every camera's frame: "
+                "those pixels have nothing to show (black)%s\n",
+                spec.c_str(), 100 * share, at.c_str(),
+                tilted && !job.rectify_to_plane ? "; --rectify plane keeps a tilted plane inside the untilted framing"
+                                                : "");
   warn << line;
 }
 

@@ -63,6 +63,23 @@ void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sample
       camera, sampler);
 }
 
+/// Warns about each view whose focal surface lies partly outside every camera's frame, at the
+/// frame where most of it does (`unseen_share`; the views are cheap to set up, the check is 48 x 48
+/// projections a camera).
+template <std::floating_point T>
+void warn_unseen_views(std::ostream& warn, const Job& job, const Loaded<T>& l, int count, int w, int h) {
+  for (std::size_t k = 0; k < job.views.size(); ++k) {
+    double worst = 0;
+    int at = 0;
+    for (int f = 0; f < count; ++f) {
+      const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
+      const double share = unseen_share(make_camera(job, l, p, k, w, h), *l.frames);
+      if (share > worst) worst = share, at = f;
+    }
+    if (worst > 0.01) warn_unseen(warn, job, job.views[k], worst, at, count);
+  }
+}
+
 /// Called with each finished frame (index from 0, and the frame count).
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
 
@@ -82,6 +99,8 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
   preflight(job, l); // every frame checked before the first is rendered
   if (warnings != nullptr) warn_job(*warnings, job, l);
   const int count = std::max(job.frames, 1);
+  if (warnings != nullptr && l.frames != nullptr && job.interpolation != Interpolation::depth && !job.all_in_focus)
+    warn_unseen_views(*warnings, job, l, count, w, h);
   const mpr::RenderOptions options{job.threads};
   const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
   for (int f = 0; f < count; ++f) {
