@@ -125,7 +125,8 @@ private:
   // r = |c_k - x| the in-plane distance to the crossing x, while d_k <= r; so d_j > d_k when
   // r < rho = (cos_min sep_k - margin) / (cos_min + 1.001), cos_min the least cosine of the row.
   // Each run of pixels with one camera is a shift-and-add of one camera row when the run's
-  // points are evenly spaced, else per ray.
+  // points are evenly spaced and lie along the camera's rows, a projective row when they are
+  // evenly spaced otherwise (a tilted plane), else per ray.
   // `source` gives the rows (`TileRows` or `GridRows`).
   template <std::floating_point T, class Px, class Rows>
   static bool row_path(const FrameTable<T, Px>& table, const ArrayPlane<T>& plane, std::size_t rows, std::size_t w,
@@ -153,7 +154,9 @@ private:
           const std::size_t n = e - s0;
           std::fill(acc, acc + 3 * n, 0.0f);
           std::fill(weight, weight + n, 0.0f);
-          copied = shift_add(table, table.camera(static_cast<std::size_t>(kk)), points + s0, n, acc, weight);
+          const auto& c = table.camera(static_cast<std::size_t>(kk));
+          copied =
+              shift_add(table, c, points + s0, n, acc, weight) || add_projective(table, c, points + s0, n, acc, weight);
           // One camera: weight is exactly 1 where it added its pixel, 0 where it sees nothing.
           if (copied) {
             unsigned unseen = 0;
