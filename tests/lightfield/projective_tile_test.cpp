@@ -3,7 +3,8 @@
 // the camera, a few crossing camera rows), steep and sheared tiles (groups too spread for the
 // box windows), tiles that leave the image or pass behind the camera, and images narrower and
 // wider than one chunk's box; every other trial weighs each ray (some weights zero or negative:
-// those rays are skipped). Nothing past a tile's end is written.
+// those rays are skipped). Each row adds to its own outputs, with gaps between rows: nothing
+// outside a row's points is written.
 #include "lightfield/projective_reference.hpp"
 #include "simd_levels.hpp"
 
@@ -27,6 +28,7 @@ using mpr::detail::SimdLevel;
 using mpr_test::LD;
 
 constexpr std::size_t kGuard = 21;
+constexpr std::size_t kGap = 5, kOffset = 2; // per-row outputs: n + kGap apart, from kOffset
 constexpr float kSentinel = -12345.0f;
 
 // One tile's rows: point (i, r) at the homogeneous pixel (x, y, 1) depth + i step_i + r step_r,
@@ -94,11 +96,22 @@ void check_tiles(int width, int height) {
         if (trial == 9) s.sx = s.sy = s.dwi = 0;
         const std::vector<ProjectiveRow<T, C>> tile =
             tile_rows<T, C>(s, rows, width, height, texels.data(), scale, lut);
-        std::vector<float> acc0(3 * n * rows + kGuard, kSentinel), seen0(n * rows + kGuard, kSentinel);
-        for (std::size_t j = 0; j < 3 * n * rows; ++j) acc0[j] = static_cast<float>(unit(rng));
-        for (std::size_t j = 0; j < n * rows; ++j) seen0[j] = static_cast<float>(unit(rng));
+        // Each row's outputs at its own place: rows kStride apart, from kOffset on, as the
+        // cylinder's rows of a group are (their own arrays, from the camera's span); every slot
+        // between and after them must keep its sentinel.
+        const std::size_t stride = n + kGap, slots = stride * rows;
+        const auto at_of = [&](std::size_t r, std::size_t i) { return stride * r + kOffset + i; };
+        std::vector<float> acc0(3 * slots + kGuard, kSentinel), seen0(slots + kGuard, kSentinel);
+        std::vector<char> in_row(slots, 0);
+        for (std::size_t r = 0; r < rows; ++r)
+          for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t at = at_of(r, i);
+            in_row[at] = 1;
+            seen0[at] = static_cast<float>(unit(rng));
+            for (int k = 0; k < 3; ++k) acc0[3 * at + k] = static_cast<float>(unit(rng));
+          }
         const bool weighted = trial % 2 == 1;
-        std::vector<float> rw(n * rows);
+        std::vector<float> rw(slots);
         for (float& x : rw) {
           const double u = unit(rng);
           x = u < 0.15 ? 0.0f : u < 0.2 ? -1.0f : static_cast<float>(2 * unit(rng));
@@ -108,14 +121,18 @@ void check_tiles(int width, int height) {
           std::vector<float> acc = acc0, seen = seen0;
           std::vector<mpr::detail::TileRowOut> out;
           for (std::size_t r = 0; r < rows; ++r)
-            out.push_back({acc.data() + 3 * n * r, seen.data() + n * r, weighted ? rw.data() + n * r : nullptr});
+            out.push_back({acc.data() + 3 * at_of(r, 0), seen.data() + at_of(r, 0),
+                           weighted ? rw.data() + at_of(r, 0) : nullptr});
           mpr::detail::projective_tile(std::span<const ProjectiveRow<T, C>>(tile),
                                        std::span<const mpr::detail::TileRowOut>(out), n, level);
-          for (std::size_t j = 3 * n * rows; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
-          for (std::size_t j = n * rows; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
+          for (std::size_t j = 0; j < seen.size(); ++j)
+            if (j >= slots || in_row[j] == 0) {
+              failures += seen[j] != kSentinel ? 1 : 0;
+              for (std::size_t k = 3 * j; k < 3 * j + 3 && k < acc.size(); ++k) failures += acc[k] != kSentinel ? 1 : 0;
+            }
           for (std::size_t r = 0; r < rows; ++r)
             for (std::size_t i = 0; i < n; ++i) {
-              const std::size_t at = n * r + i;
+              const std::size_t at = at_of(r, i);
               const mpr_test::Expected e = mpr_test::expected(tile[r], i, weight_of(at), margin);
               if (e.ambiguous) continue;
               ++compared;

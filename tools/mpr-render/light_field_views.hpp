@@ -162,21 +162,19 @@ double unseen_share(const CameraVariant<T>& camera, const mpr::CameraFrameSet<T>
 }
 
 /// The warning for a view whose focal surface lies partly outside every camera's frame (share of
-/// its surface, at `frame` of `count` frames).
-inline void warn_unseen(std::ostream& warn, const Job& job, const std::string& spec, double share, int frame,
-                        int count) {
+/// its surface, at `frame` of `count` frames, counted from 0; `tilted`: its plane is tilted there).
+inline void warn_unseen(std::ostream& warn, const Job& job, const std::string& spec, double share, int frame, int count,
+                        bool tilted) {
   char line[320];
-  const std::string at = count > 1 ? " at frame " + std::to_string(frame) : std::string();
-  const auto tilts = [](const Track& t) {
-    return std::any_of(t.keys().begin(), t.keys().end(), [](const Track::Key& k) { return k.value != 0; });
-  };
-  const bool tilted = tilts(job.tilt_x) || tilts(job.tilt_y);
+  const std::string at =
+      count > 1 ? " at frame " + std::to_string(frame + 1) + " of " + std::to_string(count) : std::string();
   std::snprintf(line, sizeof line,
                 "mpr-render: warning: view %s: %.0f%% of its focal surface%s lies outside every camera's frame: "
                 "those pixels have nothing to show (black)%s\n",
                 spec.c_str(), 100 * share, at.c_str(),
-                tilted && !job.rectify_to_plane ? "; --rectify plane keeps a tilted plane inside the untilted framing"
-                                                : "");
+                tilted && !job.rectify_to_plane && !job.rectify
+                    ? "; --rectify plane keeps a tilted plane inside the untilted framing"
+                    : "");
   warn << line;
 }
 

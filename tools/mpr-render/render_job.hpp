@@ -71,12 +71,13 @@ void warn_unseen_views(std::ostream& warn, const Job& job, const Loaded<T>& l, i
   for (std::size_t k = 0; k < job.views.size(); ++k) {
     double worst = 0;
     int at = 0;
+    bool tilted = false;
     for (int f = 0; f < count; ++f) {
       const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
       const double share = unseen_share(make_camera(job, l, p, k, w, h), *l.frames);
-      if (share > worst) worst = share, at = f;
+      if (share > worst) worst = share, at = f, tilted = p.tilt_x != 0 || p.tilt_y != 0;
     }
-    if (worst > 0.01) warn_unseen(warn, job, job.views[k], worst, at, count);
+    if (worst > 0.01) warn_unseen(warn, job, job.views[k], worst, at, count, tilted);
   }
 }
 

@@ -215,10 +215,11 @@ private:
   // for all rays at once (`detail::cylinder_weights`). Cameras outer, the rays a camera weighs in
   // any row of the group give one span, added in every such row by a weighted shift-and-add
   // (weight 0 outside the row's own rays): each camera row is then interpolated once for the two
-  // output rows that read it. Rows outer (every run one camera row, short rows), each row gets
-  // each camera on its own rays. The next camera's texels are fetched meanwhile. Rays that no
-  // camera weighs get the nearest camera, as in `sample`. A row with a ray that does not cross the
-  // plane goes ray by ray through `sample`.
+  // output rows that read it; a camera with no affine map of the group (a tilted plane) adds all
+  // those rows at once through the projective tile's decoded boxes. Rows outer (every run one
+  // camera row, short rows), each row gets each camera on its own rays. The next camera's texels
+  // are fetched meanwhile. Rays that no camera weighs get the nearest camera, as in `sample`. A
+  // row with a ray that does not cross the plane goes ray by ray through `sample`.
   //
   // `source` gives the rows (`TileRows` or `GridRows`).
   template <std::floating_point T, class Px, class Rows>
