@@ -384,20 +384,22 @@ bool add_projective(const FrameTable<T, Px>& /*table*/, const typename FrameTabl
   return true;
 }
 
+/// The most runs `add_projective_tile` takes at once.
+inline constexpr std::size_t kMaxTileRuns = 64;
+
 /// Camera c's contribution to runs of n evenly spaced points each (run r at points[r], adding to
 /// out[r]: acc, weight and ray weights as in `add_projective`), each run as in `add_projective`,
 /// all at once (`detail::projective_tile`: on AVX-512 with VBMI the texels the runs share are
-/// decoded once). False (nothing added) when any run does not qualify, or more than 64 runs.
+/// decoded once). False (nothing added) when any run does not qualify, or more than `kMaxTileRuns`.
 /// Preconditions: n >= 2, c undistorted, bilinear filtering, every run `evenly_spaced`,
 /// out.size() == points.size().
 template <std::floating_point T, class Px>
 bool add_projective_tile(const FrameTable<T, Px>& /*table*/, const typename FrameTable<T, Px>::Camera& c,
                          std::span<const Vec3<T>* const> points, std::span<const detail::TileRowOut> out,
                          std::size_t n) noexcept {
-  constexpr std::size_t kMaxRows = 64;
   using Row = detail::ProjectiveRow<T, typename FrameTable<T, Px>::texel_type::channel_type>;
-  Row row[kMaxRows];
-  if (points.size() > kMaxRows) return false;
+  Row row[kMaxTileRuns];
+  if (points.size() > kMaxTileRuns) return false;
   for (std::size_t r = 0; r < points.size(); ++r)
     if (!detail::projective_row_of<T, Px>(c, points[r], n, row[r])) return false;
   detail::projective_tile(std::span<const Row>(row, points.size()), out, n);

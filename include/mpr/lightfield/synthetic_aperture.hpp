@@ -166,10 +166,9 @@ private:
   template <std::floating_point T, class Px>
   static bool add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c,
                        const Vec3<T>* points, std::size_t rows, std::size_t w, float* acc, float* weight) noexcept {
-    constexpr std::size_t kMaxRows = 64;
-    if (rows > kMaxRows) return false;
-    const Vec3<T>* run[kMaxRows];
-    detail::TileRowOut out[kMaxRows];
+    if (rows > kMaxTileRuns) return false;
+    const Vec3<T>* run[kMaxTileRuns];
+    detail::TileRowOut out[kMaxTileRuns];
     for (std::size_t r = 0; r < rows; ++r) {
       run[r] = points + r * w;
       out[r] = {acc + 3 * r * w, weight + r * w, nullptr};
