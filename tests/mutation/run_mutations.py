@@ -326,6 +326,13 @@ MUTATIONS = [
     M("depth_lanes_equal_cosines_by_index", "lightfield",
       [(DLN, "(_mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_EQ_OQ) & nearer)", "0")],
       ["lightfield"], "equal cosines kept in the order of the cameras, not of their distance"),
+    M("virtual_array_depth_off_centre", "scene",
+      [("include/mpr/scene/rasterized_sampler.hpp", "half = (n - 1) / 2;", "half = 0;")],
+      ["scene"], "a supersampled frame's depth taken at a corner point, not the pixel centre"),
+    M("virtual_array_subpixels_not_centred", "scene",
+      [("include/mpr/scene/rasterized_sampler.hpp", "scale(0, 2) = scale(1, 2) = T(0.5) * static_cast<T>(n - 1);",
+        "scale(0, 2) = scale(1, 2) = T(0);")],
+      ["scene"], "a supersampled frame's points spread from the pixel centre instead of about it"),
 ]
 
 

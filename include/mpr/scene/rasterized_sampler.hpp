@@ -92,6 +92,15 @@ struct VirtualArrayConfig {
   /// front of the plane). Unset: the median depth of the visible surfaces seen by the array
   /// (camera z over all frames, minus `behind`), i.e. a focal plane through the bulk of the scene.
   std::optional<T> focal_depth;
+  /// Samples per pixel side, odd, in [1, 15], with `samples` x `width` and x `height` at most
+  /// 16384: each frame pixel is the mean, in linear light, of an n x n grid of rasterized points
+  /// spread evenly over the pixel (a box filter, as a real sensor's pixel integrates its area),
+  /// which takes out the staircases and moire of point-sampled frames. The middle point lies on
+  /// the pixel centre and gives the depth map its value there. 1 (the default): one point at the
+  /// centre. Rasterizing costs up to n^2 times as much (the per-point work; the per-triangle
+  /// work stays), and the rasterizer's buffers are n^2 times larger (16 bytes a point), for one
+  /// camera at a time.
+  int samples = 1;
   /// Reconstruction of each camera's pixels.
   PixelFilter filter = PixelFilter::bilinear;
   /// Rasterizer settings (threads, near plane, tile size) for building the array.
@@ -113,6 +122,10 @@ template <std::floating_point T>
   if (config.rows < 1 || config.rows > 4096) throw argument_error("rows", "must be in 1..4096");
   if (config.width < 1 || config.width > 16384) throw argument_error("width", "must be in 1..16384");
   if (config.height < 1 || config.height > 16384) throw argument_error("height", "must be in 1..16384");
+  if (config.samples < 1 || config.samples > 15 || config.samples % 2 == 0)
+    throw argument_error("samples", "must be odd, in 1..15");
+  if (config.samples * config.width > 16384 || config.samples * config.height > 16384)
+    throw argument_error("samples", "samples x width and samples x height must be at most 16384");
   if (!(config.spacing >= 0) || !std::isfinite(config.spacing))
     throw argument_error("spacing", "must be finite and >= 0");
   if (!(config.behind >= 0) || !std::isfinite(config.behind)) throw argument_error("behind", "must be finite and >= 0");
@@ -163,9 +176,22 @@ struct VirtualArray {
   T focal_depth = 0;
 };
 
+/// `camera` with n x n times the pixels over the same image area: its pixel (n x + i, n y + j)
+/// looks at `camera`'s point (x + (i - (n - 1) / 2) / n, y + (j - (n - 1) / 2) / n), so for odd n
+/// the middle one, i = j = (n - 1) / 2, is `camera`'s pixel centre (x, y).
+template <std::floating_point T>
+[[nodiscard]] PinholeCamera<T> subpixel_camera(const PinholeCamera<T>& camera, int n) {
+  Mat3<T> scale = Mat3<T>::Identity();
+  scale(0, 0) = scale(1, 1) = static_cast<T>(n);
+  scale(0, 2) = scale(1, 2) = T(0.5) * static_cast<T>(n - 1);
+  const Mat3<T> K = scale * camera.K();
+  return PinholeCamera<T>(K, camera.R(), camera.t(), n * camera.width(), n * camera.height());
+}
+
 /// Rasterizes `scene` into every camera of the array (the expensive step: one rasterized view
-/// per camera). Frames are named "cam_<r>_<c>.png"; with `config.depth_maps` the set carries the
-/// z-buffers as depth maps. Throws as `virtual_array_cameras`.
+/// per camera, of `config.samples`^2 points a pixel). Frames are named "cam_<r>_<c>.png"; with
+/// `config.depth_maps` the set carries the depths at the pixel centres as depth maps. Throws as
+/// `virtual_array_cameras`.
 template <class Px = Rgb8, std::floating_point T>
 [[nodiscard]] VirtualArray<T, Px> rasterize_virtual_array(const Scene<T>& scene, const PlanarSurface<T>& plane,
                                                           const VirtualArrayConfig<T>& config) {
@@ -176,10 +202,21 @@ template <class Px = Rgb8, std::floating_point T>
   images.reserve(cameras.size());
   std::vector<float> depths; // a subsample of visible depths, for the default focal depth
   std::vector<Image<float>> depth_maps;
-  Image<Color> color(config.width, config.height);
-  Image<float> depth(config.width, config.height);
+  const int n = config.samples, half = (n - 1) / 2;
+  Image<Color> fine(n * config.width, n * config.height), color(config.width, config.height);
+  Image<float> fine_depth(n * config.width, n * config.height), depth(config.width, config.height);
+  const float inv = 1.0f / static_cast<float>(n * n);
   for (std::size_t i = 0; i < cameras.size(); ++i) {
-    rasterize(scene, cameras[i], color.view(), depth.view(), config.raster);
+    rasterize(scene, n == 1 ? cameras[i] : subpixel_camera(cameras[i], n), fine.view(), fine_depth.view(),
+              config.raster);
+    for (int yy = 0; yy < config.height; ++yy)
+      for (int xx = 0; xx < config.width; ++xx) {
+        Color sum = Color::Zero();
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < n; ++k) sum += fine(n * xx + k, n * yy + j);
+        color(xx, yy) = n == 1 ? sum : sum * inv;
+        depth(xx, yy) = fine_depth(n * xx + half, n * yy + half);
+      }
     if constexpr (std::is_same_v<Px, Rgb8>) {
       Image<Rgb8> frame(config.width, config.height);
       for (int yy = 0; yy < config.height; ++yy)
