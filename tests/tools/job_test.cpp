@@ -63,3 +63,14 @@ TEST_CASE("mpr-render: --interp depth and --depth-maps", "[tools][job]") {
   CHECK_THAT(error_of({"--raster", "2x2", "--interp", "depth", "--depth-maps", "."}),
              Catch::Contains("--depth-maps") && Catch::Contains("light fields"));
 }
+
+TEST_CASE("mpr-render: --raster-samples", "[tools][job]") {
+  CHECK(job_of({"--raster", "2x2"}).raster_samples == 1);
+  CHECK(job_of({"--raster", "2x2", "--raster-samples", "5"}).raster_samples == 5);
+  CHECK_THAT(error_of({"--raster-samples", "3"}), Catch::Contains("invalid --raster-samples: applies to --raster"));
+  CHECK_THAT(error_of({"--raster", "2x2", "--raster-samples", "4"}),
+             Catch::Contains("invalid --raster-samples: must be odd"));
+  CHECK_THAT(error_of({"--raster", "2x2", "--raster-samples", "17"}),
+             Catch::Contains("invalid --raster-samples: 17 is outside [1, 15]"));
+  CHECK_THAT(error_of({"--raster", "2x2", "--raster-samples", "three"}), Catch::Contains("--raster-samples"));
+}

@@ -56,6 +56,7 @@ struct Job {
   std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
+  int raster_samples = 1;                    ///< --raster: N x N points a camera pixel (odd)
   Interpolation interpolation = Interpolation::synthetic;
   bool interpolation_given = false;                     ///< else: synthetic for refocusing, cylinder for other views
   Track radius{10};                                     ///< cylinder aperture radius (depth proxy: candidate radius)
@@ -236,6 +237,12 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
   if (const auto v = args.get("raster")) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");
+  }
+  if (const auto v = args.get("raster-samples")) {
+    if (!job.raster) throw mpr::argument_error("--raster-samples", "applies to --raster only");
+    job.raster_samples = parse_int(*v, "--raster-samples", 1, 15);
+    if (job.raster_samples % 2 == 0)
+      throw mpr::argument_error("--raster-samples", "must be odd (the middle point lies on the pixel centre)");
   }
   for (const char* name : {"reference-depth", "position-scale", "camera", "zoom", "depth-maps", "prefilter"})
     lf_only(name);

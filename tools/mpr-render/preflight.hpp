@@ -40,20 +40,23 @@ struct RasterBudget {
   double seconds_per_camera_pixel = 2e-7;           ///< clearing, shading, converting
 };
 
-/// Estimated memory and time of building one virtual array.
+/// Estimated memory and time of building one virtual array of `samples` x `samples` points a
+/// pixel (--raster-samples): the rasterizer's buffers (16 bytes a point) are held for one camera
+/// at a time, its per-pixel work grows with the points.
 struct RasterEstimate {
   double bytes = 0;
   double seconds = 0;
 };
 
 [[nodiscard]] inline RasterEstimate estimate_raster(int columns, int rows, int width, int height, std::size_t triangles,
-                                                    const RasterBudget& budget = {}) {
+                                                    const RasterBudget& budget = {}, int samples = 1) {
   const double cameras = static_cast<double>(columns) * rows;
   const double pixels = static_cast<double>(width) * height;
+  const double points = pixels * samples * samples;
   RasterEstimate e;
-  e.bytes = cameras * (pixels * budget.bytes_per_pixel + budget.bytes_per_camera);
+  e.bytes = cameras * (pixels * budget.bytes_per_pixel + budget.bytes_per_camera) + (samples > 1 ? 16 * points : 0);
   e.seconds = cameras * (static_cast<double>(triangles) * budget.seconds_per_camera_triangle +
-                         pixels * budget.seconds_per_camera_pixel);
+                         points * budget.seconds_per_camera_pixel);
   return e;
 }
 
@@ -130,17 +133,19 @@ template <std::floating_point T>
 void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget& budget = {}) {
   if (!job.raster || !l.scene) return;
   const mpr::scene::VirtualArrayConfig<T> config;
-  const RasterEstimate e =
-      estimate_raster(job.raster->first, job.raster->second, config.width, config.height, l.scene->size(), budget);
+  const RasterEstimate e = estimate_raster(job.raster->first, job.raster->second, config.width, config.height,
+                                           l.scene->size(), budget, job.raster_samples);
   if (e.bytes <= static_cast<double>(budget.max_bytes)) return;
   const int frames = std::max(job.frames, 1);
   throw mpr::argument_error(
       "--raster",
       std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second) + " cameras of " +
-          std::to_string(config.width) + "x" + std::to_string(config.height) + " pixels need about " +
-          detail::format_g("%.0f", e.bytes / (1 << 20)) + " MiB (limit " + std::to_string(budget.max_bytes >> 20) +
-          " MiB) and roughly " + detail::format_g("%.0f", e.seconds * frames) + " s on one core to rasterize " +
-          std::to_string(l.scene->size()) + " triangles" +
+          std::to_string(config.width) + "x" + std::to_string(config.height) + " pixels" +
+          (job.raster_samples > 1 ? " of " + std::to_string(job.raster_samples * job.raster_samples) + " points"
+                                  : std::string()) +
+          " need about " + detail::format_g("%.0f", e.bytes / (1 << 20)) + " MiB (limit " +
+          std::to_string(budget.max_bytes >> 20) + " MiB) and roughly " + detail::format_g("%.0f", e.seconds * frames) +
+          " s on one core to rasterize " + std::to_string(l.scene->size()) + " triangles" +
           (frames > 1 ? " for " + std::to_string(frames) + " frames" : std::string()) + "; use fewer cameras");
 }
 
@@ -180,6 +185,7 @@ void preflight(const Job& job, const Loaded<T>& l) {
         mpr::scene::VirtualArrayConfig<T> config;
         config.columns = job.raster->first;
         config.rows = job.raster->second;
+        config.samples = job.raster_samples;
         (void)mpr::scene::virtual_array_cameras(base_plane(job, l, p, w, h), config);
         if (job.interpolation == Interpolation::cylinder) (void)mpr::CylinderAperture{p.radius};
         if (job.interpolation == Interpolation::depth) job.depth_proxy(p.radius).validate();

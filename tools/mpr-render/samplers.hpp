@@ -30,6 +30,7 @@ SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const 
   mpr::scene::VirtualArrayConfig<T> config;
   config.columns = job.raster->first;
   config.rows = job.raster->second;
+  config.samples = job.raster_samples;
   if (job.focal_depth) config.focal_depth = static_cast<T>(p.focal_depth);
   config.raster.threads = job.threads;
   using S = mpr::scene::Scene<T>;

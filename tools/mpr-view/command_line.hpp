@@ -75,6 +75,7 @@ inline std::string shell_word(const std::string& s) {
   const bool light_field =
       job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford || job.sampler == SamplerKind::lfca;
   if (job.raster) add("--raster", std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second));
+  if (job.raster && job.raster_samples > 1) add("--raster-samples", std::to_string(job.raster_samples));
   if (light_field || job.raster) {
     add("--interp", job.interpolation == Interpolation::nearest     ? "nearest"
                     : job.interpolation == Interpolation::synthetic ? "synthetic"

@@ -54,9 +54,9 @@ TEST_CASE("render_arguments reads back as the same view", "[view]") {
 }
 
 TEST_CASE("render_arguments writes animated values at the frame's time and keeps light-field options", "[view]") {
-  const mpr_cli::Job job =
-      job_of({"--raster", "4x3", "--interp", "cylinder", "--radius", "2:4", "--focal-depth", "5", "--tilt-y", "0:10",
-              "--layout", "2x1", "--views", "A,pinhole:0;1.6;10", "--frames", "3", "--double"});
+  const mpr_cli::Job job = job_of({"--raster", "4x3", "--raster-samples", "3", "--interp", "cylinder", "--radius",
+                                   "2:4", "--focal-depth", "5", "--tilt-y", "0:10", "--layout", "2x1", "--views",
+                                   "A,pinhole:0;1.6;10", "--frames", "3", "--double"});
   const mpr_cli::Job back = round_trip(job, 0.5);
   CHECK(back.frames == 0); // one image
   CHECK(back.radius.at(0) == 3);
@@ -64,6 +64,7 @@ TEST_CASE("render_arguments writes animated values at the frame's time and keeps
   CHECK(back.focal_depth->at(0) == 5);
   CHECK(back.interpolation == mpr_cli::Interpolation::cylinder);
   CHECK(back.raster == std::optional<std::pair<int, int>>({4, 3}));
+  CHECK(back.raster_samples == 3);
   CHECK((back.cols == 2 && back.rows == 1));
   CHECK(back.views == std::vector<std::string>{"A", "pinhole:0,1.6,10"});
   CHECK(back.use_double);
