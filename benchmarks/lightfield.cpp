@@ -259,7 +259,8 @@ int main(int argc, char** argv) {
 
   std::printf(
       "\nreference workload: %dx%d output, %d cameras of %dx%d on a planar grid (8-bit frames), cross-slit GLC, "
-      "focal plane parallel to the camera plane at the cameras' pixel scale unless 'tilted'; cylinder radius %.1f grid "
+      "focal plane parallel to the camera plane at the cameras' pixel scale unless 'tilted' ('between texels': half a "
+      "unit deeper, every camera's shift a fraction of a pixel); cylinder radius %.1f grid "
       "steps = %.1f cameras per ray; "
       "median of %d runs (min-max); thread CPU time for 1 thread; load average at start: %s\n\n",
       size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats, load_average().c_str());
@@ -269,8 +270,7 @@ int main(int argc, char** argv) {
     measure("nearest camera", plane, glc, nearest, size, size, threads, repeats, true, 1440.0);
     measure("synthetic aperture (all cameras)", plane, glc, full, size, size, threads, repeats, true, 2500.0);
     measure("synthetic aperture, tilted plane", tilted, tilted_glc, full, size, size, threads, repeats, true, 2500.0);
-    measure("synthetic aperture, parallel plane between texels", between, between_glc, full, size, size, threads,
-            repeats, true, 0.0);
+    measure("synthetic aperture, between texels", between, between_glc, full, size, size, threads, repeats, true, 0.0);
     measure("cylinder aperture", plane, glc, cylinder, size, size, threads, repeats, true, 0.0);
     measure("cylinder aperture, tilted plane", tilted, tilted_glc, cylinder, size, size, threads, repeats, true, 0.0);
     measure("nearest camera, tilted plane", tilted, tilted_glc, nearest, size, size, threads, repeats, true, 0.0);

@@ -42,7 +42,7 @@ TEST_CASE("raster estimate grows with cameras, pixels and triangles", "[tools][p
   CHECK(mpr_cli::estimate_raster(16, 12, 160, 120, 20000).bytes < static_cast<double>(budget.max_bytes));
   // N x N points a pixel: N^2 times the per-point work, and one camera's buffers of them.
   const mpr_cli::RasterEstimate s = mpr_cli::estimate_raster(10, 10, 160, 120, 1000, budget, 3);
-  CHECK(s.bytes == Approx(a.bytes + 16.0 * 9 * 160 * 120));
+  CHECK(s.bytes == Approx(a.bytes + budget.bytes_per_point * 9 * 160 * 120));
   CHECK(s.seconds - 100 * 1000 * budget.seconds_per_camera_triangle ==
         Approx(9 * (a.seconds - 100 * 1000 * budget.seconds_per_camera_triangle)));
 }

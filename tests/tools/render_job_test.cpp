@@ -432,6 +432,18 @@ TEST_CASE("mpr-render: rasterized classroom (virtual array) equals the C++ API",
       scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{2}});
   CHECK(identical(frames[0],
                   direct(plane, mpr::glc::gallery_view('A', plane, mpr::Vec3<T>(0, 1.6f, -8), T(14)), sampler, w, h)));
+  // --raster-samples reaches the array: anti-aliased frames, the same as the API's.
+  const std::vector<Image> smooth =
+      mpr_cli::render_frames(job_of({"--size", "32x24", "--view", "A", "--raster", "3x2", "--raster-samples", "3",
+                                     "--interp", "cylinder", "--radius", "2", "--focal-depth", "9"}));
+  REQUIRE(smooth.size() == 1);
+  config.samples = 3;
+  const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::CylinderAperture>> smooth_sampler(
+      scene, plane, config, mpr::Rasterized<mpr::CylinderAperture>{mpr::CylinderAperture{2}});
+  const Image api =
+      direct(plane, mpr::glc::gallery_view('A', plane, mpr::Vec3<T>(0, 1.6f, -8), T(14)), smooth_sampler, w, h);
+  CHECK(identical(smooth[0], api));
+  CHECK_FALSE(identical(smooth[0], frames[0]));
   CHECK_THROWS_AS(job_of({"--raster", "3x2", "--stanford", "/nonexistent"}), mpr::error);
   CHECK_THROWS_AS(job_of({"--focal-depth", "9"}), mpr::argument_error); // scene without --raster
 }

@@ -68,7 +68,7 @@ inline const std::vector<OptionSpec>& options() {
       {"raster-samples", "N",
        "--raster: each camera pixel the mean, in linear light, of N x N rasterized points over its area (anti-aliased "
        "frames: no staircases or moire; the middle point gives the depth). N odd, 1..15; default 1 (the pixel "
-       "centre). Rasterizing takes up to N^2 times as long (the classroom: 3x at N = 3).",
+       "centre). Rasterizing takes up to N^2 times as long.",
        "--raster 8x6 --raster-samples 3 --interp depth --view B"},
       {"obj-scale", "S", "Uniform scale of the OBJ positions (default 1).",
        "--obj examples/boxes.obj --obj-scale 0.01"},

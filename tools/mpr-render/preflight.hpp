@@ -38,23 +38,26 @@ struct RasterBudget {
   double bytes_per_camera = 2048;                   ///< camera model and bookkeeping
   double seconds_per_camera_triangle = 1e-8;        ///< rasterizing, per camera and triangle
   double seconds_per_camera_pixel = 2e-7;           ///< clearing, shading, converting
+  double bytes_per_point = 16;                      ///< --raster-samples > 1: one camera's points
 };
 
-/// Estimated memory and time of building one virtual array of `samples` x `samples` points a
-/// pixel (--raster-samples): the rasterizer's buffers (16 bytes a point) are held for one camera
-/// at a time, its per-pixel work grows with the points.
+/// Estimated memory and time of building one virtual array.
 struct RasterEstimate {
   double bytes = 0;
   double seconds = 0;
 };
 
+/// The estimate for `columns` x `rows` cameras of `width` x `height` pixels, `samples` x
+/// `samples` points a pixel (--raster-samples, >= 1): the points' buffers are held for one camera
+/// at a time, the per-pixel work grows with the points, the per-triangle work does not.
 [[nodiscard]] inline RasterEstimate estimate_raster(int columns, int rows, int width, int height, std::size_t triangles,
                                                     const RasterBudget& budget = {}, int samples = 1) {
   const double cameras = static_cast<double>(columns) * rows;
   const double pixels = static_cast<double>(width) * height;
   const double points = pixels * samples * samples;
   RasterEstimate e;
-  e.bytes = cameras * (pixels * budget.bytes_per_pixel + budget.bytes_per_camera) + (samples > 1 ? 16 * points : 0);
+  e.bytes = cameras * (pixels * budget.bytes_per_pixel + budget.bytes_per_camera) +
+            (samples > 1 ? budget.bytes_per_point * points : 0);
   e.seconds = cameras * (static_cast<double>(triangles) * budget.seconds_per_camera_triangle +
                          points * budget.seconds_per_camera_pixel);
   return e;

@@ -112,9 +112,9 @@ struct VirtualArrayConfig {
 };
 
 /// The cameras of a virtual array on `plane` (see `VirtualArrayConfig` for the frame). Throws
-/// `argument_error` naming "columns", "rows", "width", "height", "spacing", "behind" or
-/// "horizontal_fov" for a non-positive / non-finite / out-of-range value, "plane" for a
-/// degenerate plane.
+/// `argument_error` naming "columns", "rows", "width", "height", "samples", "spacing", "behind",
+/// "horizontal_fov" or "focal_depth" for a non-positive / non-finite / out-of-range value (or an
+/// even `samples`), "plane" for a degenerate plane.
 template <std::floating_point T>
 [[nodiscard]] std::vector<PinholeCamera<T>> virtual_array_cameras(const PlanarSurface<T>& plane,
                                                                   const VirtualArrayConfig<T>& config) {
@@ -176,9 +176,12 @@ struct VirtualArray {
   T focal_depth = 0;
 };
 
+namespace detail {
 /// `camera` with n x n times the pixels over the same image area: its pixel (n x + i, n y + j)
 /// looks at `camera`'s point (x + (i - (n - 1) / 2) / n, y + (j - (n - 1) / 2) / n), so for odd n
-/// the middle one, i = j = (n - 1) / 2, is `camera`'s pixel centre (x, y).
+/// the middle one, i = j = (n - 1) / 2, is `camera`'s pixel centre (x, y). Preconditions (as
+/// `virtual_array_cameras` checks them): n >= 1, n x width and n x height at most 16384, no lens
+/// distortion (the rasterizer refuses it; this camera would drop it).
 template <std::floating_point T>
 [[nodiscard]] PinholeCamera<T> subpixel_camera(const PinholeCamera<T>& camera, int n) {
   Mat3<T> scale = Mat3<T>::Identity();
@@ -187,6 +190,7 @@ template <std::floating_point T>
   const Mat3<T> K = scale * camera.K();
   return PinholeCamera<T>(K, camera.R(), camera.t(), n * camera.width(), n * camera.height());
 }
+} // namespace detail
 
 /// Rasterizes `scene` into every camera of the array (the expensive step: one rasterized view
 /// per camera, of `config.samples`^2 points a pixel). Frames are named "cam_<r>_<c>.png"; with
@@ -202,21 +206,26 @@ template <class Px = Rgb8, std::floating_point T>
   images.reserve(cameras.size());
   std::vector<float> depths; // a subsample of visible depths, for the default focal depth
   std::vector<Image<float>> depth_maps;
+  Image<Color> color(config.width, config.height);
+  Image<float> depth(config.width, config.height);
   const int n = config.samples, half = (n - 1) / 2;
-  Image<Color> fine(n * config.width, n * config.height), color(config.width, config.height);
-  Image<float> fine_depth(n * config.width, n * config.height), depth(config.width, config.height);
+  Image<Color> fine(n > 1 ? n * config.width : 0, n > 1 ? n * config.height : 0);
+  Image<float> fine_depth(fine.width(), fine.height());
   const float inv = 1.0f / static_cast<float>(n * n);
   for (std::size_t i = 0; i < cameras.size(); ++i) {
-    rasterize(scene, n == 1 ? cameras[i] : subpixel_camera(cameras[i], n), fine.view(), fine_depth.view(),
-              config.raster);
-    for (int yy = 0; yy < config.height; ++yy)
-      for (int xx = 0; xx < config.width; ++xx) {
-        Color sum = Color::Zero();
-        for (int j = 0; j < n; ++j)
-          for (int k = 0; k < n; ++k) sum += fine(n * xx + k, n * yy + j);
-        color(xx, yy) = n == 1 ? sum : sum * inv;
-        depth(xx, yy) = fine_depth(n * xx + half, n * yy + half);
-      }
+    if (n == 1) {
+      rasterize(scene, cameras[i], color.view(), depth.view(), config.raster);
+    } else {
+      rasterize(scene, detail::subpixel_camera(cameras[i], n), fine.view(), fine_depth.view(), config.raster);
+      for (int yy = 0; yy < config.height; ++yy)
+        for (int xx = 0; xx < config.width; ++xx) {
+          Color sum = Color::Zero();
+          for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) sum += fine(n * xx + k, n * yy + j);
+          color(xx, yy) = sum * inv;
+          depth(xx, yy) = fine_depth(n * xx + half, n * yy + half);
+        }
+    }
     if constexpr (std::is_same_v<Px, Rgb8>) {
       Image<Rgb8> frame(config.width, config.height);
       for (int yy = 0; yy < config.height; ++yy)
