@@ -63,6 +63,12 @@ TEST_CASE("preflight refuses a job before any frame is rendered", "[tools][prefl
   message = run_counting(job_of({"--raster", "100x100", "--size", "16x12"}), frames);
   CHECK_THAT(message, Catch::Contains("invalid --raster: 100x100 cameras") && Catch::Contains("MiB (limit 1024 MiB)"));
   CHECK(frames == 0);
+  // With --raster-samples the message counts the points and the seconds grow with them.
+  const std::string sampled =
+      run_counting(job_of({"--raster", "100x100", "--raster-samples", "3", "--size", "16x12"}), frames);
+  CHECK_THAT(sampled, Catch::Contains("cameras of 160x120 pixels (9 points a pixel) need about"));
+  CHECK(sampled != message);
+  CHECK(frames == 0);
   // Values outside the scalar type's range name the option (not a library parameter).
   message = run_counting(job_of({"--raster", "2x2", "--focal-depth", "1e-308", "--size", "16x12"}), frames);
   CHECK_THAT(message, Catch::Contains("invalid --focal-depth: 1e-308 is outside the range of float"));

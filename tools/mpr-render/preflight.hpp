@@ -144,7 +144,7 @@ void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget&
       "--raster",
       std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second) + " cameras of " +
           std::to_string(config.width) + "x" + std::to_string(config.height) + " pixels" +
-          (job.raster_samples > 1 ? " of " + std::to_string(job.raster_samples * job.raster_samples) + " points"
+          (job.raster_samples > 1 ? " (" + std::to_string(job.raster_samples * job.raster_samples) + " points a pixel)"
                                   : std::string()) +
           " need about " + detail::format_g("%.0f", e.bytes / (1 << 20)) + " MiB (limit " +
           std::to_string(budget.max_bytes >> 20) + " MiB) and roughly " + detail::format_g("%.0f", e.seconds * frames) +
