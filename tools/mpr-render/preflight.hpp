@@ -135,9 +135,9 @@ inline std::string frame_label(int f, int count) {
 template <std::floating_point T>
 void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget& budget = {}) {
   if (!job.raster || !l.scene) return;
-  const mpr::scene::VirtualArrayConfig<T> config;
-  const RasterEstimate e = estimate_raster(job.raster->first, job.raster->second, config.width, config.height,
-                                           l.scene->size(), budget, job.raster_samples);
+  const mpr::scene::VirtualArrayConfig<T> config = raster_config<T>(job);
+  const RasterEstimate e = estimate_raster(config.columns, config.rows, config.width, config.height, l.scene->size(),
+                                           budget, config.samples);
   if (e.bytes <= static_cast<double>(budget.max_bytes)) return;
   const int frames = std::max(job.frames, 1);
   throw mpr::argument_error(
@@ -185,11 +185,7 @@ void preflight(const Job& job, const Loaded<T>& l) {
               camera);
       }
       if (job.raster) {
-        mpr::scene::VirtualArrayConfig<T> config;
-        config.columns = job.raster->first;
-        config.rows = job.raster->second;
-        config.samples = job.raster_samples;
-        (void)mpr::scene::virtual_array_cameras(base_plane(job, l, p, w, h), config);
+        (void)mpr::scene::virtual_array_cameras(base_plane(job, l, p, w, h), raster_config<T>(job));
         if (job.interpolation == Interpolation::cylinder) (void)mpr::CylinderAperture{p.radius};
         if (job.interpolation == Interpolation::depth) job.depth_proxy(p.radius).validate();
       } else if (!l.scene_sampler && job.interpolation == Interpolation::cylinder) {

@@ -23,16 +23,24 @@ using SamplerVariant =
                  mpr::CameraFrameSampler<mpr::DepthProxy, T>,
                  mpr::SceneSampler<mpr::scene::Scene<T>, mpr::Rasterized<mpr::DepthProxy>>>;
 
-/// The rasterized virtual-array sampler (--raster) on the frame's untilted image plane.
+/// The virtual array of --raster and --raster-samples (the library's defaults otherwise), as the
+/// sampler builds it and preflight checks it.
 template <std::floating_point T>
-SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p,
-                                      const mpr::PlanarSurface<T>& plane) {
+[[nodiscard]] mpr::scene::VirtualArrayConfig<T> raster_config(const Job& job) {
   mpr::scene::VirtualArrayConfig<T> config;
   config.columns = job.raster->first;
   config.rows = job.raster->second;
   config.samples = job.raster_samples;
-  if (job.focal_depth) config.focal_depth = static_cast<T>(p.focal_depth);
   config.raster.threads = job.threads;
+  return config;
+}
+
+/// The rasterized virtual-array sampler (--raster) on the frame's untilted image plane.
+template <std::floating_point T>
+SamplerVariant<T> make_raster_sampler(const Job& job, const Loaded<T>& l, const FrameParams& p,
+                                      const mpr::PlanarSurface<T>& plane) {
+  mpr::scene::VirtualArrayConfig<T> config = raster_config<T>(job);
+  if (job.focal_depth) config.focal_depth = static_cast<T>(p.focal_depth);
   using S = mpr::scene::Scene<T>;
   switch (job.interpolation) {
   case Interpolation::nearest:
