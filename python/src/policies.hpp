@@ -1,0 +1,131 @@
+#pragma once
+// The run-time choices of a render from Python and the policy types they select: ONE table per
+// choice (interpolation, pixel filter), each choice one std::variant alternative, resolved by one
+// std::visit per render (render_tiles.hpp). The names are mpr-render's (--interpolation, --filter).
+
+#include "bindings.hpp"
+
+#include <mpr/core/region.hpp>
+#include <mpr/lightfield/cylinder_aperture.hpp>
+#include <mpr/lightfield/frame_sampler.hpp>
+#include <mpr/lightfield/nearest_camera.hpp>
+#include <mpr/lightfield/synthetic_aperture.hpp>
+#include <mpr/sampling.hpp>
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace mpr_py {
+
+/// The interpolations a light-field render can use.
+enum class Interpolation { nearest, synthetic_aperture, cylinder };
+
+struct InterpolationEntry {
+  std::string_view name;
+  Interpolation value;
+  std::string_view help;
+};
+
+/// The table of interpolations: name -> policy (make_sampler maps each to its type).
+inline constexpr std::array<InterpolationEntry, 3> interpolations{{
+    {"nearest", Interpolation::nearest, "the camera whose centre is nearest the ray"},
+    {"synthetic_aperture", Interpolation::synthetic_aperture, "every camera that sees the focal point, averaged"},
+    {"cylinder", Interpolation::cylinder, "cameras within `radius` (world units) of the ray line, averaged"},
+}};
+
+struct FilterEntry {
+  std::string_view name;
+  /// pbrt-v4's default radius, pixels.
+  double default_radius;
+};
+
+/// The table of pixel filters of supersampling (spp > 1).
+inline constexpr std::array<FilterEntry, 5> filters{{
+    {"box", 0.5},
+    {"tent", 2},
+    {"gaussian", 1.5},
+    {"mitchell", 2},
+    {"lanczos", 4},
+}};
+
+[[nodiscard]] inline Interpolation parse_interpolation(const std::string& name) {
+  for (const InterpolationEntry& e : interpolations)
+    if (e.name == name) return e.value;
+  throw mpr::argument_error("interpolation", "'" + name + "' is not nearest, synthetic_aperture or cylinder");
+}
+
+template <class Px>
+using SamplerVariant = std::variant<mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>,
+                                    mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>,
+                                    mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>>;
+
+template <class Px>
+[[nodiscard]] SamplerVariant<Px> make_sampler(std::shared_ptr<const mpr::CameraFrameSet<T, Px>> frames,
+                                              Interpolation interpolation, double radius) {
+  switch (interpolation) {
+  case Interpolation::nearest:
+    return mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(std::move(frames));
+  case Interpolation::synthetic_aperture:
+    return mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(std::move(frames));
+  case Interpolation::cylinder:
+    break;
+  }
+  return mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>(std::move(frames), mpr::CylinderAperture{radius});
+}
+
+/// The pixel sampling of a render: the pixel centre, or `spp` Owen-scrambled Sobol samples
+/// combined by a filter.
+using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>>;
+
+[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, const std::string& filter, double radius) {
+  if (spp < 1 || spp > 4096) throw mpr::argument_error("spp", "must lie in [1, 4096]");
+  const FilterEntry* entry = nullptr;
+  for (const FilterEntry& e : filters)
+    if (e.name == filter) entry = &e;
+  if (entry == nullptr)
+    throw mpr::argument_error("filter", "'" + filter + "' is not box, tent, gaussian, mitchell or lanczos");
+  if (!(radius >= 0 && radius <= 64))
+    throw mpr::argument_error("filter_radius", "must lie in [0, 64] pixels (0: default)");
+  if (spp == 1) return mpr::PixelCentre{};
+  const double r = radius > 0 ? radius : entry->default_radius;
+  mpr::AnyFilter f;
+  if (entry->name == "box")
+    f = mpr::BoxFilter(r);
+  else if (entry->name == "tent")
+    f = mpr::TentFilter(r);
+  else if (entry->name == "gaussian")
+    f = mpr::GaussianFilter(r);
+  else if (entry->name == "mitchell")
+    f = mpr::MitchellFilter(r);
+  else
+    f = mpr::LanczosFilter(r);
+  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), f);
+}
+
+/// One render job: the choices above plus the output.
+struct RenderJob {
+  Interpolation interpolation = Interpolation::synthetic_aperture;
+  double radius = 1;
+  int spp = 1;
+  std::string filter = "box";
+  double filter_radius = 0;
+  int threads = 0;
+};
+
+/// The views of a render, each into its tile (x, y, width, height) of the output.
+struct Tile {
+  const View* view;
+  mpr::Region region;
+};
+
+/// Renders every tile of `out` (8-bit sRGB or linear float pixels) from `frames` (defined in
+/// render_frames8.cpp and render_frames_linear.cpp: one unit per frame pixel type).
+template <class FramePx, class OutPx>
+void render_tiles(const std::shared_ptr<const mpr::CameraFrameSet<T, FramePx>>& frames, const RenderJob& job,
+                  std::span<const Tile> tiles, mpr::ImageView<OutPx> out);
+
+} // namespace mpr_py

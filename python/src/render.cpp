@@ -1,0 +1,94 @@
+// Rendering from Python: one view or a grid of views into a new numpy array, 8-bit sRGB or linear
+// float32, with the GIL released while rendering.
+
+#include "policies.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace mpr_py {
+namespace {
+
+RenderJob job_of(const std::string& interpolation, double radius, int spp, const std::string& filter,
+                 double filter_radius, int threads) {
+  RenderJob job;
+  job.interpolation = parse_interpolation(interpolation);
+  job.radius = radius;
+  job.spp = spp;
+  job.filter = filter;
+  job.filter_radius = filter_radius;
+  job.threads = threads;
+  (void)make_pixel_sampling(spp, filter, filter_radius); // errors before any pixel is written
+  return job;
+}
+
+template <class OutPx, class Channel>
+py::array render_into(const FrameSet& frames, const RenderJob& job, const std::vector<Tile>& tiles, int width,
+                      int height) {
+  py::array_t<Channel> out({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
+  auto* data = reinterpret_cast<OutPx*>(out.mutable_data());
+  if (static_cast<long>(tiles.size()) * tiles[0].region.width * tiles[0].region.height <
+      static_cast<long>(width) * height)
+    std::memset(data, 0, static_cast<std::size_t>(out.nbytes())); // tiles without a view stay black
+  {
+    py::gil_scoped_release release;
+    const mpr::ImageView<OutPx> view(data, width, height);
+    std::visit([&](const auto& set) { render_tiles(set, job, std::span<const Tile>(tiles), view); }, frames.frames);
+  }
+  return out;
+}
+
+py::array render_grid(const FrameSet& frames, const std::vector<View>& views, int width, int height, int columns,
+                      const std::string& interpolation, double radius, int spp, const std::string& filter,
+                      double filter_radius, bool linear, int threads) {
+  if (width < 1 || height < 1 || width > (1 << 15) || height > (1 << 15))
+    throw mpr::argument_error("width/height", "each must lie in [1, 32768] pixels");
+  if (views.empty()) throw mpr::argument_error("views", "no views");
+  if (columns < 1) throw mpr::argument_error("columns", "must be positive");
+  const RenderJob job = job_of(interpolation, radius, spp, filter, filter_radius, threads);
+  const int count = static_cast<int>(views.size());
+  const int cols = std::min(columns, count), rows = (count + cols - 1) / cols;
+  std::vector<Tile> tiles;
+  for (int k = 0; k < count; ++k)
+    tiles.push_back(
+        Tile{&views[static_cast<std::size_t>(k)], mpr::Region((k % cols) * width, (k / cols) * height, width, height)});
+  if (linear) return render_into<mpr::Color, float>(frames, job, tiles, cols * width, rows * height);
+  return render_into<mpr::Rgb8, std::uint8_t>(frames, job, tiles, cols * width, rows * height);
+}
+
+} // namespace
+
+void bind_render(py::module_& m) {
+  m.def(
+      "render",
+      [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation,
+         double radius, int spp, const std::string& filter, double filter_radius, bool linear, int threads) {
+        return render_grid(frames, {view}, width, height, 1, interpolation, radius, spp, filter, filter_radius, linear,
+                           threads);
+      },
+      py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
+      py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0, py::arg("spp") = 1,
+      py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
+      "Renders `view` of the light field into a new height x width x 3 array: uint8 sRGB codes, or float32 linear "
+      "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture' or 'cylinder' (cameras within `radius` "
+      "world units of the ray line); spp > 1 supersamples each pixel with Owen-scrambled Sobol points weighted by "
+      "`filter` ('box', 'tent', 'gaussian', 'mitchell', 'lanczos'; `filter_radius` pixels, 0: its default). "
+      "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering.");
+  m.def("render_views", &render_grid, py::arg("frames"), py::arg("views"), py::arg("width"), py::arg("height"),
+        py::arg("columns"), py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0,
+        py::arg("spp") = 1, py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false,
+        py::arg("threads") = 0,
+        "Renders several views into one image: view k into the tile (k % columns, k // columns) of width x height "
+        "pixels. Options as `render`.");
+  py::list names;
+  for (const InterpolationEntry& e : interpolations) names.append(std::string(e.name));
+  m.attr("interpolations") = names;
+  py::list filter_names;
+  for (const FilterEntry& e : filters) filter_names.append(std::string(e.name));
+  m.attr("filters") = filter_names;
+}
+
+} // namespace mpr_py
