@@ -9,6 +9,7 @@
 #include <mpr/lightfield.hpp>
 #include <mpr/mpr.hpp>
 #include <mpr/sampling.hpp>
+#include <mpr/scene.hpp>
 
 #include <cstdio>
 #include <exception>
@@ -87,6 +88,20 @@ void render_jobs(const std::filesystem::path& dir, const std::string& prefix, co
   render_job<decltype(full), mpr::PixelCentre, mpr::Rgb8>(dir / (prefix + "gallery_g.bin"), plane, g, full, {}, w, h);
 }
 
+/// The classroom through a pinhole at the back of the room, 64x48, pixel centres (8-bit) and 4
+/// Gaussian-filtered samples (linear).
+void render_classroom(const std::filesystem::path& dir) {
+  const mpr::SceneSampler<mpr::scene::Scene<T>, mpr::RayCast> sampler(mpr::scene::classroom<T>());
+  const auto camera = mpr::PinholeCamera<T>::look_at({0.5f, 1.6f, 8}, {0, 1.2f, -14}, {0, 1, 0}, 1.0f, 64, 48);
+  const mpr::PlanarSurface<T> plane = camera.image_plane(10);
+  const mpr::GlcSelector<T> glc = mpr::pinhole_glc(camera, plane);
+  const mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter> gauss(mpr::OwenSobol(4),
+                                                               mpr::AnyFilter(mpr::GaussianFilter(1.5)));
+  render_job<decltype(sampler), mpr::PixelCentre, mpr::Rgb8>(dir / "classroom8.bin", plane, glc, sampler, {}, 64, 48);
+  render_job<decltype(sampler), decltype(gauss), mpr::Color>(dir / "classroom_gauss4_linear.bin", plane, glc, sampler,
+                                                             gauss, 64, 48);
+}
+
 } // namespace
 
 int main(int argc, char** argv) try {
@@ -96,6 +111,7 @@ int main(int argc, char** argv) try {
   }
   const std::filesystem::path dir = argv[1];
   render_jobs(dir, "synth_", write_synthetic(dir), 4, 40, 30);
+  render_classroom(dir);
   if (argc == 3) render_jobs(dir, "real_", argv[2], 0.6f, 160, 120);
   std::printf("mpr_python_golden: wrote %s\n", dir.string().c_str());
   return 0;

@@ -9,6 +9,8 @@ Errors raise ValueError (bad arguments) or OSError (files) with mpr's one-line m
 from ._mpr import (  # noqa: F401
     Camera,
     FrameSet,
+    Scene,
+    classroom,
     View,
     classify,
     estimate_depth,
@@ -22,11 +24,17 @@ from ._mpr import (  # noqa: F401
     read_par,
     read_stanford,
     render,
+    render_scene,
     render_views,
 )
+
+try:  # with tinyobjloader only
+    from ._mpr import read_obj  # noqa: F401
+except ImportError:
+    pass
 
 __all__ = [
     "Camera", "FrameSet", "View", "classify", "estimate_depth", "filters", "frame_set", "gallery_ids",
     "interpolations", "project", "read_colmap", "read_lfca", "read_par", "read_stanford", "render",
-    "render_views",
+    "render_views", "Scene", "classroom", "render_scene",
 ]

@@ -49,6 +49,7 @@ void bind_lightfields(py::module_& m);
 void bind_cameras(py::module_& m);
 void bind_render(py::module_& m);
 void bind_depth(py::module_& m);
+void bind_scenes(py::module_& m);
 
 /// A numpy (3,) or (3, 3) float64 array as an Eigen value; throws ValueError naming `name` for a
 /// wrong shape.

@@ -8,6 +8,7 @@
 #include <mpr/glc/classify.hpp>
 #include <mpr/glc/gallery.hpp>
 #include <mpr/glc/project.hpp>
+#include <mpr/lightfield/array_view.hpp>
 
 #include <pybind11/stl.h>
 
@@ -167,6 +168,19 @@ void bind_cameras(py::module_& m) {
           py::arg("scale"),
           "GLC gallery view 'A'..'I' (perspective, orthographic, oblique, pushbroom, twisted orthographic x2, "
           "cross-slit, pencil, bilinear) on the plane, looking at a scene of size `scale` around `scene_centre`.")
+      .def(
+          "fit_to_array",
+          [](const View& v, const FrameSet& frames, const Camera& reference) {
+            return std::visit(
+                [&](const auto& f) {
+                  return View{v.plane, mpr::fit_to_array(v.plane, v.selector, mpr::array_footprint(*f, reference))};
+                },
+                frames.frames);
+          },
+          py::arg("frames"), py::arg("reference"),
+          "The light-field view this GLC stands for: the same focal-plane points, with the rays' crossings of the "
+          "camera plane rescaled to span the array of `frames` as seen from `reference` (so nearest-camera and "
+          "cylinder renders see the whole view).")
       .def_property_readonly("origin", [](const View& v) { return from_vec3(v.plane.origin()); })
       .def_property_readonly("width_vector", [](const View& v) { return from_vec3(v.plane.width_vector()); })
       .def_property_readonly("height_vector", [](const View& v) { return from_vec3(v.plane.height_vector()); })

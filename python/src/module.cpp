@@ -22,4 +22,5 @@ PYBIND11_MODULE(_mpr, m) {
   mpr_py::bind_cameras(m);
   mpr_py::bind_render(m);
   mpr_py::bind_depth(m);
+  mpr_py::bind_scenes(m);
 }

@@ -81,6 +81,15 @@ template <class Px>
 /// combined by a filter.
 using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>>;
 
+/// The filter `name` (an entry of `filters`) of radius `r` pixels.
+[[nodiscard]] inline mpr::AnyFilter make_filter(std::string_view name, double r) {
+  if (name == "box") return mpr::BoxFilter(r);
+  if (name == "tent") return mpr::TentFilter(r);
+  if (name == "gaussian") return mpr::GaussianFilter(r);
+  if (name == "mitchell") return mpr::MitchellFilter(r);
+  return mpr::LanczosFilter(r);
+}
+
 [[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, const std::string& filter, double radius) {
   if (spp < 1 || spp > 4096) throw mpr::argument_error("spp", "must lie in [1, 4096]");
   const FilterEntry* entry = nullptr;
@@ -92,18 +101,7 @@ using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr
     throw mpr::argument_error("filter_radius", "must lie in [0, 64] pixels (0: default)");
   if (spp == 1) return mpr::PixelCentre{};
   const double r = radius > 0 ? radius : entry->default_radius;
-  mpr::AnyFilter f;
-  if (entry->name == "box")
-    f = mpr::BoxFilter(r);
-  else if (entry->name == "tent")
-    f = mpr::TentFilter(r);
-  else if (entry->name == "gaussian")
-    f = mpr::GaussianFilter(r);
-  else if (entry->name == "mitchell")
-    f = mpr::MitchellFilter(r);
-  else
-    f = mpr::LanczosFilter(r);
-  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), f);
+  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), make_filter(entry->name, r));
 }
 
 /// One render job: the choices above plus the output.

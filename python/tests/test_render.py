@@ -60,3 +60,15 @@ def test_nearest_at_camera_reproduces_frame(golden):
     frames = mpr.read_par(golden / "synth_par.txt")
     image = mpr.render(frames, mpr.View.pinhole(frames.camera(4), 4.0), 40, 30, interpolation="nearest")
     assert np.array_equal(image, frames.image(4))
+
+
+def test_classroom_renders_equal_cpp(golden):
+    scene = mpr.classroom()
+    camera = mpr.Camera.look_at([0.5, 1.6, 8.0], [0.0, 1.2, -14.0], [0.0, 1.0, 0.0], 1.0, 64, 48)
+    view = mpr.View.pinhole(camera, 10.0)
+    rendered = {
+        "classroom8": mpr.render_scene(scene, view, 64, 48),
+        "classroom_gauss4_linear": mpr.render_scene(scene, view, 64, 48, spp=4, filter="gaussian", linear=True),
+    }
+    assert rendered["classroom8"].std() > 10
+    compare(golden, "", rendered)
