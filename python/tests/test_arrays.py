@@ -109,3 +109,34 @@ def test_classify_and_project_gallery():
     c = mpr.classify(pin)
     assert c["type"] == "pinhole"
     np.testing.assert_allclose(c["centre"], [0, 0, -2], atol=1e-5)
+
+
+def quaternion(R):
+    """(w, x, y, z) of a rotation matrix (trace > 0 branch; the test's cameras satisfy it)."""
+    w = np.sqrt(1.0 + np.trace(R)) / 2
+    return w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)
+
+
+def test_colmap_model_loads_to_the_par_cameras(golden, tmp_path):
+    par = mpr.read_par(golden / "synth_par.txt")
+    cameras, images = [], []
+    for i in range(len(par)):
+        c = par.camera(i)
+        assert np.trace(c.R) > 0
+        K = c.K
+        cameras.append(f"{i + 1} PINHOLE {c.width} {c.height} {K[0, 0]!r} {K[1, 1]!r} {K[0, 2] + 0.5!r} {K[1, 2] + 0.5!r}")
+        q = " ".join(repr(float(v)) for v in quaternion(c.R))
+        t = " ".join(repr(float(v)) for v in c.t)
+        images.append(f"{i + 1} {q} {t} {i + 1} {par.names[i]}\n")
+    (tmp_path / "cameras.txt").write_text("\n".join(cameras) + "\n")
+    (tmp_path / "images.txt").write_text("\n".join(images))
+    colmap = mpr.read_colmap(tmp_path, golden)
+    assert colmap.names == par.names
+    for i in range(len(par)):
+        np.testing.assert_allclose(colmap.camera(i).K, par.camera(i).K, rtol=1e-6)
+        np.testing.assert_allclose(colmap.camera(i).R, par.camera(i).R, atol=1e-6)
+        np.testing.assert_allclose(colmap.camera(i).t, par.camera(i).t, atol=1e-6)
+        assert np.array_equal(colmap.image(i), par.image(i))
+    (tmp_path / "images.txt").write_text("1 1 0 0 0 0 0 1 1 absent.png\n\n")
+    with pytest.raises(OSError, match=r"images\.txt: image absent\.png: mpr: .*absent\.png"):
+        mpr.read_colmap(tmp_path, golden)

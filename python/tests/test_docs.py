@@ -38,3 +38,15 @@ def test_doc_block_runs(index, tmp_path, monkeypatch, data_dir):
         depth = namespace["depth"]
         assert 0.45 - 1e-6 <= float(depth.min()) and float(depth.max()) <= 0.75 + 1e-6
         assert 0.52 < float(np.median(depth)) < 0.62
+
+
+def test_readme_refocus_runs(monkeypatch):
+    source = DOC.parents[1]
+    blocks = re.findall(r"```python\n(.*?)```", (source / "README.md").read_text(), re.S)
+    assert len(blocks) == 1 and len(blocks[0].strip().splitlines()) == 5
+    if not (source / ".." / "shared" / "data" / "stanford" / "chess").exists():
+        pytest.skip("real data not found (../shared/data from the source folder)")
+    monkeypatch.chdir(source)
+    namespace = {}
+    exec(compile(blocks[0], "README.md", "exec"), namespace)
+    assert namespace["image"].shape == (400, 700, 3)
