@@ -26,6 +26,7 @@ from ._mpr import (  # noqa: F401
     render,
     render_scene,
     render_views,
+    view_depth,
 )
 
 try:  # with tinyobjloader only
@@ -36,5 +37,5 @@ except ImportError:
 __all__ = [
     "Camera", "FrameSet", "View", "classify", "estimate_depth", "filters", "frame_set", "gallery_ids",
     "interpolations", "project", "read_colmap", "read_lfca", "read_par", "read_stanford", "render",
-    "render_views", "Scene", "classroom", "render_scene",
+    "render_views", "Scene", "classroom", "render_scene", "view_depth",
 ]

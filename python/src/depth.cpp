@@ -2,11 +2,15 @@
 
 #include "bindings.hpp"
 
+#include <mpr/core/renderer.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/view_depth.hpp>
 
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <optional>
+#include <type_traits>
 
 namespace mpr_py {
 namespace {
@@ -33,6 +37,25 @@ mpr::PlaneSweepConfig config_of(double near, double far, int planes, int neighbo
   return c;
 }
 
+py::array_t<float> view_depth(const FrameSet& frames, const View& view, int width, int height,
+                              const std::optional<mpr::PinholeCamera<T>>& along, int threads) {
+  if (width < 1 || height < 1 || width > (1 << 15) || height > (1 << 15))
+    throw mpr::argument_error("width/height", "each must lie in [1, 32768] pixels");
+  py::array_t<float> out({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)});
+  const mpr::ImageView<float> image(out.mutable_data(), width, height);
+  std::visit(
+      [&](const auto& set) {
+        using Px = typename std::remove_cvref_t<decltype(*set)>::pixel_type;
+        mpr::FrameDepthSampler<T, Px> sampler(set);
+        if (along) sampler = std::move(sampler).along_axis(*along);
+        py::gil_scoped_release release;
+        mpr::Renderer(view.plane, view.selector, sampler)
+            .render(image, mpr::Region(0, 0, width, height), mpr::RenderOptions{threads});
+      },
+      frames.frames);
+  return out;
+}
+
 } // namespace
 
 void bind_depth(py::module_& m) {
@@ -55,6 +78,12 @@ void bind_depth(py::module_& m) {
       "Plane-sweep depth of camera `camera` against its `neighbours` nearest cameras: returns (depth, confidence), "
       "two H x W float32 arrays; depth along the camera's optical axis in world units within [near, far], "
       "confidence in [0, 1]. The GIL is released while sweeping.");
+  m.def("view_depth", &view_depth, py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
+        py::arg("along") = py::none(), py::arg("threads") = 0,
+        "The depth of any view of a light field that carries depth maps (mpr-render --write-depth): a new height x "
+        "width float32 array, per pixel where the surface the cameras' depth maps describe meets the pixel's ray: "
+        "the ray parameter (signed distance in front of the view's image plane, world units), or with "
+        "`along=camera` the depth along that camera's optical axis; inf where no surface is found.");
 }
 
 } // namespace mpr_py

@@ -140,3 +140,27 @@ def test_colmap_model_loads_to_the_par_cameras(golden, tmp_path):
     (tmp_path / "images.txt").write_text("1 1 0 0 0 0 0 1 1 absent.png\n\n")
     with pytest.raises(OSError, match=r"images\.txt: image absent\.png: mpr: .*absent\.png"):
         mpr.read_colmap(tmp_path, golden)
+
+
+def plane_depth(camera, z_plane=0.0):
+    """Depth (camera z) of the world plane z = z_plane under every pixel: an analytic oracle."""
+    w, h = camera.width, camera.height
+    x, y = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
+    rays = np.stack([x, y, np.ones_like(x)], -1) @ np.linalg.inv(camera.K).T  # camera z = 1
+    world_z = rays @ camera.R[2]  # z component of R^T r, for each pixel
+    return ((z_plane - camera.centre[2]) / world_z).astype(np.float32)
+
+
+def test_view_depth_of_a_plane_matches_the_analytic_depth():
+    cams = [mpr.Camera.look_at([0.2 * (i - 1), 0.2 * (j - 1), -4], [0, 0, 0], [0, -1, 0], 0.6, 40, 30)
+            for j in range(3) for i in range(3)]
+    K, R, t = (np.stack([getattr(c, a) for c in cams]) for a in ("K", "R", "t"))
+    images = [np.full((30, 40, 3), 128, np.uint8) for _ in cams]
+    frames = mpr.frame_set(images, K, R, t, depths=[plane_depth(c) for c in cams])
+    centre = frames.camera(4)
+    view = mpr.View.pinhole(centre, 3.0)
+    depth = mpr.view_depth(frames, view, 40, 30, along=centre)
+    assert depth.shape == (30, 40) and depth.dtype == np.float32
+    np.testing.assert_allclose(depth, plane_depth(centre), rtol=2e-3)
+    with pytest.raises(ValueError):
+        mpr.view_depth(mpr.frame_set(images, K, R, t), view, 40, 30)  # no depth maps
