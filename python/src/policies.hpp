@@ -7,6 +7,7 @@
 
 #include <mpr/core/region.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>
+#include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/lightfield/synthetic_aperture.hpp>
@@ -22,7 +23,7 @@
 namespace mpr_py {
 
 /// The interpolations a light-field render can use.
-enum class Interpolation { nearest, synthetic_aperture, cylinder };
+enum class Interpolation { nearest, synthetic_aperture, cylinder, depth };
 
 struct InterpolationEntry {
   std::string_view name;
@@ -31,10 +32,11 @@ struct InterpolationEntry {
 };
 
 /// The table of interpolations: name -> policy (make_sampler maps each to its type).
-inline constexpr std::array<InterpolationEntry, 3> interpolations{{
+inline constexpr std::array<InterpolationEntry, 4> interpolations{{
     {"nearest", Interpolation::nearest, "the camera whose centre is nearest the ray"},
     {"synthetic_aperture", Interpolation::synthetic_aperture, "every camera that sees the focal point, averaged"},
     {"cylinder", Interpolation::cylinder, "cameras within `radius` (world units) of the ray line, averaged"},
+    {"depth", Interpolation::depth, "the cameras near the ray, blended at the surface their depth maps give"},
 }};
 
 struct FilterEntry {
@@ -55,13 +57,13 @@ inline constexpr std::array<FilterEntry, 5> filters{{
 [[nodiscard]] inline Interpolation parse_interpolation(const std::string& name) {
   for (const InterpolationEntry& e : interpolations)
     if (e.name == name) return e.value;
-  throw mpr::argument_error("interpolation", "'" + name + "' is not nearest, synthetic_aperture or cylinder");
+  throw mpr::argument_error("interpolation", "'" + name + "' is not nearest, synthetic_aperture, cylinder or depth");
 }
 
 template <class Px>
-using SamplerVariant = std::variant<mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>,
-                                    mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>,
-                                    mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>>;
+using SamplerVariant = std::variant<
+    mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>, mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>,
+    mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>, mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>>;
 
 template <class Px>
 [[nodiscard]] SamplerVariant<Px> make_sampler(std::shared_ptr<const mpr::CameraFrameSet<T, Px>> frames,
@@ -71,6 +73,11 @@ template <class Px>
     return mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(std::move(frames));
   case Interpolation::synthetic_aperture:
     return mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(std::move(frames));
+  case Interpolation::depth: {
+    mpr::DepthProxy proxy;
+    proxy.radius = radius;
+    return mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(std::move(frames), proxy);
+  }
   case Interpolation::cylinder:
     break;
   }

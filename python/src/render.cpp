@@ -75,8 +75,9 @@ void bind_render(py::module_& m) {
       py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0, py::arg("spp") = 1,
       py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
       "Renders `view` of the light field into a new height x width x 3 array: uint8 sRGB codes, or float32 linear "
-      "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture' or 'cylinder' (cameras within `radius` "
-      "world units of the ray line); spp > 1 supersamples each pixel with Owen-scrambled Sobol points weighted by "
+      "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture', 'cylinder' (cameras within `radius` "
+      "world units of the ray line) or 'depth' (needs depth maps: the cameras within `radius` of the ray, blended at "
+      "the surface the maps give); spp > 1 supersamples each pixel with Owen-scrambled Sobol points weighted by "
       "`filter` ('box', 'tent', 'gaussian', 'mitchell', 'lanczos'; `filter_radius` pixels, 0: its default). "
       "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering.");
   m.def("render_views", &render_grid, py::arg("frames"), py::arg("views"), py::arg("width"), py::arg("height"),

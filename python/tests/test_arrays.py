@@ -164,3 +164,29 @@ def test_view_depth_of_a_plane_matches_the_analytic_depth():
     np.testing.assert_allclose(depth, plane_depth(centre), rtol=2e-3)
     with pytest.raises(ValueError):
         mpr.view_depth(mpr.frame_set(images, K, R, t), view, 40, 30)  # no depth maps
+
+
+def checker_plane_image(camera):
+    """What `camera` sees of a checkered plane z = 0 (0.25 squares), computed analytically."""
+    w, h = camera.width, camera.height
+    x, y = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
+    rays = np.stack([x, y, np.ones_like(x)], -1) @ np.linalg.inv(camera.K).T @ camera.R  # world directions
+    points = camera.centre + plane_depth(camera)[..., None].astype(float) * rays
+    cells = (np.floor(points[..., 0] / 0.25) + np.floor(points[..., 1] / 0.25)) % 2
+    image = np.where(cells[..., None] > 0, 210, 30) * np.ones(3)
+    return np.ascontiguousarray(image.astype(np.uint8))
+
+
+def test_depth_interpolation_refocuses_onto_the_depth_maps():
+    cams = [mpr.Camera.look_at([0.2 * (i - 1), 0.2 * (j - 1), -4], [0, 0, 0], [0, -1, 0], 0.6, 80, 60)
+            for j in range(3) for i in range(3)]
+    K, R, t = (np.stack([getattr(c, a) for c in cams]) for a in ("K", "R", "t"))
+    images = [checker_plane_image(c) for c in cams]
+    frames = mpr.frame_set(images, K, R, t, depths=[plane_depth(c) for c in cams])
+    centre = frames.camera(4)
+    view = mpr.View.pinhole(centre, 2.0)  # focused far in front of the plane
+    wrong = np.abs(mpr.render(frames, view, 80, 60, interpolation="synthetic_aperture").astype(int) - images[4])
+    right = np.abs(mpr.render(frames, view, 80, 60, interpolation="depth", radius=0.5).astype(int) - images[4])
+    assert right.mean() < 0.5 * wrong.mean() and right.mean() < 6, (right.mean(), wrong.mean())
+    with pytest.raises(ValueError):
+        mpr.render(mpr.frame_set(images, K, R, t), view, 8, 8, interpolation="depth")
