@@ -2,10 +2,12 @@
 """python_render: the cost of calling mpr from Python.
 
 Renders the same 640x480 job (a refocus view of a 7x7 synthetic array of 640x480 frames, each
-interpolation) through `mpr.render` and timed inside C++ (`mpr._render_seconds`: the same dispatch
-and typed renderer, no Python in the loop), interleaved in one run, and prints the overhead of the
-Python call (from the minima: on a shared machine the medians carry the other jobs' noise). Then times building a frame set from 49 uint8 arrays and the memory it adds (the set
-copies the pixels: its images plus the texels its samplers read).
+interpolation without depth maps) timed inside C++ (`mpr._mpr._render_seconds`: the same dispatch
+and typed renderer into one reused image, no Python in the loop), through `mpr.render` into a new
+array, and through `mpr.render(..., out=)` into a reused one, interleaved in one run, and prints
+the overhead of each Python call from the minima (on a shared machine the medians carry the other
+jobs' noise). Then times building a frame set from 49 uint8 arrays and the memory it adds (the
+set copies the pixels: its images plus the texels its samplers read).
 
 usage: PYTHONPATH=<build>/python python3 benchmarks/python_render.py [--quick]
 """
@@ -57,19 +59,28 @@ def main():
     print(f"frame_set from {len(images)} uint8 arrays of {w}x{h}: {build_ms:.1f} ms, resident memory "
           f"+{added / 2**20:.1f} MiB for {array_bytes / 2**20:.1f} MiB of arrays (copied: images + texels)")
     view = mpr.View.pinhole(frames.camera(len(cams) // 2), 3.0)
-    print("| job | output | C++ ms (min / median) | Python ms (min / median) | overhead of the minima |")
-    print("|---|---|---|---|---|")
+    print("| job | output | C++ ms (min / median) | Python ms, new array (min / median) | overhead | "
+          "Python ms, out= (min / median) | overhead |")
+    print("|---|---|---|---|---|---|---|")
+    out = np.empty((h, w, 3), np.uint8)
     for interpolation in mpr.interpolations:
-        cpp, py = [], []
+        if interpolation == "depth":  # needs depth maps, which this array has not
+            continue
+        cpp, py, into = [], [], []
         mpr.render(frames, view, w, h, interpolation=interpolation)  # warm-up (tables, pages)
         for _ in range(repeats):
             cpp.append(1e3 * mpr._mpr._render_seconds(frames, view, w, h, interpolation, 1))
             start = time.perf_counter()
             mpr.render(frames, view, w, h, interpolation=interpolation)
             py.append(1e3 * (time.perf_counter() - start))
-        c, p = min(cpp), min(py)
+            start = time.perf_counter()
+            mpr.render(frames, view, w, h, interpolation=interpolation, out=out)
+            into.append(1e3 * (time.perf_counter() - start))
+        c, p, o = min(cpp), min(py), min(into)
         print(f"| {interpolation}, {len(cams)} cameras | {w}x{h} 8-bit | {c:.2f} / {statistics.median(cpp):.2f} | "
-              f"{p:.2f} / {statistics.median(py):.2f} | {100 * (p - c) / c:+.1f}% |")
+              f"{p:.2f} / {statistics.median(py):.2f} | {100 * (p - c) / c:+.1f}% | "
+              f"{o:.2f} / {statistics.median(into):.2f} | {100 * (o - c) / c:+.1f}% |")
+    print("python_render: done")
     return 0
 
 

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace mpr_py {
@@ -27,13 +29,31 @@ RenderJob job_of(const std::string& interpolation, double radius, int spp, const
   return job;
 }
 
+/// `given` when it is a writable C-contiguous height x width x 3 array of `Channel` (ValueError
+/// naming "out" otherwise), else a new array.
+template <class Channel>
+py::array_t<Channel> output_array(const std::optional<py::array>& given, int width, int height) {
+  const std::vector<py::ssize_t> shape{height, width, 3};
+  if (!given) return py::array_t<Channel>(shape);
+  const py::array& a = *given;
+  const char* dtype = std::is_same_v<Channel, float> ? "float32 (linear=True)" : "uint8";
+  if (!py::isinstance<py::array_t<Channel>>(a) || !a.dtype().is(py::dtype::of<Channel>()))
+    throw mpr::argument_error("out", std::string("dtype must be ") + dtype);
+  if (a.ndim() != 3 || a.shape(0) != height || a.shape(1) != width || a.shape(2) != 3)
+    throw mpr::argument_error("out",
+                              "shape must be (" + std::to_string(height) + ", " + std::to_string(width) + ", 3)");
+  if (!(a.flags() & py::array::c_style) || !a.writeable())
+    throw mpr::argument_error("out", "must be C-contiguous and writeable");
+  return py::reinterpret_borrow<py::array_t<Channel>>(a);
+}
+
 template <class OutPx, class Channel>
 py::array render_into(const FrameSet& frames, const RenderJob& job, const std::vector<Tile>& tiles, int width,
-                      int height) {
-  py::array_t<Channel> out({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
+                      int height, const std::optional<py::array>& given) {
+  py::array_t<Channel> out = output_array<Channel>(given, width, height);
   auto* data = reinterpret_cast<OutPx*>(out.mutable_data());
-  if (static_cast<long>(tiles.size()) * tiles[0].region.width * tiles[0].region.height <
-      static_cast<long>(width) * height)
+  if (!given && static_cast<long>(tiles.size()) * tiles[0].region.width * tiles[0].region.height <
+                    static_cast<long>(width) * height)
     std::memset(out.mutable_data(), 0, static_cast<std::size_t>(out.nbytes())); // tiles without a view stay black
   {
     py::gil_scoped_release release;
@@ -45,7 +65,7 @@ py::array render_into(const FrameSet& frames, const RenderJob& job, const std::v
 
 py::array render_grid(const FrameSet& frames, const std::vector<View>& views, int width, int height, int columns,
                       const std::string& interpolation, double radius, int spp, const std::string& filter,
-                      double filter_radius, bool linear, int threads) {
+                      double filter_radius, bool linear, int threads, const std::optional<py::array>& out) {
   if (width < 1 || height < 1 || width > (1 << 15) || height > (1 << 15))
     throw mpr::argument_error("width/height", "each must lie in [1, 32768] pixels");
   if (views.empty()) throw mpr::argument_error("views", "no views");
@@ -57,8 +77,8 @@ py::array render_grid(const FrameSet& frames, const std::vector<View>& views, in
   for (int k = 0; k < count; ++k)
     tiles.push_back(
         Tile{&views[static_cast<std::size_t>(k)], mpr::Region((k % cols) * width, (k / cols) * height, width, height)});
-  if (linear) return render_into<mpr::Color, float>(frames, job, tiles, cols * width, rows * height);
-  return render_into<mpr::Rgb8, std::uint8_t>(frames, job, tiles, cols * width, rows * height);
+  if (linear) return render_into<mpr::Color, float>(frames, job, tiles, cols * width, rows * height, out);
+  return render_into<mpr::Rgb8, std::uint8_t>(frames, job, tiles, cols * width, rows * height, out);
 }
 
 } // namespace
@@ -67,25 +87,29 @@ void bind_render(py::module_& m) {
   m.def(
       "render",
       [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation,
-         double radius, int spp, const std::string& filter, double filter_radius, bool linear, int threads) {
+         double radius, int spp, const std::string& filter, double filter_radius, bool linear, int threads,
+         const std::optional<py::array>& out) {
         return render_grid(frames, {view}, width, height, 1, interpolation, radius, spp, filter, filter_radius, linear,
-                           threads);
+                           threads, out);
       },
       py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
       py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0, py::arg("spp") = 1,
       py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
+      py::arg("out") = py::none(),
       "Renders `view` of the light field into a new height x width x 3 array: uint8 sRGB codes, or float32 linear "
       "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture', 'cylinder' (cameras within `radius` "
       "world units of the ray line) or 'depth' (needs depth maps: the cameras within `radius` of the ray, blended at "
       "the surface the maps give); spp > 1 supersamples each pixel with Owen-scrambled Sobol points weighted by "
       "`filter` ('box', 'tent', 'gaussian', 'mitchell', 'lanczos'; `filter_radius` pixels, 0: its default). "
-      "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering.");
+      "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering. "
+      "`out`: an existing C-contiguous array of the output's shape and dtype to render into (no allocation); it is "
+      "returned.");
   m.def("render_views", &render_grid, py::arg("frames"), py::arg("views"), py::arg("width"), py::arg("height"),
         py::arg("columns"), py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0,
         py::arg("spp") = 1, py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false,
-        py::arg("threads") = 0,
+        py::arg("threads") = 0, py::arg("out") = py::none(),
         "Renders several views into one image: view k into the tile (k % columns, k // columns) of width x height "
-        "pixels. Options as `render`.");
+        "pixels; tiles without a view are black in a new array and untouched in `out`. Options as `render`.");
   m.def(
       "_render_seconds",
       [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation, int repeats,

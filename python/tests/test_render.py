@@ -1,5 +1,7 @@
 """Each render through the module equals the C++ render of the same job, byte for byte."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -72,3 +74,20 @@ def test_classroom_renders_equal_cpp(golden):
     }
     assert rendered["classroom8"].std() > 10
     compare(golden, "", rendered)
+
+
+def test_render_into_out(golden):
+    frames = mpr.read_par(golden / "synth_par.txt")
+    view = mpr.View.pinhole(frames.camera(4), 4.0)
+    out = np.zeros((30, 40, 3), np.uint8)
+    returned = mpr.render(frames, view, 40, 30, out=out)
+    assert returned is out or np.shares_memory(returned, out)
+    assert np.array_equal(out, mpr.render(frames, view, 40, 30))
+    linear = np.zeros((30, 40, 3), np.float32)
+    mpr.render(frames, view, 40, 30, linear=True, out=linear)
+    assert np.array_equal(linear, mpr.render(frames, view, 40, 30, linear=True))
+    for bad, needle in [(np.zeros((30, 40, 3), np.float32), "dtype must be uint8"),
+                        (np.zeros((31, 40, 3), np.uint8), "shape must be (30, 40, 3)"),
+                        (np.zeros((30, 80, 3), np.uint8)[:, ::2], "C-contiguous")]:
+        with pytest.raises(ValueError, match=re.escape(needle)):
+            mpr.render(frames, view, 40, 30, out=bad)
