@@ -5,6 +5,7 @@
 // same for a view of its first camera (real data). The tests render the same jobs through the
 // module and compare every byte.
 
+#include <mpr/glc/finite_aperture.hpp>
 #include <mpr/glc/gallery.hpp>
 #include <mpr/lightfield.hpp>
 #include <mpr/mpr.hpp>
@@ -58,8 +59,8 @@ std::filesystem::path write_synthetic(const std::filesystem::path& dir) {
   return mpr::write_frame_set(dir, "synth", Set(std::move(cameras), std::move(images), std::move(names)));
 }
 
-template <class Sampler, class Sampling, class Px>
-void render_job(const std::filesystem::path& path, const mpr::PlanarSurface<T>& plane, const mpr::GlcSelector<T>& glc,
+template <class Sampler, class Sampling, class Px, class Selector>
+void render_job(const std::filesystem::path& path, const mpr::PlanarSurface<T>& plane, const Selector& glc,
                 const Sampler& sampler, const Sampling& sampling, int w, int h) {
   mpr::Image<Px> image(w, h);
   mpr::Renderer(plane, glc, sampler, sampling).render(image.view(), mpr::Region(0, 0, w, h));
@@ -82,6 +83,14 @@ void render_jobs(const std::filesystem::path& dir, const std::string& prefix, co
                                                               nearest, {}, w, h);
   render_job<decltype(cylinder), decltype(tent), mpr::Rgb8>(dir / (prefix + "cylinder_tent4.bin"), plane, glc, cylinder,
                                                             tent, w, h);
+  // A disc aperture of radius depth / 40 around the pinhole, lens plane one plane width behind the
+  // image plane, focused depth / 4 in front of it; 8 samples, box filter.
+  const mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter> box8(mpr::OwenSobol(8), mpr::AnyFilter(mpr::BoxFilter(0.5)));
+  const T lens_distance = plane.width_vector().norm();
+  const mpr::glc::FiniteAperture lens(plane, glc, mpr::glc::DiscAperture{}, depth / 40, lens_distance,
+                                      mpr::glc::focus_at_depth(lens_distance, depth / 4));
+  render_job<decltype(full), decltype(box8), mpr::Rgb8>(dir / (prefix + "disc_aperture8.bin"), plane, lens, full, box8,
+                                                        w, h);
   // Gallery view G (cross-slit) on the same plane, looking at the point 2 depths along the axis.
   const mpr::Vec3<T> target = c.centre() + 2 * depth * c.forward();
   const mpr::GlcSelector<T> g = mpr::glc::gallery_view('G', plane, target, depth);

@@ -6,6 +6,8 @@
 #include "bindings.hpp"
 
 #include <mpr/core/region.hpp>
+#include <mpr/glc/aperture.hpp>
+#include <mpr/glc/finite_aperture.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
 #include <mpr/lightfield/frame_sampler.hpp>
@@ -111,6 +113,19 @@ using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr
   return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), make_filter(entry->name, r));
 }
 
+/// The table of finite-aperture shapes (mpr-render's --aperture SHAPE): "none" is the pinhole.
+inline constexpr std::array<std::string_view, 4> apertures{{"none", "disc", "square", "gaussian"}};
+
+/// A finite aperture's shape, one alternative per policy type.
+using ApertureShapeVariant = std::variant<mpr::glc::DiscAperture, mpr::glc::SquareAperture, mpr::glc::GaussianAperture>;
+
+/// The shape of `apertures[index]` (index >= 1).
+[[nodiscard]] inline ApertureShapeVariant make_aperture_shape(std::size_t index) {
+  if (index == 1) return mpr::glc::DiscAperture{};
+  if (index == 2) return mpr::glc::SquareAperture{};
+  return mpr::glc::GaussianAperture{};
+}
+
 /// One render job: the choices above plus the output.
 struct RenderJob {
   Interpolation interpolation = Interpolation::synthetic_aperture;
@@ -119,6 +134,13 @@ struct RenderJob {
   std::string filter = "box";
   double filter_radius = 0;
   int threads = 0;
+  /// Index into `apertures` (0: pinhole), its size (radius, half side or sigma, world units),
+  /// the lens plane's distance behind the image plane (0: the plane's width) and the focus depth
+  /// in front of the image plane (0: on the image plane).
+  std::size_t aperture = 0;
+  double aperture_size = 0;
+  double lens_distance = 0;
+  double focus_depth = 0;
 };
 
 /// The views of a render, each into its tile (x, y, width, height) of the output.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -16,9 +17,32 @@
 namespace mpr_py {
 namespace {
 
+struct ApertureArgs {
+  std::string shape = "none";
+  double size = 0;
+  double lens_distance = 0;
+  double focus = 0;
+};
+
 RenderJob job_of(const std::string& interpolation, double radius, int spp, const std::string& filter,
-                 double filter_radius, int threads) {
+                 double filter_radius, int threads, const ApertureArgs& aperture = {}) {
   RenderJob job;
+  job.aperture = apertures.size();
+  for (std::size_t k = 0; k < apertures.size(); ++k)
+    if (apertures[k] == aperture.shape) job.aperture = k;
+  if (job.aperture == apertures.size())
+    throw mpr::argument_error("aperture", "'" + aperture.shape + "' is not none, disc, square or gaussian");
+  if (job.aperture != 0 && spp < 2)
+    throw mpr::argument_error("aperture", "a finite aperture needs spp > 1 (each sample gets its own aperture point)");
+  if (!(aperture.size >= 0) || !std::isfinite(aperture.size))
+    throw mpr::argument_error("aperture_size", "must be finite and >= 0");
+  if (!(aperture.lens_distance >= 0) || !std::isfinite(aperture.lens_distance))
+    throw mpr::argument_error("lens_distance", "must be finite and >= 0 (0: the image plane's width)");
+  if (!(aperture.focus >= 0) || !std::isfinite(aperture.focus))
+    throw mpr::argument_error("focus", "must be finite and >= 0 (0: on the image plane)");
+  job.aperture_size = aperture.size;
+  job.lens_distance = aperture.lens_distance;
+  job.focus_depth = aperture.focus;
   job.interpolation = parse_interpolation(interpolation);
   job.radius = radius;
   job.spp = spp;
@@ -65,12 +89,14 @@ py::array render_into(const FrameSet& frames, const RenderJob& job, const std::v
 
 py::array render_grid(const FrameSet& frames, const std::vector<View>& views, int width, int height, int columns,
                       const std::string& interpolation, double radius, int spp, const std::string& filter,
-                      double filter_radius, bool linear, int threads, const std::optional<py::array>& out) {
+                      double filter_radius, bool linear, int threads, const std::optional<py::array>& out,
+                      const std::string& aperture, double aperture_size, double lens_distance, double focus) {
   if (width < 1 || height < 1 || width > (1 << 15) || height > (1 << 15))
     throw mpr::argument_error("width/height", "each must lie in [1, 32768] pixels");
   if (views.empty()) throw mpr::argument_error("views", "no views");
   if (columns < 1) throw mpr::argument_error("columns", "must be positive");
-  const RenderJob job = job_of(interpolation, radius, spp, filter, filter_radius, threads);
+  const RenderJob job = job_of(interpolation, radius, spp, filter, filter_radius, threads,
+                               ApertureArgs{aperture, aperture_size, lens_distance, focus});
   const int count = static_cast<int>(views.size());
   const int cols = std::min(columns, count), rows = (count + cols - 1) / cols;
   std::vector<Tile> tiles;
@@ -88,14 +114,16 @@ void bind_render(py::module_& m) {
       "render",
       [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation,
          double radius, int spp, const std::string& filter, double filter_radius, bool linear, int threads,
-         const std::optional<py::array>& out) {
+         const std::optional<py::array>& out, const std::string& aperture, double aperture_size, double lens_distance,
+         double focus) {
         return render_grid(frames, {view}, width, height, 1, interpolation, radius, spp, filter, filter_radius, linear,
-                           threads, out);
+                           threads, out, aperture, aperture_size, lens_distance, focus);
       },
       py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
       py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0, py::arg("spp") = 1,
       py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
-      py::arg("out") = py::none(),
+      py::arg("out") = py::none(), py::arg("aperture") = "none", py::arg("aperture_size") = 0.0,
+      py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
       "Renders `view` of the light field into a new height x width x 3 array: uint8 sRGB codes, or float32 linear "
       "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture', 'cylinder' (cameras within `radius` "
       "world units of the ray line) or 'depth' (needs depth maps: the cameras within `radius` of the ray, blended at "
@@ -103,11 +131,15 @@ void bind_render(py::module_& m) {
       "`filter` ('box', 'tent', 'gaussian', 'mitchell', 'lanczos'; `filter_radius` pixels, 0: its default). "
       "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering. "
       "`out`: an existing C-contiguous array of the output's shape and dtype to render into (no allocation); it is "
-      "returned.");
+      "returned. `aperture` ('none', 'disc', 'square', 'gaussian'; needs spp > 1): a finite aperture around "
+      "the view's GLC (Adams and Levoy 2007) of `aperture_size` (radius, half side or sigma, world units) on a lens "
+      "plane `lens_distance` behind the image plane (0: the plane's width), focused `focus` in front of the image "
+      "plane (0: on it).");
   m.def("render_views", &render_grid, py::arg("frames"), py::arg("views"), py::arg("width"), py::arg("height"),
         py::arg("columns"), py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0,
         py::arg("spp") = 1, py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false,
-        py::arg("threads") = 0, py::arg("out") = py::none(),
+        py::arg("threads") = 0, py::arg("out") = py::none(), py::arg("aperture") = "none",
+        py::arg("aperture_size") = 0.0, py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
         "Renders several views into one image: view k into the tile (k % columns, k // columns) of width x height "
         "pixels; tiles without a view are black in a new array and untouched in `out`. Options as `render`.");
   m.def(

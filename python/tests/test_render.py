@@ -19,6 +19,10 @@ def jobs(frames, depth, w, h):
         "cylinder_tent4": mpr.render(frames, view, w, h, interpolation="cylinder", radius=0.25, spp=4,
                                      filter="tent"),
         "gallery_g": mpr.render(frames, gallery, w, h),
+        # float32 arithmetic, as the C++ job computes its sizes in float
+        "disc_aperture8": mpr.render(frames, view, w, h, spp=8, filter="box", aperture="disc",
+                                     aperture_size=float(np.float32(depth) / np.float32(40)),
+                                     focus=float(np.float32(depth) / np.float32(4))),
     }
 
 
@@ -91,3 +95,21 @@ def test_render_into_out(golden):
                         (np.zeros((30, 80, 3), np.uint8)[:, ::2], "C-contiguous")]:
         with pytest.raises(ValueError, match=re.escape(needle)):
             mpr.render(frames, view, 40, 30, out=bad)
+
+
+def test_aperture_errors(golden):
+    frames = mpr.read_par(golden / "synth_par.txt")
+    view = mpr.View.pinhole(frames.camera(4), 4.0)
+    with pytest.raises(ValueError, match="needs spp > 1"):
+        mpr.render(frames, view, 8, 8, aperture="disc", aperture_size=0.1)
+    with pytest.raises(ValueError, match="'hexagon' is not none"):
+        mpr.render(frames, view, 8, 8, spp=4, aperture="hexagon")
+    with pytest.raises(ValueError, match="invalid aperture_size"):
+        mpr.render(frames, view, 8, 8, spp=4, aperture="disc", aperture_size=-1)
+    # A zero-size aperture is the pinhole: the image without one (within a code: the renderer may
+    # take its per-ray path instead of the affine one).
+    a = mpr.render(frames, view, 40, 30, spp=4, aperture="square", aperture_size=0.0).astype(int)
+    assert np.abs(a - mpr.render(frames, view, 40, 30, spp=4)).max() <= 1
+    # An open aperture focused off the plane blurs: the image changes.
+    b = mpr.render(frames, view, 40, 30, spp=8, aperture="disc", aperture_size=0.2, focus=1.0).astype(int)
+    assert np.abs(b - a).mean() > 1
