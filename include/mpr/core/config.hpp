@@ -122,3 +122,21 @@
 #else
 #define MPR_BVH_PACKET_AVX512 0
 #endif
+
+// Optional portable SIMD libraries (docs/simd.md): 1 when their headers are on the include path
+// (Highway: libhwy-dev, xsimd: libxsimd-dev), else 0. lightfield/kernels/ holds the kernels
+// written with them; nothing else depends on them.
+#if !defined(MPR_HAVE_HWY)
+#if defined(__has_include) && __has_include(<hwy/highway.h>)
+#define MPR_HAVE_HWY 1
+#else
+#define MPR_HAVE_HWY 0
+#endif
+#endif
+#if !defined(MPR_HAVE_XSIMD)
+#if defined(__has_include) && __has_include(<xsimd/xsimd.hpp>)
+#define MPR_HAVE_XSIMD 1
+#else
+#define MPR_HAVE_XSIMD 0
+#endif
+#endif
