@@ -17,9 +17,10 @@
 /// (`hwy::GetChosenTarget()`, a symbol of libhwy.so). Only available when Highway's headers are
 /// (`MPR_HAVE_HWY`, core/config.hpp).
 
+#include <mpr/core/config.hpp>
+#if MPR_HAVE_HWY
 #ifndef MPR_LIGHTFIELD_KERNELS_LERP_ROW_HWY_OUTER
 #define MPR_LIGHTFIELD_KERNELS_LERP_ROW_HWY_OUTER
-#include <mpr/core/config.hpp>
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 
@@ -56,7 +57,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 /// `detail::lerp_row_portable` for 8-bit codes at this target: reads a[0, m + 3), writes
 /// h[0, m); `ahead` (nullptr: none) is prefetched a line per 64 codes.
 inline void lerp_row_codes(const std::uint8_t* HWY_RESTRICT a, const std::uint16_t* HWY_RESTRICT lut, float ax,
-                           float scale, float* HWY_RESTRICT h, std::size_t m, const std::uint8_t* ahead) {
+                           float scale, float* HWY_RESTRICT h, std::size_t m, const std::uint8_t* ahead) noexcept {
   const hn::ScalableTag<float> df;
   const hn::Rebind<std::int32_t, decltype(df)> di;
   const hn::Rebind<std::uint16_t, decltype(df)> d16;
@@ -97,35 +98,31 @@ namespace mpr::kernels {
 /// Whether `lerp_row_hwy` has a Highway target compiled for `level` (the byte-permute form of
 /// `avx512` counts as `avx512`): the targets of the build are Highway's `HWY_TARGETS`.
 [[nodiscard]] inline bool lerp_row_hwy_has(detail::SimdLevel level) noexcept {
-  switch (level) {
-  case detail::SimdLevel::avx512:
-    return (HWY_TARGETS & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
-  case detail::SimdLevel::avx2:
-    return (HWY_TARGETS & HWY_AVX2) != 0;
-  default:
-    return true;
-  }
+  if (level >= detail::SimdLevel::avx512) return (HWY_TARGETS & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
+  if (level >= detail::SimdLevel::avx2) return (HWY_TARGETS & HWY_AVX2) != 0;
+  return true;
 }
 
-/// `detail::lerp_row_portable` for 8-bit codes, the Highway kernel compiled for `level` (with
-/// `vbmi`, its AVX-512 VBMI target where the build has it): `avx512` runs the AVX3 target,
-/// `avx2` the AVX2 one, `portable` SSE4 when the CPU has SSE4.2, else the build's baseline.
-/// A level the build has no target for falls to the best lower one. Precondition: the CPU runs
-/// `level`.
+/// `detail::lerp_row_portable` for 8-bit codes, the Highway kernel compiled for `level`: levels
+/// above `avx512` (AVX-512 with VBMI) or `avx512` with `vbmi` run the AVX3_DL target, `avx512`
+/// the AVX3 one, `avx2` the AVX2 one, `portable` SSE4 when the CPU has SSE4.2, else the build's
+/// baseline. A level the build has no target for falls to the best lower one. Precondition: the
+/// CPU runs `level` (and VBMI with `vbmi`).
 inline void lerp_row_hwy(const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
                          std::size_t m, const std::uint8_t* ahead = nullptr,
-                         detail::SimdLevel level = detail::simd_level(), bool vbmi = detail::cpu_has_avx512_vbmi()) {
+                         detail::SimdLevel level = detail::simd_level(), bool vbmi = false) noexcept {
 #if HWY_ARCH_X86
-  if (level == detail::SimdLevel::avx512) {
+  const int rank = static_cast<int>(level), avx512 = static_cast<int>(detail::SimdLevel::avx512);
+  if (rank >= avx512) {
 #if HWY_TARGETS & HWY_AVX3_DL
-    if (vbmi) return N_AVX3_DL::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
+    if (vbmi || rank > avx512) return N_AVX3_DL::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
 #endif
 #if HWY_TARGETS & HWY_AVX3
     return N_AVX3::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
 #endif
   }
 #if HWY_TARGETS & HWY_AVX2
-  if (level >= detail::SimdLevel::avx2) return N_AVX2::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
+  if (rank >= static_cast<int>(detail::SimdLevel::avx2)) return N_AVX2::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
 #endif
 #if HWY_TARGETS & HWY_SSE4
   if (__builtin_cpu_supports("sse4.2")) return N_SSE4::lerp_row_codes(a, lut, ax, scale, h, m, ahead);
@@ -138,3 +135,4 @@ inline void lerp_row_hwy(const std::uint8_t* a, const std::uint16_t* lut, float 
 
 } // namespace mpr::kernels
 #endif
+#endif // MPR_HAVE_HWY

@@ -9,6 +9,7 @@
 /// are (`MPR_HAVE_XSIMD`, core/config.hpp).
 
 #include <mpr/core/config.hpp>
+#if MPR_HAVE_XSIMD
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 
@@ -30,9 +31,8 @@ void lerp_row_codes_xsimd(A, const std::uint8_t* MPR_RESTRICT a, const std::uint
   using I = xsimd::batch<std::int32_t, A>;
   constexpr std::size_t lanes = F::size;
   alignas(64) float table[256];
-  for (std::size_t k = 0; k < 256; k += lanes)
-    xsimd::batch_cast<float>(xsimd::load_as<std::int32_t, A>(lut + k, xsimd::unaligned_mode{}))
-        .store_aligned(table + k);
+  // (A plain loop: xsimd's AVX-512 int-to-float cast trips GCC 12's -Wuninitialized, bug 105593.)
+  for (std::size_t k = 0; k < 256; ++k) table[k] = static_cast<float>(lut[k]);
   const F w0((1 - ax) * scale), w1(ax * scale);
   constexpr std::size_t kBlock = 512; // channels a step
   alignas(64) float value[kBlock + 3 + lanes];
@@ -42,27 +42,20 @@ void lerp_row_codes_xsimd(A, const std::uint8_t* MPR_RESTRICT a, const std::uint
     if (ahead != nullptr)
       for (std::size_t b = 0; b < n; b += 64) detail::prefetch_l2(ahead, j0 + b);
     std::size_t k = 0;
-    for (; k + lanes <= codes; k += lanes)
-      F::gather(table, xsimd::load_as<std::int32_t, A>(src + k, xsimd::unaligned_mode{})).store_aligned(value + k);
+    for (; k + lanes <= codes; k += lanes) F::gather(table, I::load_unaligned(src + k)).store_aligned(value + k);
     for (; k < codes; ++k) value[k] = table[src[k]];
     std::size_t j = 0;
     for (; j + lanes <= n; j += lanes)
       xsimd::fma(w1, F::load_unaligned(value + j + 3), w0 * F::load_aligned(value + j)).store_unaligned(h + j0 + j);
     for (; j < n; ++j) h[j0 + j] = (1 - ax) * scale * value[j] + ax * scale * value[j + 3];
   }
-  (void)I::size;
 }
 
 /// Whether the build has an xsimd architecture for `level` (the flags' own: see the file note).
 [[nodiscard]] constexpr bool lerp_row_xsimd_has(detail::SimdLevel level) noexcept {
-  switch (level) {
-  case detail::SimdLevel::avx512:
-    return XSIMD_WITH_AVX512BW != 0;
-  case detail::SimdLevel::avx2:
-    return XSIMD_WITH_FMA3_AVX2 != 0;
-  default:
-    return true;
-  }
+  if (level >= detail::SimdLevel::avx512) return XSIMD_WITH_AVX512BW != 0;
+  if (level >= detail::SimdLevel::avx2) return XSIMD_WITH_FMA3_AVX2 != 0;
+  return true;
 }
 
 /// `lerp_row_codes_xsimd` at the widest architecture of the build up to `level`: AVX-512BW,
@@ -87,3 +80,4 @@ inline void lerp_row_xsimd(const std::uint8_t* a, const std::uint16_t* lut, floa
 }
 
 } // namespace mpr::kernels
+#endif // MPR_HAVE_XSIMD
