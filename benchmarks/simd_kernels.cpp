@@ -1,11 +1,11 @@
 // The synthetic aperture's fractional-shift row (8-bit codes decoded to linear light and
 // interpolated at a fixed sub-pixel offset) in each implementation, at every level this CPU runs,
-// in one run with the methods interleaved: mpr's own kernels (`detail::lerp_row`: the plain loop
-// compiled per level, and the hand-written AVX-512 and VBMI steps), the Highway kernel and the
-// xsimd kernel (lightfield/kernels/). 1 thread, thread CPU time; the workload is Chess-sized:
-// 49 views x 800 rows of 1400 RGB pixels a "frame", over 256 distinct camera rows (1 MiB).
-// Also prints each kernel's largest difference from the plain loop (in units of the largest
-// value). See docs/simd.md.
+// in one run with the methods interleaved: mpr's own kernels (`detail::lerp_row_portable`, the
+// plain loop compiled per level by `run_at`, and the hand-written AVX-512 and VBMI steps), the
+// Highway kernel and the xsimd kernel (lightfield/kernels/). 1 thread, thread CPU time; the
+// workload is Chess-sized: 49 views x 800 rows of 1400 RGB pixels a "frame", over 256 distinct
+// camera rows (1 MiB). Also prints each kernel's largest difference from the plain loop (in
+// units of the largest value). See docs/simd.md.
 
 #include "bench_common.hpp"
 
@@ -62,7 +62,11 @@ std::vector<Method> methods() {
   namespace d = mpr::detail;
   std::vector<Method> out;
   const SimdLevel best = d::cpu_simd_level();
-  const bool vbmi = d::cpu_has_avx512_vbmi();
+#if defined(MPR_SIMD_X86)
+  const bool vbmi = best >= SimdLevel::avx512 && __builtin_cpu_supports("avx512vbmi");
+#else
+  const bool vbmi = false;
+#endif
   for (SimdLevel level : {SimdLevel::portable, SimdLevel::avx2, SimdLevel::avx512}) {
     if (level > best) break;
     const std::string tag = d::simd_level_name(level);
@@ -78,7 +82,7 @@ std::vector<Method> methods() {
 #endif
     } else {
       out.emplace_back("mpr " + tag, [level](auto a, auto lut, float ax, float s, float* h, std::size_t m, auto ahead) {
-        d::lerp_row(a, lut, ax, s, h, m, ahead, level);
+        d::run_at(level, [&]() MPR_INLINE_LAMBDA { d::lerp_row_portable(a, lut, ax, s, h, m, ahead); });
       });
     }
 #if MPR_HAVE_HWY
@@ -110,8 +114,8 @@ std::vector<Method> methods() {
 int main(int argc, char** argv) {
   const bool quick = mpr_bench::quick_mode(argc, argv);
   std::printf("%s\n", mpr_bench::machine_description().c_str());
-  std::printf("cpu level: %s%s, load average: %s\n", mpr::detail::simd_level_name(mpr::detail::cpu_simd_level()),
-              mpr::detail::cpu_has_avx512_vbmi() ? " + vbmi" : "", load_average().c_str());
+  std::printf("cpu level: %s%s, load average: %s\n", mpr::detail::simd_level_name(mpr::detail::cpu_simd_level()), "",
+              load_average().c_str());
   constexpr std::size_t kPixels = 1400, kRows = 256;
   constexpr std::size_t m = 3 * kPixels, stride = m + 64;
   const int frame_rows = quick ? 49 : 49 * 800, repeats = quick ? 1 : 9;
