@@ -12,6 +12,10 @@
 /// |                 |                              | program is compiled with OpenMP              |
 /// | `MPR_BVH_SSE`   | 1 with SSE2 (x86-64), else 0 | 0: the BVH walks with its portable kernels   |
 /// |                 |                              | only (same hits; slower)                     |
+/// | `MPR_HAVE_HWY`  | 1 when <hwy/highway.h> is    | 0: the Highway kernels are left out          |
+/// |                 | found, else 0                | (lightfield/kernels/, docs/simd.md)          |
+/// | `MPR_HAVE_XSIMD`| 1 when <xsimd/xsimd.hpp> is  | 0: the xsimd kernel is left out              |
+/// |                 | found, else 0                |                                              |
 ///
 /// Derived from the compiler and the settings above (not to be defined by users):
 ///
