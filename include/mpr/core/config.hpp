@@ -12,6 +12,10 @@
 /// |                 |                              | program is compiled with OpenMP              |
 /// | `MPR_BVH_SSE`   | 1 with SSE2 (x86-64), else 0 | 0: the BVH walks with its portable kernels   |
 /// |                 |                              | only (same hits; slower)                     |
+/// | `MPR_HAVE_HWY`  | 1 when <hwy/highway.h> is    | 0: the Highway kernels are left out          |
+/// |                 | found, else 0                | (lightfield/kernels/, docs/simd.md)          |
+/// | `MPR_HAVE_XSIMD`| 1 when <xsimd/xsimd.hpp> is  | 0: the xsimd kernel is left out              |
+/// |                 | found, else 0                |                                              |
 ///
 /// Derived from the compiler and the settings above (not to be defined by users):
 ///
@@ -121,4 +125,22 @@
 #define MPR_BVH_PACKET_AVX512 1
 #else
 #define MPR_BVH_PACKET_AVX512 0
+#endif
+
+// Optional portable SIMD libraries (docs/simd.md): 1 when their headers are on the include path
+// (Highway: libhwy-dev, xsimd: libxsimd-dev), else 0. lightfield/kernels/ holds the kernels
+// written with them; nothing else depends on them.
+#if !defined(MPR_HAVE_HWY)
+#if defined(__has_include) && __has_include(<hwy/highway.h>)
+#define MPR_HAVE_HWY 1
+#else
+#define MPR_HAVE_HWY 0
+#endif
+#endif
+#if !defined(MPR_HAVE_XSIMD)
+#if defined(__has_include) && __has_include(<xsimd/xsimd.hpp>)
+#define MPR_HAVE_XSIMD 1
+#else
+#define MPR_HAVE_XSIMD 0
+#endif
 #endif

@@ -21,6 +21,7 @@
 #include <mpr/core/simd.hpp>
 #include <mpr/geometry/detail/plane_kernels.hpp>
 #include <mpr/lightfield/detail/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 
 namespace mpr::detail {
 
@@ -169,7 +170,8 @@ MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const
 #endif
 
 /// `lerp_row_portable` at `level`, with the hand-written AVX-512 step for 8-bit codes (its VBMI
-/// form where the CPU has it).
+/// form where the CPU has it), and below AVX-512 for 8-bit codes the Highway kernel
+/// (kernels/lerp_row_hwy.hpp) when Highway is present.
 template <class C>
 inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale, float* h, std::size_t m,
                      const C* ahead = nullptr, SimdLevel level = simd_level()) noexcept {
@@ -178,6 +180,9 @@ inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale
     if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m, ahead);
     if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m, ahead);
   }
+#endif
+#if MPR_HAVE_HWY // below AVX-512: the Highway row (docs/simd.md)
+  if constexpr (std::is_same_v<C, std::uint8_t>) return kernels::lerp_row_hwy(a, lut, ax, scale, h, m, ahead, level);
 #endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { lerp_row_portable(a, lut, ax, scale, h, m, ahead); });
 }

@@ -36,12 +36,16 @@ MPR_ALWAYS_INLINE void resample_row_portable(const C* MPR_RESTRICT row, std::siz
                                              const std::uint16_t* MPR_RESTRICT lut, double x, double s, float scale,
                                              float* MPR_RESTRICT h, std::size_t n, const C* ahead = nullptr) noexcept {
   const double last_pair = static_cast<double>(texels) - 2;
-  const double j_first = std::clamp(std::floor(x), 0.0, last_pair);
+  // floor(v) for v >= 0 (x >= 0, s > 0) by truncation: no libm call where the baseline (SSE2)
+  // has no rounding instruction.
+  const auto floor_of = [](double v) noexcept { return static_cast<double>(static_cast<long long>(v)); };
+  const double j_first = std::clamp(floor_of(x), 0.0, last_pair);
+  const std::size_t span = 48 * sizeof(C) * static_cast<std::size_t>(std::ceil(s)) + 6 * sizeof(C);
   for (std::size_t i = 0; i < n; ++i) {
     const double xi = x + s * static_cast<double>(i);
-    const double j = std::clamp(std::floor(xi), 0.0, last_pair);
+    const double j = std::clamp(floor_of(xi), 0.0, last_pair);
     if (ahead != nullptr && i % 16 == 0) // the next 16 pixels' texels in the next row
-      for (std::size_t b = 0; b < 48 * sizeof(C) * static_cast<std::size_t>(std::ceil(s)) + 6 * sizeof(C); b += 64)
+      for (std::size_t b = 0; b < span; b += 64)
         prefetch_l2(ahead, 3 * static_cast<std::size_t>(j - j_first) * sizeof(C) + b);
     const float f = static_cast<float>(std::clamp(xi - j, 0.0, 1.0));
     const C* a = row + 3 * static_cast<std::size_t>(j);
@@ -195,8 +199,7 @@ inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* 
     if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep)
       return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n, ahead);
 #endif
-  (void)level;
-  resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead);
+  run_at(level, [&]() MPR_INLINE_LAMBDA { resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead); });
 }
 
 } // namespace mpr::detail
