@@ -25,7 +25,8 @@ cores). Usage, from the repository root:
 --levels runs each mutation's tests once per SIMD level the CPU has (MPR_SIMD=portable, avx2,
 avx512, avx512vbmi; core/simd.hpp), rebuilding once, and the table has a column per level saying
 which test caught the mutation there: a mutation counts as caught only when every level catches
-it (a kernel bug in a path the CPU takes only at one level shows as MISSED at the others).
+it. A mutation of code that exists only at some levels (an AVX-512 kernel; `levels=` or
+LEVELS_OF_FILE) is run at those only, the others marked "not its code's level".
 
 Exit status 0 when every mutation was caught. Python 3.8+, no packages beyond the standard
 library; needs cmake, ctest and a compiler (ccache used when installed).
@@ -65,10 +66,12 @@ CLI_TESTS = ["mpr_render_help", "mpr_render_bad_option", "mpr_render_bad_option_
              "mpr_render_print_camera"]
 
 
-def M(name, area, edits, tests, why):
+def M(name, area, edits, tests, why, levels=None):
     """A mutation: `edits` is a list of (file, old, new) or (file, old, new, occurrence); without
-    an occurrence every occurrence of `old` is replaced, with one only that (0-based) one."""
-    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why}
+    an occurrence every occurrence of `old` is replaced, with one only that (0-based) one.
+    `levels`: the SIMD levels whose code the edit changes, where it is not every level (a kernel
+    that exists only for AVX-512); with --levels the others are not run for it."""
+    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why, "levels": levels}
 
 
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
@@ -135,7 +138,8 @@ MUTATIONS = [
     M("srgb_split_one_step_late", "core",
       [("include/mpr/core/color.hpp", "static_cast<std::uint32_t>(code) | (split << 8)",
         "static_cast<std::uint32_t>(code) | ((split + 1) << 8)")],
-      ["core"], "the one-gather sRGB encoder's in-bin threshold one 2^-23 step late"),
+      ["core"], "the one-gather sRGB encoder's in-bin threshold one 2^-23 step late",
+      levels=["avx512", "avx512vbmi"]),
     M("shift_tile_blend_weights_swapped", "lightfield",
       [("include/mpr/lightfield/detail/decode_vbmi.hpp",
         "const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);",
@@ -191,7 +195,8 @@ MUTATIONS = [
       ["lightfield"], "the register sum of the cameras' whole-pixel shifts leaves out the last camera of each pass"),
     M("weight_steps_scan_half_vector", "lightfield",
       [("include/mpr/lightfield/frame_tiles.hpp", "plus_shifted<8>(plus_shifted<4>(", "(plus_shifted<4>(")],
-      ["lightfield"], "the vectorised running count of a tile's weights sums only within each half vector"),
+      ["lightfield"], "the vectorised running count of a tile's weights sums only within each half vector",
+      levels=["avx512", "avx512vbmi"]),
     M("border_row_reads_second_row", "lightfield",
       [("include/mpr/lightfield/frame_runs.hpp", "const int row_a = std::clamp(iy, 0, c.height - 1)",
         "const int row_a = std::clamp(iy, 1, c.height - 1)")],
@@ -368,6 +373,21 @@ def cpu_simd_levels():
         out.append(name)
     return out
 
+# Files whose code runs only at some SIMD levels: a mutation that edits only these is run (with
+# --levels) at those levels, unless it names its own.
+_AVX512_UP = ["avx512", "avx512vbmi"]
+LEVELS_OF_FILE = {
+    "include/mpr/lightfield/detail/decode_vbmi.hpp": ["avx512vbmi"],
+    DWL: _AVX512_UP,
+    DLN: _AVX512_UP,
+    "include/mpr/lightfield/detail/depth_weigh_lanes.hpp": _AVX512_UP,
+    "include/mpr/lightfield/detail/depth_proxy_lanes.hpp": _AVX512_UP,
+}
+for _m in MUTATIONS:
+    _files = {e[0] for e in _m["edits"]}
+    if _m["levels"] is None and all(f in LEVELS_OF_FILE for f in _files):
+        _m["levels"] = sorted({lv for f in _files for lv in LEVELS_OF_FILE[f]}, key=_AVX512_UP.index)
+
 
 def run(cmd, cwd, log, timeout=None, env=None):
     with open(log, "a") as out:
@@ -543,6 +563,9 @@ def main():
         cells = []  # (text, caught) per level
         try:
             for level in levels:
+                if level and m["levels"] and level not in m["levels"]:
+                    cells.append(("not its code's level", True))
+                    continue
                 ok, failed = build_and_test(m["tests"], args.jobs, log, stop_at_first=not args.all, level=level)
                 if not ok:
                     cells = [("DOES NOT COMPILE", False)] * len(levels)
