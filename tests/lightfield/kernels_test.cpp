@@ -640,7 +640,7 @@ TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated 
   CHECK(failures == 0);
   CHECK(runs > 0);
 #else
-  WARN("not an x86 build: the one-pass weighted row kernel is not compiled");
+  SUCCEED("not an x86 build: the one-pass weighted row kernel is not compiled");
 #endif
 }
 
