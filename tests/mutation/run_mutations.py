@@ -401,18 +401,34 @@ def run(cmd, cwd, log, timeout=None, env=None):
             return 124
 
 
+def _copy_if_changed(src, dst):
+    """Leaves dst alone when it already holds src's bytes; else copies with a fresh time stamp, so
+    that the build redoes what depends on it (a file restored after the last run's final
+    mutation is newer than the objects built from the mutated text; copying the tree's older
+    time stamp over it would leave those objects, and the mutation, in the baseline)."""
+    try:
+        if Path(dst).read_bytes() == Path(src).read_bytes():
+            return dst
+    except OSError:
+        pass
+    return shutil.copy(src, dst)
+
+
 def copy_tree():
-    """Copies the working tree (without .git and build/) over SRC, keeping SRC/build."""
-    if SRC.exists():
-        for entry in SRC.iterdir():
-            if entry.name == "build":
-                continue
-            if entry.is_dir() and not entry.is_symlink():
-                shutil.rmtree(entry)
-            else:
-                entry.unlink()
+    """Copies the working tree (without .git and build/) over SRC, keeping SRC/build and the
+    time stamps of unchanged files; files gone from the tree are removed."""
     ignore = shutil.ignore_patterns(".git", "build")
-    shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True)
+    if SRC.exists():
+        for path in sorted(SRC.rglob("*"), reverse=True):
+            rel = path.relative_to(SRC)
+            if rel.parts[0] == "build":
+                continue
+            if not (ROOT / rel).exists() and not (ROOT / rel).is_symlink():
+                if path.is_dir() and not path.is_symlink():
+                    shutil.rmtree(path)
+                else:
+                    path.unlink()
+    shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True, copy_function=_copy_if_changed)
 
 
 def configure(log):
