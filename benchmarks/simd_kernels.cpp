@@ -63,7 +63,7 @@ std::vector<Method> methods() {
   std::vector<Method> out;
   const SimdLevel best = d::cpu_simd_level();
 #if defined(MPR_SIMD_X86)
-  const bool vbmi = best >= SimdLevel::avx512 && __builtin_cpu_supports("avx512vbmi");
+  const bool vbmi = best >= SimdLevel::avx512vbmi;
 #else
   const bool vbmi = false;
 #endif

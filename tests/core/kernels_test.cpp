@@ -8,6 +8,7 @@
 #include <mpr/core/detail/kernels.hpp>
 #include <mpr/core/simd.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -36,7 +37,8 @@ TEST_CASE("run_at compiles a body for the level it is asked for and tells it whi
     int plain = 0;
     mpr::detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA { seen = decltype(tag)::value; });
     mpr::detail::run_at(level, [&]() MPR_INLINE_LAMBDA { ++plain; });
-    CHECK(seen == level);
+    // avx512vbmi runs the avx512 body: its VBMI steps are kernels of their own.
+    CHECK(seen == std::min(level, SimdLevel::avx512));
     CHECK(plain == 1);
   });
   CHECK(mpr_test::simd_levels().front() == SimdLevel::portable);
@@ -62,7 +64,7 @@ TEST_CASE("sRGB row step: a multiple of 16 channels at AVX-512, none elsewhere, 
     for (const std::size_t m : {std::size_t{0}, std::size_t{15}, std::size_t{16}, std::size_t{47}, in.size()}) {
       std::vector<std::uint8_t> out(m + 16, 7);
       const std::size_t done = step_at(level, in.data(), out.data(), m);
-      CHECK(done == (level == SimdLevel::avx512 ? m - m % 16 : 0));
+      CHECK(done == (level >= SimdLevel::avx512 ? m - m % 16 : 0));
       int wrong = 0;
       for (std::size_t j = 0; j < done; ++j) wrong += out[j] != mpr::linear_to_srgb8(in[j]) ? 1 : 0;
       CHECK(wrong == 0);

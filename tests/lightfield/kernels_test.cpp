@@ -428,7 +428,8 @@ void report(const std::string& what) {
 
 TEST_CASE("simd_level picks the widest kernel set the CPU runs", "[camera_frame_kernels]") {
   const std::vector<Kernel> available = kernels();
-  INFO("kernels: portable" << (cpu_avx2() ? ", avx2" : "") << (cpu_avx512() ? ", avx512" : ""));
+  INFO("kernels: portable" << (cpu_avx2() ? ", avx2" : "") << (cpu_avx512() ? ", avx512" : "")
+                           << (mpr_test::runs(Kernel::avx512vbmi) ? ", avx512vbmi" : ""));
   const char* limit = std::getenv("MPR_SIMD");
   if (limit == nullptr) {
     CHECK(dispatched() == available.back());
@@ -552,27 +553,15 @@ TEMPLATE_TEST_CASE("lerp_row and blend_rows: the separable shift-and-add at ever
       for (float& w : rw) w = unit(rng) < 0.2 ? 0.0f : static_cast<float>(unit(rng));
       std::vector<float> acc0(m + kGuard, kSentinel<float>);
       for (std::size_t j = 0; j < m; ++j) acc0[j] = static_cast<float>(unit(rng));
-      // Every level, and on a CPU with VBMI (whose avx512 level decodes with byte permutes) the
-      // word-permute AVX-512 kernel of CPUs without it as well (`plain512`).
-      std::vector<std::pair<Kernel, bool>> variants;
-      for (const Kernel k : kernels()) variants.push_back({k, false});
-#if defined(MPR_SIMD_X86)
-      if (std::is_same_v<C, std::uint8_t> && cpu_avx512() && mpr::detail::cpu_has_avx512_vbmi())
-        variants.push_back({Kernel::avx512, true});
-#endif
-      for (const std::pair<Kernel, bool>& variant : variants)
+      // Every level: `avx512` runs the word-permute AVX-512 kernel of CPUs without VBMI,
+      // `avx512vbmi` the byte-permute one.
+      for (const Kernel k : kernels())
         for (int weighted = 0; weighted < 2; ++weighted) {
-          const Kernel k = variant.first;
-          const bool plain512 = variant.second;
-          INFO((plain512 ? "AVX-512 without VBMI" : kernel_name(k)));
+          INFO(kernel_name(k));
           std::vector<float> h0(m + kGuard, kSentinel<float>), h1(m + kGuard, kSentinel<float>);
           // The weighted runs also ask for the other row ahead (a prefetch: the same values).
           const auto lerp = [&](const std::vector<C>& row, std::vector<float>& h, const std::vector<C>& other) {
             const C* ahead = weighted ? other.data() : nullptr;
-#if defined(MPR_SIMD_X86)
-            if constexpr (std::is_same_v<C, std::uint8_t>)
-              if (plain512) return mpr::detail::lerp_row_codes_avx512(row.data(), lut, ax, scale, h.data(), m, ahead);
-#endif
             mpr::detail::lerp_row(row.data(), lut, ax, scale, h.data(), m, ahead, level(k));
           };
           lerp(a, h0, b);
@@ -603,8 +592,8 @@ TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated 
           "the weights summed",
           "[camera_frame_kernels]") {
 #if defined(MPR_SIMD_X86)
-  if (!(cpu_avx512() && mpr::detail::cpu_has_avx512_vbmi())) {
-    WARN("no AVX-512 VBMI on this CPU: the one-pass weighted row kernel is not run");
+  if (!mpr_test::runs(Kernel::avx512vbmi)) {
+    SUCCEED("no AVX-512 VBMI on this CPU (or MPR_SIMD below it): the one-pass weighted row kernel is not run");
     return;
   }
   std::mt19937_64 rng(2004);
@@ -651,7 +640,7 @@ TEST_CASE("lerp_add_weighted_row_codes_vbmi: a camera row decoded, interpolated 
   CHECK(failures == 0);
   CHECK(runs > 0);
 #else
-  WARN("not an x86 build: the one-pass weighted row kernel is not compiled");
+  SUCCEED("not an x86 build: the one-pass weighted row kernel is not compiled");
 #endif
 }
 
@@ -810,11 +799,11 @@ TEMPLATE_TEST_CASE("plane_rays_affine: every variant finds the crossings of an e
           if (std::abs(ratio - LD(1e-6)) > LD(1e-6) && (out.ok[i] != 0) != (ratio > LD(1e-6)))
             fail(at + ": ok flag disagrees with the reference angle test");
           if (out.ok[i] == 0) {
-            ++rejected;
+            rejected += k == Kernel::portable ? 1 : 0; // the fixture's rays, counted at one level
             if (out.cos2[i] != T(1)) fail(at + ": cos2 is not 1 where ok is 0");
             continue;
           }
-          ++good_rays;
+          good_rays += k == Kernel::portable ? 1 : 0;
           const LD t = -n.dot(O) / dn;
           const mpr::Vec3<LD> X = O + t * D;
           const LD dl = std::sqrt(length2);
@@ -839,7 +828,7 @@ TEMPLATE_TEST_CASE("plane_rays_affine: every variant finds the crossings of an e
   report("plane_rays_affine: crossing rays " + std::to_string(good_rays) + ", rejected " + std::to_string(rejected));
   CHECK(failures == 0);
   CHECK(good_rays > 10000);
-  CHECK(rejected > 10);
+  CHECK(rejected >= 5);
 }
 
 TEMPLATE_TEST_CASE("prove_nearest: every variant agrees with the portable proof, and every proof is true",

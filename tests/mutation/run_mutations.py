@@ -20,6 +20,13 @@ cores). Usage, from the repository root:
     python3 tests/mutation/run_mutations.py --list       # names only
     python3 tests/mutation/run_mutations.py --only NAME [NAME ...] [--jobs 2]
     python3 tests/mutation/run_mutations.py --tests lightfield   # only that test program
+    python3 tests/mutation/run_mutations.py --levels --only NAME  # at every SIMD level
+
+--levels runs each mutation's tests once per SIMD level the CPU has (MPR_SIMD=portable, avx2,
+avx512, avx512vbmi; core/simd.hpp), rebuilding once, and the table has a column per level saying
+which test caught the mutation there: a mutation counts as caught only when every level catches
+it. A mutation of code that exists only at some levels (an AVX-512 kernel; `levels=` or
+LEVELS_OF_FILE) is run at those only, the others marked "not its code's level".
 
 Exit status 0 when every mutation was caught. Python 3.8+, no packages beyond the standard
 library; needs cmake, ctest and a compiler (ccache used when installed).
@@ -59,10 +66,12 @@ CLI_TESTS = ["mpr_render_help", "mpr_render_bad_option", "mpr_render_bad_option_
              "mpr_render_print_camera"]
 
 
-def M(name, area, edits, tests, why):
+def M(name, area, edits, tests, why, levels=None):
     """A mutation: `edits` is a list of (file, old, new) or (file, old, new, occurrence); without
-    an occurrence every occurrence of `old` is replaced, with one only that (0-based) one."""
-    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why}
+    an occurrence every occurrence of `old` is replaced, with one only that (0-based) one.
+    `levels`: the SIMD levels whose code the edit changes, where it is not every level (a kernel
+    that exists only for AVX-512); with --levels the others are not run for it."""
+    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why, "levels": levels}
 
 
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
@@ -120,13 +129,17 @@ MUTATIONS = [
       [("include/mpr/lightfield/frame_runs.hpp", "const T lo = T(-0.51), hi = static_cast<T>(c.width) - T(0.49);",
         "const T lo = T(-0.3), hi = static_cast<T>(c.width) - T(0.7);")],
       ["lightfield"], "a run's edge pixels that the camera still sees (its outer 0.2 pixel) are skipped"),
+    M("simd_limit_ignored", "core",
+      [("include/mpr/core/simd.hpp", "return asked && *asked < best ? *asked : best;", "return best;")],
+      ["core"], "MPR_SIMD no longer lowers the level: every run takes the widest kernels"),
     M("renderer_grid_v_step_of_u", "core",
       [("include/mpr/core/renderer.hpp", "Vec3<T>(sv * field.origin.dv),", "Vec3<T>(su * field.origin.dv),")],
       ["core", "lightfield"], "the renderer's RayGrid steps its rows by the column spacing"),
     M("srgb_split_one_step_late", "core",
       [("include/mpr/core/color.hpp", "static_cast<std::uint32_t>(code) | (split << 8)",
         "static_cast<std::uint32_t>(code) | ((split + 1) << 8)")],
-      ["core"], "the one-gather sRGB encoder's in-bin threshold one 2^-23 step late"),
+      ["core"], "the one-gather sRGB encoder's in-bin threshold one 2^-23 step late",
+      levels=["avx512", "avx512vbmi"]),
     M("shift_tile_blend_weights_swapped", "lightfield",
       [("include/mpr/lightfield/detail/decode_vbmi.hpp",
         "const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);",
@@ -182,7 +195,8 @@ MUTATIONS = [
       ["lightfield"], "the register sum of the cameras' whole-pixel shifts leaves out the last camera of each pass"),
     M("weight_steps_scan_half_vector", "lightfield",
       [("include/mpr/lightfield/frame_tiles.hpp", "plus_shifted<8>(plus_shifted<4>(", "(plus_shifted<4>(")],
-      ["lightfield"], "the vectorised running count of a tile's weights sums only within each half vector"),
+      ["lightfield"], "the vectorised running count of a tile's weights sums only within each half vector",
+      levels=["avx512", "avx512vbmi"]),
     M("border_row_reads_second_row", "lightfield",
       [("include/mpr/lightfield/frame_runs.hpp", "const int row_a = std::clamp(iy, 0, c.height - 1)",
         "const int row_a = std::clamp(iy, 1, c.height - 1)")],
@@ -336,29 +350,85 @@ MUTATIONS = [
 ]
 
 
-def run(cmd, cwd, log, timeout=None):
+# The SIMD levels (MPR_SIMD names, narrowest first) and the x86 CPU flags each needs on top of
+# the one before it, as core/simd.hpp detects them.
+SIMD_LEVELS = [("portable", []), ("avx2", ["avx2", "fma"]),
+               ("avx512", ["avx512f", "avx512bw", "avx512vl", "avx512dq"]), ("avx512vbmi", ["avx512vbmi"])]
+
+
+def cpu_simd_levels():
+    """The levels this CPU runs (from /proc/cpuinfo's flags; portable only where it is absent)."""
+    flags = set()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("flags"):
+                flags = set(line.split(":", 1)[1].split())
+                break
+    except OSError:
+        pass
+    out = []
+    for name, needs in SIMD_LEVELS:
+        if not all(f in flags for f in needs):
+            break
+        out.append(name)
+    return out
+
+# Files whose code runs only at some SIMD levels: a mutation that edits only these is run (with
+# --levels) at those levels, unless it names its own.
+_AVX512_UP = ["avx512", "avx512vbmi"]
+LEVELS_OF_FILE = {
+    "include/mpr/lightfield/detail/decode_vbmi.hpp": ["avx512vbmi"],
+    DWL: _AVX512_UP,
+    DLN: _AVX512_UP,
+    "include/mpr/lightfield/detail/depth_weigh_lanes.hpp": _AVX512_UP,
+    "include/mpr/lightfield/detail/depth_proxy_lanes.hpp": _AVX512_UP,
+}
+for _m in MUTATIONS:
+    _files = {e[0] for e in _m["edits"]}
+    if _m["levels"] is None and all(f in LEVELS_OF_FILE for f in _files):
+        _m["levels"] = sorted({lv for f in _files for lv in LEVELS_OF_FILE[f]}, key=_AVX512_UP.index)
+
+
+def run(cmd, cwd, log, timeout=None, env=None):
     with open(log, "a") as out:
-        out.write("\n$ " + " ".join(map(str, cmd)) + "\n")
+        out.write("\n$ " + "".join(k + "=" + v + " " for k, v in (env or {}).items()) + " ".join(map(str, cmd)) + "\n")
         out.flush()
         try:
-            return subprocess.run(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT, timeout=timeout).returncode
+            return subprocess.run(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT, timeout=timeout,
+                                  env=dict(os.environ, **env) if env else None).returncode
         except subprocess.TimeoutExpired:
             out.write("timed out\n")
             return 124
 
 
+def _copy_if_changed(src, dst):
+    """Leaves dst alone when it already holds src's bytes; else copies with a fresh time stamp, so
+    that the build redoes what depends on it (a file restored after the last run's final
+    mutation is newer than the objects built from the mutated text; copying the tree's older
+    time stamp over it would leave those objects, and the mutation, in the baseline)."""
+    try:
+        if Path(dst).read_bytes() == Path(src).read_bytes():
+            return dst
+    except OSError:
+        pass
+    return shutil.copy(src, dst)
+
+
 def copy_tree():
-    """Copies the working tree (without .git and build/) over SRC, keeping SRC/build."""
-    if SRC.exists():
-        for entry in SRC.iterdir():
-            if entry.name == "build":
-                continue
-            if entry.is_dir() and not entry.is_symlink():
-                shutil.rmtree(entry)
-            else:
-                entry.unlink()
+    """Copies the working tree (without .git and build/) over SRC, keeping SRC/build and the
+    time stamps of unchanged files; files gone from the tree are removed."""
     ignore = shutil.ignore_patterns(".git", "build")
-    shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True)
+    if SRC.exists():
+        for path in sorted(SRC.rglob("*"), reverse=True):
+            rel = path.relative_to(SRC)
+            if rel.parts[0] == "build":
+                continue
+            if not (ROOT / rel).exists() and not (ROOT / rel).is_symlink():
+                if path.is_dir() and not path.is_symlink():
+                    shutil.rmtree(path)
+                else:
+                    path.unlink()
+    shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True, copy_function=_copy_if_changed)
 
 
 def configure(log):
@@ -395,9 +465,10 @@ def groups_of(tests):
     return groups
 
 
-def build_and_test(tests, jobs, log, stop_at_first=True):
+def build_and_test(tests, jobs, log, stop_at_first=True, level=None):
     """(build ok, failing tests). Builds and runs one group of tests at a time, in the listed
-    order; with stop_at_first, stops at the first group with a failing test."""
+    order; with stop_at_first, stops at the first group with a failing test. With a level, the
+    tests run with MPR_SIMD set to it."""
     failed = []
     for targets, group in groups_of(tests):
         if run(["cmake", "--build", BUILD, "-j", str(jobs), "--target"] + list(targets), ROOT, log) != 0:
@@ -406,7 +477,8 @@ def build_and_test(tests, jobs, log, stop_at_first=True):
         fail_log = BUILD / "Testing" / "Temporary" / "LastTestsFailed.log"
         if fail_log.exists():
             fail_log.unlink()
-        rc = run(["ctest", "--test-dir", BUILD, "-R", regex, "-j", str(jobs), "--timeout", "300"], ROOT, log)
+        rc = run(["ctest", "--test-dir", BUILD, "-R", regex, "-j", str(jobs), "--timeout", "300"], ROOT, log,
+                 env={"MPR_SIMD": level} if level else None)
         now = []
         if fail_log.exists():
             now = [line.split(":", 1)[1].strip() for line in fail_log.read_text().splitlines() if ":" in line]
@@ -457,6 +529,9 @@ def main():
                         help="run every listed test of a mutation (default: stop at the first test program that fails)")
     parser.add_argument("--tests", nargs="*", help="run only these of each mutation's ctest entries")
     parser.add_argument("--no-baseline", action="store_true", help="skip the unmutated build and test")
+    parser.add_argument("--levels", nargs="*", metavar="LEVEL",
+                        help="run each mutation's tests at every SIMD level the CPU has (or at the LEVELs named: "
+                        "portable avx2 avx512 avx512vbmi); the table shows which level caught it")
     args = parser.parse_args()
     by_name = {m["name"]: m for m in MUTATIONS}
     chosen = [by_name[n] for n in args.only if n in by_name] if args.only else list(MUTATIONS)  # --only: that order
@@ -469,6 +544,13 @@ def main():
         return 0
     if args.only and len(chosen) != len(args.only):
         raise SystemExit("unknown mutation among " + " ".join(args.only))
+    levels = [None]
+    if args.levels is not None:
+        levels = args.levels or cpu_simd_levels()
+        unknown = [lv for lv in levels if lv not in [name for name, _ in SIMD_LEVELS]]
+        if unknown:
+            raise SystemExit("unknown SIMD level " + " ".join(unknown))
+        print("SIMD levels:", " ".join(levels), flush=True)
     WORK.mkdir(parents=True, exist_ok=True)
     log = WORK / "log.txt"
     log.write_text("")
@@ -479,9 +561,11 @@ def main():
     if not args.no_baseline:
         all_tests = sorted({t for m in chosen for t in m["tests"]})
         print("baseline: building and testing the unmutated copy ...", flush=True)
-        ok, failed = build_and_test(all_tests, args.jobs, log, stop_at_first=False)
-        if not ok or failed:
-            raise SystemExit("baseline does not pass (%s); see %s" % ("build" if not ok else ", ".join(failed), log))
+        for level in levels:
+            ok, failed = build_and_test(all_tests, args.jobs, log, stop_at_first=False, level=level)
+            if not ok or failed:
+                raise SystemExit("baseline does not pass%s (%s); see %s" % (
+                    " at " + level if level else "", "build" if not ok else ", ".join(failed), log))
     rows = []
     for m in chosen:
         start = time.time()
@@ -489,28 +573,38 @@ def main():
         try:
             originals = apply(m)
         except ValueError as e:
-            rows.append((m, "PATTERN NOT FOUND: %s" % e, False, 0))
+            rows.append((m, [("PATTERN NOT FOUND: %s" % e, False)] * len(levels), False, 0))
             print("pattern not found", flush=True)
             continue
+        cells = []  # (text, caught) per level
         try:
-            ok, failed = build_and_test(m["tests"], args.jobs, log, stop_at_first=not args.all)
+            for level in levels:
+                if level and m["levels"] and level not in m["levels"]:
+                    cells.append(("not its code's level", True))
+                    continue
+                ok, failed = build_and_test(m["tests"], args.jobs, log, stop_at_first=not args.all, level=level)
+                if not ok:
+                    cells = [("DOES NOT COMPILE", False)] * len(levels)
+                    break
+                if failed:
+                    cells.append(("caught by " + ", ".join(failed), True))
+                else:
+                    cells.append(("MISSED (ran " + ", ".join(m["tests"]) + ")", False))
         finally:
             restore(originals)
         seconds = time.time() - start
-        if not ok:
-            rows.append((m, "DOES NOT COMPILE", False, seconds))
-        elif failed:
-            rows.append((m, "caught by " + ", ".join(failed), True, seconds))
-        else:
-            rows.append((m, "MISSED (ran " + ", ".join(m["tests"]) + ")", False, seconds))
-        print(rows[-1][1], "(%.0f s)" % seconds, flush=True)
+        rows.append((m, cells, all(c[1] for c in cells), seconds))
+        print("; ".join((lv + ": " if lv else "") + c[0] for lv, c in zip(levels, cells)), "(%.0f s)" % seconds,
+              flush=True)
     print()
-    print("| mutation | area | result | s |")
-    print("|---|---|---|---|")
-    for m, result, _, seconds in rows:
-        print("| `%s` | %s | %s | %.0f |" % (m["name"], m["area"], result, seconds))
+    heads = ["result"] if levels == [None] else ["at " + lv for lv in levels]
+    print("| mutation | area | " + " | ".join(heads) + " | s |")
+    print("|---|---|" + "---|" * len(heads) + "---|")
+    for m, cells, _, seconds in rows:
+        print("| `%s` | %s | %s | %.0f |" % (m["name"], m["area"], " | ".join(c[0] for c in cells), seconds))
     caught = sum(1 for r in rows if r[2])
-    print("\n%d of %d mutations caught (log: %s)" % (caught, len(rows), log.relative_to(ROOT)))
+    print("\n%d of %d mutations caught%s (log: %s)" % (caught, len(rows), " at every level" if levels != [None] else "",
+                                                      log.relative_to(ROOT)))
     return 0 if caught == len(rows) else 1
 
 

@@ -112,7 +112,7 @@ inline const SrgbTables srgb_tables{};
 /// the widest this CPU runs); with AVX-512, 16 channels at a time (core/detail/kernels.hpp).
 /// The same codes at every level.
 inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m,
-                                detail::SimdLevel level = detail::simd_level()) noexcept {
+                                detail::SimdLevel level = detail::dispatch_level()) noexcept {
   detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
     const auto& t = detail::srgb_tables;
     std::size_t j = detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), detail::SrgbTables::kBins);

@@ -29,7 +29,9 @@
 /// | `MPR_TARGET_AVX512`   | `target("avx512f,avx512bw,avx512vl,avx512dq,fma")` attribute,   |
 /// |                       | on GCC also preferring 512-bit vectors (only with MPR_SIMD_X86) |
 /// | `MPR_TARGET_AVX512_VBMI` | the AVX-512 attribute plus `avx512vbmi` (byte permutes; run   |
-/// |                       | time check `cpu_has_avx512_vbmi()`, only with MPR_SIMD_X86)     |
+/// |                       | at level `avx512vbmi` of core/simd.hpp, only with MPR_SIMD_X86) |
+/// | `MPR_SIMD_NEON`       | 1 on AArch64 (NEON is its baseline: the portable kernels are    |
+/// |                       | NEON code there, level name `neon`); else undefined             |
 /// | `MPR_TARGET_AVX2_NOFMA` | `target("avx2")` attribute, no FMA: the compiler cannot fuse a  |
 /// |                       | multiply-add, so results equal the SSE2 ones (BVH packet walk)  |
 /// | `MPR_BVH_PACKET_AVX2` | 1 with `MPR_SIMD_X86` and `MPR_BVH_SSE`: the BVH's packet walk  |
@@ -45,8 +47,9 @@
 /// | `MPR_FLATTEN`         | `flatten` attribute (GCC/Clang): inline every call into the     |
 /// |                       | marked function, recursively                                    |
 ///
-/// The environment variable `MPR_SIMD` (`portable`, `avx2`) lowers the kernel level chosen at
-/// run time (core/simd.hpp); it is read once, not a macro.
+/// The environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`, `avx512vbmi`; `neon` on
+/// AArch64) lowers the kernel level chosen at run time (core/simd.hpp); it is read once, not a
+/// macro.
 
 // --- Threads -------------------------------------------------------------------------------
 
@@ -98,8 +101,13 @@
 #define MPR_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma,avx2,prefer-vector-width=512")))
 #endif
 // AVX-512 with the byte permutes of VBMI (Ice Lake, Zen 4 and later): kernels that pick bytes
-// across 128-byte windows; checked at run time with `cpu_has_avx512_vbmi()`.
+// across 128-byte windows; run at the level `SimdLevel::avx512vbmi` (core/simd.hpp).
 #define MPR_TARGET_AVX512_VBMI __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,avx512vbmi,fma,avx2")))
+#endif
+
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/// AArch64: NEON is part of the baseline, so the portable kernels are vectorised with it.
+#define MPR_SIMD_NEON 1
 #endif
 
 // SSE2 is part of x86-64, so the BVH's 4-wide float kernels need no run-time check.

@@ -178,7 +178,7 @@ template <std::floating_point T, class Px>
   // A neighbour's cost is at most 3 (three channels, each |difference| <= 1): a larger
   // truncation truncates nothing, and the sums of unseen neighbours' costs stay finite.
   const float tau = static_cast<float>(std::min(config.truncation, 3.0));
-  const SimdLevel level = simd_level();
+  const SimdLevel level = dispatch_level();
   constexpr int rows_per_block = kSweepLockstepRows;
   const int blocks = (height + rows_per_block - 1) / rows_per_block;
   // The workers' scratch, sized here (nothing is allocated inside the noexcept workers).

@@ -192,7 +192,7 @@ private:
   bool by_sixteen(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, const Lanes& lanes) const noexcept {
 #if defined(MPR_SIMD_X86)
     if constexpr (std::is_same_v<T, float>) {
-      if (detail::simd_level() == detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
+      if (detail::dispatch_level() >= detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
         const typename detail::DepthProxyLanes<Px>::Blend blend(table);
         for (std::size_t at = 0; at < rays.size(); at += 16)
           lanes(rays.subspan(at, std::min<std::size_t>(16, rays.size() - at)), at, blend);

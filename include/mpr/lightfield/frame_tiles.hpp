@@ -71,10 +71,10 @@ MPR_TARGET_AVX512 inline void add_running_sums_avx512(const float* steps, std::s
 /// array, two entries per run and camera instead of one per pixel), folded in. The steps are
 /// whole numbers (camera counts), so the sums are exact in any order: 16 at a time on AVX-512.
 inline void add_weight_steps(const float* steps, std::size_t rows, std::size_t n, float* weight,
-                             detail::SimdLevel level = detail::simd_level()) noexcept {
+                             detail::SimdLevel level = detail::dispatch_level()) noexcept {
   for (std::size_t r = 0; r < rows; ++r) {
 #if defined(MPR_SIMD_X86)
-    if (level == detail::SimdLevel::avx512) {
+    if (level >= detail::SimdLevel::avx512) {
       detail::add_running_sums_avx512(steps + r * (n + 1), n, weight + r * n);
       continue;
     }

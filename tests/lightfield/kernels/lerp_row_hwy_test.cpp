@@ -7,6 +7,7 @@
 
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 
+// Every level the CPU runs, avx512vbmi (the AVX3_DL target) included.
 TEST_CASE("lerp_row_hwy: the fractional-shift row at every level", "[lerp_row_hwy]") {
   mpr_test::check_lerp_row_kernel([](const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
                                      std::size_t m, const std::uint8_t* ahead, mpr::detail::SimdLevel level) {
@@ -14,18 +15,6 @@ TEST_CASE("lerp_row_hwy: the fractional-shift row at every level", "[lerp_row_hw
   });
 }
 
-TEST_CASE("lerp_row_hwy: the AVX-512 VBMI target", "[lerp_row_hwy]") {
-#if defined(MPR_SIMD_X86)
-  if (!mpr_test::runs(mpr::detail::SimdLevel::avx512) || !__builtin_cpu_supports("avx512vbmi")) {
-    WARN("this CPU has no AVX-512 VBMI: target not run");
-    return;
-  }
-  mpr_test::check_lerp_row_kernel([](const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
-                                     std::size_t m, const std::uint8_t* ahead, mpr::detail::SimdLevel) {
-    mpr::kernels::lerp_row_hwy(a, lut, ax, scale, h, m, ahead, mpr::detail::SimdLevel::avx512, true);
-  });
-#endif
-}
 #else
-TEST_CASE("lerp_row_hwy: Highway not found", "[lerp_row_hwy]") { WARN("Highway not found: kernel not built"); }
+TEST_CASE("lerp_row_hwy: Highway not found", "[lerp_row_hwy]") { SUCCEED("Highway not found: kernel not built"); }
 #endif

@@ -14,5 +14,5 @@ TEST_CASE("lerp_row_xsimd: the fractional-shift row at every level the build has
   });
 }
 #else
-TEST_CASE("lerp_row_xsimd: xsimd not found", "[lerp_row_xsimd]") { WARN("xsimd not found: kernel not built"); }
+TEST_CASE("lerp_row_xsimd: xsimd not found", "[lerp_row_xsimd]") { SUCCEED("xsimd not found: kernel not built"); }
 #endif

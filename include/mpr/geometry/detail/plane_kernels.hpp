@@ -71,7 +71,7 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
 /// `plane_rays_body` compiled for `level`; `soa` = {ox, oy, oz, dx, dy, dz}.
 template <class T>
 inline void plane_rays(const T* const (&soa)[6], std::size_t n, const PlaneAxes<T>& f, const PlaneRays<T>& out, T* cos2,
-                       SimdLevel level = simd_level()) noexcept {
+                       SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA {
     plane_rays_body(soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], n, f, out.xu, out.xv, out.du, out.dv, out.dd,
                     out.ok, cos2);
@@ -131,7 +131,7 @@ MPR_ALWAYS_INLINE void plane_rays_affine_body(const T (&first)[6], const T (&ste
 /// `plane_rays_affine_body` compiled for `level`. Precondition: n fits an int.
 template <class T>
 inline void plane_rays_affine(const T (&first)[6], const T (&step)[6], std::size_t n, const PlaneAxes<T>& f,
-                              const PlaneRays<T>& out, T* cos2, SimdLevel level = simd_level()) noexcept {
+                              const PlaneRays<T>& out, T* cos2, SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA {
     plane_rays_affine_body(first, step, n, f, out.xu, out.xv, out.du, out.dv, out.dd, out.ok, cos2);
   });

@@ -113,10 +113,10 @@ cylinder_weights_avx512(const float* xu, const float* xv, const float* du, const
 template <class T>
 inline std::array<std::size_t, 2> cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd,
                                                    std::size_t n, T cu, T cv, T inv_radius, float* w,
-                                                   SimdLevel level = simd_level()) noexcept {
+                                                   SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float>) {
-    if (level == SimdLevel::avx512) return cylinder_weights_avx512(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+    if (level >= SimdLevel::avx512) return cylinder_weights_avx512(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
     if (level == SimdLevel::avx2) return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
   }
 #endif

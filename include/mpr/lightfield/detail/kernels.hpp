@@ -52,7 +52,7 @@ MPR_ALWAYS_INLINE void shift_add_flat_body(const C* MPR_RESTRICT a, const C* MPR
 /// `shift_add_flat_body` compiled for `level` (default: the widest this CPU runs).
 template <class C>
 inline void shift_add_flat(const C* a, const C* b, RowWeights w, const float* rw, float* acc, std::size_t m,
-                           SimdLevel level = simd_level()) noexcept {
+                           SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { shift_add_flat_body(a, b, w, rw, acc, m); });
 }
 
@@ -174,11 +174,11 @@ MPR_TARGET_AVX512 inline void lerp_row_codes_avx512(const std::uint8_t* a, const
 /// (kernels/lerp_row_hwy.hpp) when Highway is present.
 template <class C>
 inline void lerp_row(const C* a, const std::uint16_t* lut, float ax, float scale, float* h, std::size_t m,
-                     const C* ahead = nullptr, SimdLevel level = simd_level()) noexcept {
+                     const C* ahead = nullptr, SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m, ahead);
-    if (level == SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m, ahead);
+    if (level >= SimdLevel::avx512vbmi) return lerp_row_codes_vbmi(a, lut, ax, scale, h, m, ahead);
+    if (level >= SimdLevel::avx512) return lerp_row_codes_avx512(a, lut, ax, scale, h, m, ahead);
   }
 #endif
 #if MPR_HAVE_HWY // below AVX-512: the Highway row (docs/simd.md)
@@ -198,7 +198,7 @@ MPR_ALWAYS_INLINE void add_scaled_row_body(const C* MPR_RESTRICT a, const std::u
 /// `add_scaled_row_body` compiled for `level`.
 template <class C>
 inline void add_scaled_row(const C* a, const std::uint16_t* lut, float scale, float* acc, std::size_t m,
-                           SimdLevel level = simd_level()) noexcept {
+                           SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { add_scaled_row_body(a, lut, scale, acc, m); });
 }
 
@@ -226,7 +226,7 @@ MPR_ALWAYS_INLINE void blend_rows_body(const float* MPR_RESTRICT h0, const float
 
 /// `blend_rows_body` compiled for `level`.
 inline void blend_rows(const float* h0, const float* h1, float w0, float w1, const float* rw, float* acc, std::size_t n,
-                       SimdLevel level = simd_level()) noexcept {
+                       SimdLevel level = dispatch_level()) noexcept {
   // A weight of 0 on the second row (a vertical offset of 0): the first alone, the second not read.
   if (w1 == 0)
     run_at(level, [&]() MPR_INLINE_LAMBDA { blend_rows_body(h0, h0, w0, 0.0f, rw, acc, n); });
@@ -254,7 +254,7 @@ MPR_ALWAYS_INLINE void average_rows_body(const float* MPR_RESTRICT acc, const fl
 
 /// `average_rows_body` compiled for `level`.
 inline void average_rows(const float* acc, const float* weight, float* out, std::size_t n,
-                         SimdLevel level = simd_level()) noexcept {
+                         SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { average_rows_body(acc, weight, out, n); });
 }
 
@@ -344,7 +344,7 @@ MPR_ALWAYS_INLINE void prove_nearest_body(const PlaneRays<T>& rays, std::size_t 
 /// `prove_nearest_body` compiled for `level`.
 template <class T>
 inline void prove_nearest(const PlaneRays<T>& rays, std::size_t n, const NearestCandidate<T>& k,
-                          typename PlaneRays<T>::Flag* pass, T* scratch, SimdLevel level = simd_level()) noexcept {
+                          typename PlaneRays<T>::Flag* pass, T* scratch, SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { prove_nearest_body(rays, n, k, pass, scratch); });
 }
 
@@ -412,7 +412,7 @@ MPR_ALWAYS_INLINE bool evenly_spaced_body(const T* MPR_RESTRICT x, const T* MPR_
 /// `evenly_spaced_body` compiled for `level`.
 template <class T>
 inline bool evenly_spaced(const T* x, const T* y, const T* z, int n, T tolerance,
-                          SimdLevel level = simd_level()) noexcept {
+                          SimdLevel level = dispatch_level()) noexcept {
   bool even = false;
   run_at(level, [&]() MPR_INLINE_LAMBDA { even = evenly_spaced_body(x, y, z, n, tolerance); });
   return even;

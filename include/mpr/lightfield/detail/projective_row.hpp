@@ -264,10 +264,10 @@ MPR_TARGET_AVX512 inline void projective_row_avx512(const ProjectiveRow<float, C
 /// `gather_indexable`). Other channel types run the plain loop.
 template <class T, class C>
 inline void projective_row(const ProjectiveRow<T, C>& r, std::size_t n, const float* rw, float* acc, float* seen,
-                           SimdLevel level = simd_level()) noexcept {
+                           SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float> && (std::is_same_v<C, float> || std::is_same_v<C, std::uint8_t>)) {
-    if (level == SimdLevel::avx512 && gather_indexable(r.width, r.height)) {
+    if (level >= SimdLevel::avx512 && gather_indexable(r.width, r.height)) {
       return projective_row_avx512(r, n, rw, acc, seen);
     }
   }

@@ -280,13 +280,13 @@ MPR_TARGET_AVX512_VBMI inline void projective_tile_codes_vbmi(std::span<const Pr
 /// `gather_indexable`), else row by row.
 template <class T, class C>
 inline void projective_tile(std::span<const ProjectiveRow<T, C>> rows, std::span<const TileRowOut> out, std::size_t n,
-                            SimdLevel level = simd_level()) noexcept {
+                            SimdLevel level = dispatch_level()) noexcept {
   if (rows.empty() || n == 0) return;
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float> && std::is_same_v<C, std::uint8_t>) {
     // Point indices past 2^24 are not exact in float: the lanes and the boxes (found in double)
     // could then disagree by a point; such rows go row by row.
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && gather_indexable(rows[0].width, rows[0].height) &&
+    if (level >= SimdLevel::avx512vbmi && gather_indexable(rows[0].width, rows[0].height) &&
         n <= (std::size_t(1) << 24))
       return projective_tile_codes_vbmi(rows, out, n);
   }

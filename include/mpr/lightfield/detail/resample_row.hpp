@@ -193,10 +193,11 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
 /// has VBMI and s <= `kResampleMaxStep`.
 template <class C>
 inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* lut, double x, double s, float scale,
-                         float* h, std::size_t n, const C* ahead = nullptr, SimdLevel level = simd_level()) noexcept {
+                         float* h, std::size_t n, const C* ahead = nullptr,
+                         SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>)
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep)
+    if (level >= SimdLevel::avx512vbmi && s <= kResampleMaxStep)
       return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n, ahead);
 #endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead); });

@@ -148,10 +148,10 @@ MPR_TARGET_AVX512_VBMI inline void resample_blend_codes_vbmi(const ResampleGroup
 template <class C>
 [[nodiscard]] bool resample_blend(const C* top, const C* bottom, std::size_t width, const std::uint16_t* lut, double x,
                                   double s, float scale, float ay, const float* rw, float* acc, std::size_t n,
-                                  ResampleTileWork& work, SimdLevel level = simd_level()) noexcept {
+                                  ResampleTileWork& work, SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi() && s <= kResampleMaxStep) {
+    if (level >= SimdLevel::avx512vbmi && s <= kResampleMaxStep) {
       ResampleGroups& g = work.groups;
       if (!g.serve(x, s, n, width)) {
         try {
@@ -184,7 +184,7 @@ template <class C>
 /// for the others); false (nothing added) when working memory cannot grow.
 template <class C>
 [[nodiscard]] bool resample_tile(const ResampleTile<C>& t, ResampleTileWork& work,
-                                 SimdLevel level = simd_level()) noexcept {
+                                 SimdLevel level = dispatch_level()) noexcept {
   const std::size_t stride = 3 * t.width;
   for (std::size_t r = 0; r < t.rows; ++r) {
     const C* top = t.texels + stride * static_cast<std::size_t>(t.iy[r]);

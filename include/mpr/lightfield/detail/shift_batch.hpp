@@ -86,9 +86,9 @@ MPR_TARGET_AVX512_VBMI inline void add_code_rows_vbmi(const std::uint8_t* const*
 /// rows[c][0, m); the VBMI kernel reads each row in 64-byte loads (masked at its end) and asks
 /// for lines past it (a prefetch, which never faults).
 inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut, float scale,
-                          float* acc, std::size_t m, SimdLevel level = simd_level()) noexcept {
+                          float* acc, std::size_t m, SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
-  if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) return add_code_rows_vbmi(rows, k, lut, scale, acc, m);
+  if (level >= SimdLevel::avx512vbmi) return add_code_rows_vbmi(rows, k, lut, scale, acc, m);
 #endif
   add_code_rows_portable(rows, k, lut, scale, acc, m, level);
 }
@@ -99,7 +99,7 @@ inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const 
 /// per block.
 inline void add_shifted_blocks(ShiftBatch& batch, std::size_t rows, std::size_t n, const std::uint16_t* lut,
                                float scale, float* acc, std::ptrdiff_t acc_stride,
-                               SimdLevel level = simd_level()) noexcept {
+                               SimdLevel level = dispatch_level()) noexcept {
   const std::uint8_t** ptr = batch.rows.data();
   for (std::size_t r = 0; r < rows; ++r) {
     std::size_t k = 0;

@@ -49,10 +49,10 @@ struct ShiftTile {
 template <class C>
 [[nodiscard]] bool add_row_one_pass(const C* a, const std::uint16_t* lut, float ax, float scale, const float* rw,
                                     float* acc, float* weight, std::size_t m, const C* ahead = nullptr,
-                                    SimdLevel level = simd_level()) noexcept {
+                                    SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<C, std::uint8_t>) {
-    if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
+    if (level >= SimdLevel::avx512vbmi) {
       if (rw != nullptr)
         lerp_add_weighted_row_codes_vbmi(a, lut, ax, scale, rw, acc, weight, m, ahead);
       else
@@ -77,7 +77,7 @@ template <class C>
 /// up to 15 channels and a body whose 64-byte accesses do not straddle cache lines.
 template <class C>
 void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, std::ptrdiff_t ahead_stride = 0,
-                SimdLevel level = simd_level()) noexcept {
+                SimdLevel level = dispatch_level()) noexcept {
   if (t.rows == 0 || t.m == 0) return;
   const auto next_ahead = [&](std::size_t k) noexcept -> const C* {
     return ahead != nullptr ? ahead + static_cast<std::ptrdiff_t>(k) * ahead_stride : nullptr;
@@ -113,7 +113,7 @@ void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, st
     float* h = working(r + 1, acc);
 #if defined(MPR_SIMD_X86)
     if constexpr (std::is_same_v<C, std::uint8_t>) {
-      if (level == SimdLevel::avx512 && cpu_has_avx512_vbmi()) {
+      if (level >= SimdLevel::avx512vbmi) {
         const std::size_t head = std::min(t.m, (16 - misalignment(acc)) % 16);
         if (head > 0) lerp_blend_row_codes_vbmi(row, t.lut, t.ax, t.scale, h, head, nullptr, hp, 1 - t.ay, t.ay, acc);
         lerp_blend_row_codes_vbmi(row + head, t.lut, t.ax, t.scale, h + head, t.m - head, next_ahead(r + 1), hp + head,

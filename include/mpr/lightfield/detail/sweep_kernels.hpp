@@ -325,12 +325,13 @@ sweep_track_body(const float* MPR_RESTRICT c, std::ptrdiff_t stride, float* MPR_
 
 /// The kernels above compiled for `level` (default: the widest this CPU runs).
 inline void sweep_shift_cost(const float* const ref[3], const SweepShiftRow& row, float tau, float* out, std::size_t n,
-                             SimdLevel level = simd_level()) noexcept {
+                             SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_cost_body(ref, row, tau, out, n); });
 }
 /// `sweep_shift_keep_body` for `best` (1..kSweepShiftKeepBest) kept rows.
 inline void sweep_shift_keep(const float* const ref[3], const SweepShiftRow& row, float tau, float* keep,
-                             std::ptrdiff_t stride, int best, std::size_t n, SimdLevel level = simd_level()) noexcept {
+                             std::ptrdiff_t stride, int best, std::size_t n,
+                             SimdLevel level = dispatch_level()) noexcept {
   static_assert(kSweepShiftKeepBest == 4);
   run_at(level, [&]() MPR_INLINE_LAMBDA {
     if (best == 1)
@@ -346,7 +347,7 @@ inline void sweep_shift_keep(const float* const ref[3], const SweepShiftRow& row
 /// `sweep_shift_mean_body` for m (1..kSweepShiftMeanNeighbours) neighbours' rows and `best`
 /// (1..m) kept costs.
 inline void sweep_shift_mean(const float* const ref[3], const SweepShiftRow* rows, int m, int best, float tau,
-                             float* out, std::size_t n, SimdLevel level = simd_level()) noexcept {
+                             float* out, std::size_t n, SimdLevel level = dispatch_level()) noexcept {
   static_assert(kSweepShiftMeanNeighbours == 4);
   run_at(level, [&]() MPR_INLINE_LAMBDA {
     if (m == 1)
@@ -361,15 +362,15 @@ inline void sweep_shift_mean(const float* const ref[3], const SweepShiftRow* row
 }
 inline void sweep_projective_cost(const float* const ref[3], const SweepImage& image, const SweepProjectiveRow& row,
                                   int first, float tau, float* out, std::size_t n,
-                                  SimdLevel level = simd_level()) noexcept {
+                                  SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_projective_cost_body(ref, image, row, first, tau, out, n); });
 }
 inline void sweep_keep_best(float* const* keep, int best, float* value, std::size_t n,
-                            SimdLevel level = simd_level()) noexcept {
+                            SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_keep_best_body(keep, best, value, n); });
 }
 inline void sweep_mean_best(const float* const* keep, int best, float* out, std::size_t n,
-                            SimdLevel level = simd_level()) noexcept {
+                            SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA {
     if (best == 1)
       sweep_mean_best_fixed<1>(keep, out, n);
@@ -384,18 +385,18 @@ inline void sweep_mean_best(const float* const* keep, int best, float* out, std:
   });
 }
 inline void sweep_dt_rows(float* v, const float* a, std::ptrdiff_t stride, int n,
-                          SimdLevel level = simd_level()) noexcept {
+                          SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_rows_body(v, a, stride, n); });
 }
-inline void sweep_dt_row(float* v, const float* a, int n, SimdLevel level = simd_level()) noexcept {
+inline void sweep_dt_row(float* v, const float* a, int n, SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_row_body(v, a, n); });
 }
 inline void sweep_dt_carry(float* carry, const float* cur, const float* a, std::size_t n,
-                           SimdLevel level = simd_level()) noexcept {
+                           SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_carry_body(carry, cur, a, n); });
 }
 inline void sweep_dt_link(float* cur, const float* prev, const float* a, std::size_t n,
-                          SimdLevel level = simd_level()) noexcept {
+                          SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_dt_link_body(cur, prev, a, n); });
 }
 template <int K>
@@ -408,7 +409,7 @@ MPR_ALWAYS_INLINE void sweep_track_count(const float* c, std::ptrdiff_t stride, 
 
 /// `sweep_track_body` for `count` (1..kSweepTrackPlanes) planes.
 inline void sweep_track(const float* c, std::ptrdiff_t stride, int count, const SweepTrackRow& t, int plane0,
-                        std::size_t n, SimdLevel level = simd_level()) noexcept {
+                        std::size_t n, SimdLevel level = dispatch_level()) noexcept {
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_track_count<kSweepTrackPlanes>(c, stride, count, t, plane0, n); });
 }
 

@@ -110,7 +110,7 @@ namespace mpr::kernels {
 /// CPU runs `level` (and VBMI with `vbmi`).
 inline void lerp_row_hwy(const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
                          std::size_t m, const std::uint8_t* ahead = nullptr,
-                         detail::SimdLevel level = detail::simd_level(), bool vbmi = false) noexcept {
+                         detail::SimdLevel level = detail::dispatch_level(), bool vbmi = false) noexcept {
 #if HWY_ARCH_X86
   const int rank = static_cast<int>(level), avx512 = static_cast<int>(detail::SimdLevel::avx512);
   if (rank >= avx512) {

@@ -62,9 +62,9 @@ void lerp_row_codes_xsimd(A, const std::uint8_t* MPR_RESTRICT a, const std::uint
 /// AVX2+FMA, SSE4.2, SSE2 (x86), NEON (ARM), or the build's default.
 inline void lerp_row_xsimd(const std::uint8_t* a, const std::uint16_t* lut, float ax, float scale, float* h,
                            std::size_t m, const std::uint8_t* ahead = nullptr,
-                           detail::SimdLevel level = detail::simd_level()) noexcept {
+                           detail::SimdLevel level = detail::dispatch_level()) noexcept {
 #if XSIMD_WITH_AVX512BW
-  if (level == detail::SimdLevel::avx512)
+  if (level >= detail::SimdLevel::avx512)
     return lerp_row_codes_xsimd(xsimd::avx512bw{}, a, lut, ax, scale, h, m, ahead);
 #endif
 #if XSIMD_WITH_FMA3_AVX2

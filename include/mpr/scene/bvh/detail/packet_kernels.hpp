@@ -379,7 +379,7 @@ void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, s
                          T t_max) noexcept {
 #if MPR_BVH_PACKET_AVX512
   if constexpr (std::is_same_v<T, float>) {
-    if (mpr::detail::simd_level() >= mpr::detail::SimdLevel::avx512) {
+    if (mpr::detail::dispatch_level() >= mpr::detail::SimdLevel::avx512) {
       for (Hit<T>& h : hits) h = Hit<T>{t_max};
       RayPacket<T> p;
       if (Avx512PacketKernels::make(rays, t_max, p)) {
@@ -393,7 +393,7 @@ void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, s
 #endif
 #if MPR_BVH_PACKET_AVX2
   if constexpr (std::is_same_v<T, float>) {
-    if (mpr::detail::simd_level() >= mpr::detail::SimdLevel::avx2) {
+    if (mpr::detail::dispatch_level() >= mpr::detail::SimdLevel::avx2) {
       for (Hit<T>& h : hits) h = Hit<T>{t_max};
       RayPacket<T> p;
       if (Avx2PacketKernels::make(rays, t_max, p)) {
