@@ -20,7 +20,8 @@ void check_lerp_row_kernel(const Kernel& kernel) {
   std::array<std::uint16_t, 256> times4{}; // lut[c] = 4 c: values exact in float
   for (std::size_t c = 0; c < 256; ++c) times4[c] = static_cast<std::uint16_t>(4 * c);
   for_each_simd_level([&](SimdLevel level) {
-    SECTION("hand-worked row: 2 pixels, ax = 0.25, scale = 0.5 (h = 1.5 a[j] + 0.5 a[j + 3])") {
+    DYNAMIC_SECTION("hand-worked row: 2 pixels, ax = 0.25, scale = 0.5 (h = 1.5 a[j] + 0.5 a[j + 3]), level "
+                    << mpr::detail::simd_level_name(level)) {
       const std::uint8_t a[9] = {0, 51, 102, 255, 153, 204, 10, 20, 30};
       float h[7] = {0, 0, 0, 0, 0, 0, -7};
       kernel(a, times4.data(), 0.25f, 0.5f, h, 6, nullptr, level);
@@ -28,7 +29,8 @@ void check_lerp_row_kernel(const Kernel& kernel) {
       for (int j = 0; j < 6; ++j) CHECK(h[j] == expected[j]);
       CHECK(h[6] == -7); // nothing written past the row
     }
-    SECTION("every length from 1 to 300 channels, and a long row, against the closed form") {
+    DYNAMIC_SECTION("every length from 1 to 300 channels, and a long row, against the closed form, level "
+                    << mpr::detail::simd_level_name(level)) {
       std::vector<std::uint8_t> a(5000);
       for (std::size_t j = 0; j < a.size(); ++j) a[j] = static_cast<std::uint8_t>((7 * j + 3) % 256);
       for (std::size_t m : {std::size_t{1}, std::size_t{4200}, std::size_t{4990}})
@@ -42,7 +44,8 @@ void check_lerp_row_kernel(const Kernel& kernel) {
           REQUIRE(ok);
         }
     }
-    SECTION("the sRGB decode table, ax = 0 and 1 and between, within float rounding") {
+    DYNAMIC_SECTION("the sRGB decode table, ax = 0 and 1 and between, within float rounding, level "
+                    << mpr::detail::simd_level_name(level)) {
       const std::uint16_t* lut = mpr::Srgb8Texel::linear16();
       std::vector<std::uint8_t> a(803);
       for (std::size_t j = 0; j < a.size(); ++j) a[j] = static_cast<std::uint8_t>((j * 37) % 256);
