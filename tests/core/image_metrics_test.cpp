@@ -73,3 +73,24 @@ TEST_CASE("ssim of two aligned checkerboards equals the closed form", "[metrics]
   CHECK(mpr::ssim(b.view(), a.view()) == Approx(expected).epsilon(1e-9));
   CHECK(mpr::ssim(b.view(), b.view()) == Approx(1.0).epsilon(1e-12));
 }
+
+TEST_CASE("ssim of coloured images weighs the channels by Rec. 601 luma (hand-worked)", "[metrics]") {
+  // Uniform windows: variances and covariance are 0, so SSIM = (2 a b + C1) / (a^2 + b^2 + C1)
+  // with C1 = (0.01 * 255)^2 = 6.5025 and a, b the lumas: red 0.299 * 255 = 76.245, green
+  // 0.587 * 255 = 149.685, blue 0.114 * 255 = 29.07.
+  const mpr::Image<mpr::Rgb8> red(8, 8, mpr::Rgb8{255, 0, 0}), green(8, 8, mpr::Rgb8{0, 255, 0}),
+      blue(8, 8, mpr::Rgb8{0, 0, 255});
+  // (2 * 76.245 * 149.685 + 6.5025) / (76.245^2 + 149.685^2 + 6.5025) = 22832.38 / 28225.76
+  CHECK(mpr::ssim(red.view(), green.view()) == Approx(0.8089156).epsilon(1e-6));
+  // (2 * 76.245 * 29.07 + 6.5025) / (76.245^2 + 29.07^2 + 6.5025) = 4439.387 / 6664.913; an
+  // unweighted channel mean (85 for both) would give 1.
+  CHECK(mpr::ssim(red.view(), blue.view()) == Approx(0.6660878).epsilon(1e-6));
+  // Columns alternating red and blue against grey 53: a has mean (76.245 + 29.07) / 2 = 52.6575
+  // and variance 23.5875^2 = 556.3702, b none; C2 = (0.03 * 255)^2 = 58.5225.
+  // (2 * 52.6575 * 53 + C1) * C2 / ((52.6575^2 + 53^2 + C1) * (556.3702 + C2)) = 0.0951732.
+  mpr::Image<mpr::Rgb8> stripes(12, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 12; ++x) stripes(x, y) = x % 2 == 0 ? mpr::Rgb8{255, 0, 0} : mpr::Rgb8{0, 0, 255};
+  const mpr::Image<mpr::Rgb8> grey(12, 8, mpr::Rgb8{53, 53, 53});
+  CHECK(mpr::ssim(stripes.view(), grey.view()) == Approx(0.0951732).epsilon(1e-5));
+}

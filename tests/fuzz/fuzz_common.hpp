@@ -14,16 +14,41 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <unistd.h>
+#include <vector>
 
 namespace mpr_fuzz {
 
-/// A folder for this process's files: /dev/shm/mpr-fuzz-<pid>-<tag> (or under the temp folder).
+/// The scratch folders of this process, removed when it exits normally (libFuzzer's end of
+/// -runs or -max_total_time, each -jobs worker); a crashing input leaves its folder for the
+/// report.
+class ScratchFolders {
+public:
+  ScratchFolders() = default;
+  ScratchFolders(const ScratchFolders&) = delete;
+  ScratchFolders& operator=(const ScratchFolders&) = delete;
+  ~ScratchFolders() {
+    for (const std::filesystem::path& dir : dirs_) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  }
+  void add(const std::filesystem::path& dir) { dirs_.push_back(dir); }
+
+private:
+  std::vector<std::filesystem::path> dirs_;
+};
+
+/// A folder for this process's files: /dev/shm/mpr-fuzz-<pid>-<tag> (or under the temp folder),
+/// removed at exit (`ScratchFolders`).
 inline std::filesystem::path scratch(const std::string& tag) {
+  static ScratchFolders folders;
   const std::filesystem::path base = std::filesystem::is_directory("/dev/shm") ? std::filesystem::path("/dev/shm")
                                                                                : std::filesystem::temp_directory_path();
   const std::filesystem::path dir = base / ("mpr-fuzz-" + std::to_string(::getpid()) + "-" + tag);
   std::filesystem::create_directories(dir);
+  folders.add(dir);
   return dir;
 }
 

@@ -63,6 +63,11 @@ int main(int argc, char** argv) {
   seed(dir, "png",
        {encoded("png", 3, 2, 3), encoded("png", 5, 4, 1), encoded("png", 2, 2, 4), encoded("bmp", 3, 3, 3),
         encoded("tga", 4, 2, 3), encoded("jpg", 8, 8, 3), mpr_fuzz::tiny_png(16, 9, 7)});
+  const auto f32 = [](float v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  seed(dir, "pfm",
+       {"Pf\n2 2\n-1\n" + f32(1) + f32(2.5f) + f32(3e38f) + f32(1e-45f),
+        "Pf 1\t3\r\n1.0\r\n" + f32(-0.0f) + f32(7) + f32(1.0f / 0.0f), "Pf\n3 1\n-1.000\n" + f32(0) + f32(4) + f32(5),
+        "PF\n1 1\n-1\n" + f32(1) + f32(1) + f32(1), "Pf\n1 1\n-1 " + f32(2)});
   std::printf("mpr fuzz seeds written to %s\n", dir.string().c_str());
   return 0;
 }

@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -57,4 +58,50 @@ TEST_CASE("aperture shapes fill their shape uniformly (second moments) and stay 
   }
   CHECK_THROWS_AS(mpr::glc::PolygonAperture(2), mpr::argument_error);
   CHECK_THROWS_AS(mpr::glc::PolygonAperture(65), mpr::argument_error);
+}
+
+TEST_CASE("the disc aperture: Shirley-Chiu angles worked by hand, and every sector filled alike", "[glc]") {
+  const mpr::glc::DiscAperture disc;
+  // (a, b) = (2x - 1, 2y - 1); for |a| > |b| the point is at radius |a|, angle pi/4 * b / a (plus
+  // pi for a < 0); otherwise radius |b|, angle pi/2 - pi/4 * a / b (plus pi for b < 0).
+  const double pi = std::numbers::pi;
+  const auto polar = [&](double x, double y) {
+    const mpr::Vec2<double> p = disc.at({x, y});
+    return std::pair{p.norm(), std::atan2(p.y(), p.x())};
+  };
+  const struct {
+    double x, y, radius, angle;
+  } cases[] = {
+      {1.0, 0.75, 1.0, pi / 8},            // a = 1, b = 0.5
+      {0.25, 0.625, 0.5, pi - pi / 8},     // a = -0.5, b = 0.25: pi + pi/4 * (-0.5)
+      {0.625, 1.0, 1.0, pi / 2 - pi / 16}, // a = 0.25, b = 1
+      {0.5, 0.0, 1.0, -pi / 2},            // a = 0, b = -1
+      {0.125, 0.25, 0.75, -pi + pi / 6},   // a = -0.75, b = -0.5: pi/4 * (2/3) - pi
+      {0.75, 0.25, 0.5, -pi / 4},          // a = 0.5, b = -0.5: the diagonal
+  };
+  for (const auto& c : cases) {
+    const auto [r, angle] = polar(c.x, c.y);
+    INFO("lens point (" << c.x << ", " << c.y << ")");
+    CHECK(r == Approx(c.radius).epsilon(1e-12));
+    CHECK(angle == Approx(c.angle).epsilon(1e-12));
+  }
+  // Area-preserving: each of 16 equal sectors holds 1/16 of 4096 stratified points, as does each
+  // of 4 rings of equal area (radii sqrt(k/4)).
+  const int n = 4096;
+  const mpr::OwenSobol pattern(n);
+  int sector[16] = {}, ring[4] = {};
+  for (int i = 0; i < n; ++i) {
+    const mpr::Vec2<double> p = disc.at(pattern.lens_point({2, 9}, i));
+    const double angle = std::atan2(p.y(), p.x()) + pi; // [0, 2 pi]
+    ++sector[std::min(15, static_cast<int>(angle / (2 * pi) * 16))];
+    ++ring[std::min(3, static_cast<int>(p.squaredNorm() * 4))];
+  }
+  for (int s = 0; s < 16; ++s) {
+    INFO("sector " << s);
+    CHECK(std::abs(sector[s] - n / 16) <= 24); // 256 each; stratification keeps it within a few percent
+  }
+  for (int k = 0; k < 4; ++k) {
+    INFO("ring " << k);
+    CHECK(std::abs(ring[k] - n / 4) <= 32);
+  }
 }

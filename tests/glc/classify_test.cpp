@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <limits>
+#include <type_traits>
 
 using mpr::glc::Type;
 
@@ -145,4 +146,34 @@ TEST_CASE("classify: to_string names every type", "[glc][classify]") {
                       Type::pencil,  Type::twisted_orthographic, Type::bilinear,  Type::epi};
   for (const Type a : all)
     for (const Type b : all) CHECK((a == b) == (mpr::glc::to_string(a) == mpr::glc::to_string(b)));
+}
+
+// The scale of the pinhole/pencil decision: the generators must cross the double slit's depth
+// within lateral_tolerance * max(L, |depth|), L the generator triangle's longest side (here
+// sqrt 2). A pinhole near its image plane (depth 0.01 << L) pins the L (a tolerance scaled by
+// |depth| alone would call a miss of 0.5e-4 a pencil, one scaled by 1 a miss of 1.2e-4); one at
+// depth 2 > L pins |depth|.
+TEMPLATE_TEST_CASE("classify: the pinhole tolerance is lateral_tolerance * max(L, |depth|)", "[glc][classify]", float,
+                   double) {
+  using T = TestType;
+  const auto plane = glc_test::unit_plane<T>();
+  const double tol = std::is_same_v<T, float> ? 1e-4 : 1e-9; // ClassifyConfig's lateral_tolerance
+  // Generators at uv (0,0), (1,0), (0,1) through C = (0.3, 0.2, D), the third shifted along x so
+  // that it passes C's depth `miss` from C (s = u (1 - 1/D) + c / D on z = 1, plus miss / D).
+  const auto type = [&](double D, double miss) {
+    const auto s = [&](double u, double c) { return static_cast<T>(u * (1 - 1 / D) + c / D); };
+    return mpr::glc::classify(plane, glc_test::from_st<T>(plane, s(0, 0.3), s(0, 0.2), s(1, 0.3), s(0, 0.2),
+                                                          static_cast<T>(0.3 / D + miss / D), s(1, 0.2)))
+        .type;
+  };
+  for (const double m : {0.0, 0.5, 1.2}) {
+    INFO("depth 0.01, miss " << m << " x tolerance");
+    CHECK(type(0.01, m * tol) == Type::pinhole);
+  }
+  for (const double m : {1.7, 3.0}) {
+    INFO("depth 0.01, miss " << m << " x tolerance");
+    CHECK(type(0.01, m * tol) == Type::pencil);
+  }
+  CHECK(type(2.0, 1.7 * tol) == Type::pinhole); // max(L, 2) = 2
+  CHECK(type(2.0, 2.4 * tol) == Type::pencil);
 }

@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -124,4 +126,40 @@ TEST_CASE("JPEG writing: magic bytes, close round trip, strided views, errors", 
   CHECK_THROWS_WITH(mpr::write_jpeg(temp_path("no_such_folder/x.jpg"), image), Catch::Contains("cannot write"));
   CHECK_THROWS_AS(mpr::write_jpeg(temp_path("empty.jpg"), mpr::Image<mpr::Rgb8>()), mpr::io_error);
   CHECK(mpr::encode_jpeg(image.view(), 101).empty());
+}
+
+TEST_CASE("image files: the header is checked before the file is read whole", "[io][limits]") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mpr_image_head";
+  std::filesystem::create_directories(dir);
+  const auto peak_kib = [] {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;
+  };
+  const auto refused = [](const std::filesystem::path& p) -> std::string {
+    try {
+      (void)mpr::read_rgb8(p);
+    } catch (const mpr::io_error& e) {
+      return e.what();
+    }
+    return "not refused";
+  };
+  const long before = peak_kib();
+  // A sparse 1,000 MB file: a valid 4x3 PNG, then zeros (stb_image would decode it).
+  mpr::Image<mpr::Rgb8> image(4, 3);
+  mpr::write_png(dir / "sparse.png", image.view());
+  std::filesystem::resize_file(dir / "sparse.png", 1000ull << 20);
+  CHECK_THAT(refused(dir / "sparse.png"), Catch::Contains("far larger than an image of 4x3"));
+  CHECK_THROWS_WITH(mpr::read_image_info(dir / "sparse.png"), Catch::Contains("far larger"));
+  // A sparse 1,000 MB file of zeros: no header in its first MiB.
+  std::ofstream(dir / "zeros.png", std::ios::binary).close();
+  std::filesystem::resize_file(dir / "zeros.png", 1000ull << 20);
+  CHECK_THAT(refused(dir / "zeros.png"), Catch::Contains("cannot decode image") && Catch::Contains("zeros.png"));
+  // Neither file was read whole (reading one takes 1,000 MB).
+  CHECK(peak_kib() - before < 200 * 1024);
+  // A file just within the bound for its size is read.
+  std::filesystem::resize_file(dir / "sparse.png", 0);
+  mpr::write_png(dir / "sparse.png", image.view());
+  CHECK(mpr::read_rgb8(dir / "sparse.png").width() == 4);
+  std::filesystem::remove_all(dir);
 }

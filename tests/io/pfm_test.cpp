@@ -103,3 +103,73 @@ TEST_CASE("bad PFM files are one io_error naming the file and the reason", "[io]
   CHECK_THROWS_AS(mpr::write_pfm(temp_path("empty.pfm"), mpr::Image<float>()), mpr::io_error);
   CHECK_THROWS_AS(mpr::write_pfm(temp_path("no_such_folder/x.pfm"), mpr::Image<float>(1, 1)), mpr::io_error);
 }
+
+TEST_CASE("PFM header: a \\r\\n ending is read, a token above 32 bytes is refused, not cut", "[io][pfm]") {
+  const auto path = temp_path("crlf.pfm");
+  // "\r\n" after the scale (Windows tools write it): the data follows the "\n".
+  write_bytes(path, "Pf\r\n2 1\r\n-1\r\n" + float_bytes(5.5f, true) + float_bytes(-2, true));
+  const mpr::Image<float> crlf = mpr::read_pfm(path);
+  REQUIRE(crlf.width() == 2);
+  CHECK(crlf(0, 0) == 5.5f);
+  CHECK(crlf(1, 0) == -2.0f);
+  // The single white-space byte still ends the header when the data takes the rest: a first
+  // data byte of 0x0A after "\r" is data.
+  const std::string nl_first = "\n\x00\x00\x40"; // 0x4000000A, a little-endian float
+  float expected = 0;
+  std::memcpy(&expected, nl_first.data(), 4);
+  write_bytes(path, std::string("Pf\n1 1\n-1\r") + std::string(nl_first.data(), 4));
+  if constexpr (std::endian::native == std::endian::little) CHECK(mpr::read_pfm(path)(0, 0) == expected);
+  // A 34-byte scale: cut at 33 bytes, its last byte was taken for the header's end and the four
+  // data bytes passed for the data.
+  const std::string long_scale = "-1." + std::string(31, '0');
+  REQUIRE(long_scale.size() == 34);
+  write_bytes(path, "Pf\n1 1\n" + long_scale + "\n" + float_bytes(1, true));
+  CHECK_THROWS_WITH(mpr::read_pfm(path), Catch::Contains("longer than 32 bytes") && Catch::Contains("crlf.pfm"));
+  write_bytes(path, "Pf\n1 1\n" + long_scale.substr(0, 33) + "\n" + float_bytes(1, true));
+  CHECK_THROWS_WITH(mpr::read_pfm(path), Catch::Contains("longer than 32 bytes"));
+  write_bytes(path, "Pf\n1 1\n" + long_scale.substr(0, 32) + "\n" + float_bytes(1, true));
+  CHECK(mpr::read_pfm(path)(0, 0) == 1.0f);
+}
+
+TEST_CASE("PFM: the header and the file's length are checked before the data is read", "[io][pfm][limits]") {
+  const auto path = temp_path("sparse.pfm");
+  // 1,000 MB, a valid 2x2 header: the length disagrees with the size; refused from the header.
+  write_bytes(path, "Pf\n2 2\n-1\n");
+  std::filesystem::resize_file(path, 1000ull << 20);
+  CHECK_THROWS_WITH(mpr::read_pfm(path), Catch::Contains("needs 16 bytes of data"));
+  // A header that does not end in the first 4096 bytes.
+  write_bytes(path, "Pf\n2 2" + std::string(5000, ' ') + "-1\n" + std::string(16, '\0'));
+  CHECK_THROWS_WITH(mpr::read_pfm(path), Catch::Contains("header longer than 4096 bytes"));
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("PFM: a depth map with structure comes back bit for bit, rows in place", "[io][pfm]") {
+  // A 7 x 5 map with a depth edge, a slanted plane, a hole (+inf), NaN, -0, a denormal and the
+  // float extremes: every value at its own (x, y), so a flipped, shifted or transposed row shows.
+  mpr::Image<float> map(7, 5);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x)
+      map(x, y) = x < 3 ? 2.0f + 0.125f * static_cast<float>(y) : 9.5f - 0.5f * static_cast<float>(x + 7 * y);
+  map(4, 1) = std::numeric_limits<float>::infinity();
+  map(5, 1) = std::numeric_limits<float>::quiet_NaN();
+  map(6, 1) = -0.0f;
+  map(0, 4) = std::numeric_limits<float>::denorm_min();
+  map(1, 4) = std::numeric_limits<float>::max();
+  map(2, 4) = std::numeric_limits<float>::lowest();
+  const auto path = temp_path("structured.pfm");
+  mpr::write_pfm(path, map);
+  const mpr::Image<float> back = mpr::read_pfm(path);
+  REQUIRE(back.width() == 7);
+  REQUIRE(back.height() == 5);
+  int differ = 0;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x) differ += std::memcmp(&back(x, y), &map(x, y), 4) != 0 ? 1 : 0;
+  CHECK(differ == 0);
+  // Spot values written out: the edge between columns 2 and 3 of row 3, the slant of row 0.
+  CHECK(back(2, 3) == 2.375f);
+  CHECK(back(3, 3) == 9.5f - 0.5f * 24);
+  CHECK(back(6, 0) == 6.5f);
+  CHECK(std::isnan(back(5, 1)));
+  CHECK(std::signbit(back(6, 1)));
+  std::filesystem::remove(path);
+}

@@ -635,3 +635,43 @@ TEST_CASE("DepthProxy's batch path answers as sample(ray) with cameras one pixel
                     mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
   check_batch(mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color>(frames, mpr::DepthProxy{0.5}), rays);
 }
+
+TEMPLATE_TEST_CASE("DepthProxy's k-best weights, hand-worked: (1 - p / p_k) / (p + 1e-6) over the k best",
+                   "[depth_proxy][oracle]", float, double) {
+  using T = TestType;
+  // Five cameras at x = -1, -0.5, 0, 0.5, 1 on z = 0, each showing one constant colour
+  // (`constant_colour(i)`), all maps at depth 5. A ray from (0.1, 0, 0) along +z meets the plane at
+  // X = (0.1, 0, 5); camera i sees X at the angle p_i = atan(|x_i - 0.1| / 5) from the ray:
+  // offsets 1.1, 0.6, 0.1, 0.4, 0.9, so by increasing penalty the cameras are 2, 3, 1, 4, 0.
+  const auto cams = mpr_test::grid_cameras<T>(5, 1, 0.5, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps(5, mpr::Image<float>(40, 30, 5.0f));
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::constant_images(cams)).with_depth(std::move(maps)));
+  const double offset[5] = {1.1, 0.6, 0.1, 0.4, 0.9};
+  const int by_penalty[5] = {2, 3, 1, 4, 0};
+  const auto p = [&](int i) { return std::atan(offset[i] / 5.0); };
+  const mpr::Ray<T> ray{mpr::Vec3<T>(T(0.1), 0, 0), mpr::Vec3<T>(0, 0, 1)};
+  for (const int k : {1, 2, 3, 4, 5, 8}) {
+    // p_k: the (k+1)-th smallest penalty, or twice the largest (+1e-6) when k >= 5 cameras.
+    const double pk = k < 5 ? p(by_penalty[k]) : 2 * p(by_penalty[4]) + 1e-6;
+    mpr::Color expected = mpr::Color::Zero();
+    double total = 0;
+    for (int j = 0; j < std::min(k, 5); ++j) {
+      const int i = by_penalty[j];
+      const double w = (1 - p(i) / pk) / (p(i) + 1e-6);
+      expected += static_cast<float>(w) * mpr_test::constant_colour(static_cast<std::size_t>(i));
+      total += w;
+    }
+    expected /= static_cast<float>(total);
+    mpr::DepthProxy rule{2.0, k};
+    const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(frames, rule);
+    const mpr::Color single = proxy.sample(ray);
+    std::vector<mpr::Ray<T>> rays(21, ray);
+    std::vector<mpr::Color> batch(rays.size());
+    proxy.sample_rays(rays, batch);
+    INFO("k = " << k << ": expected " << expected.transpose() << ", per ray " << single.transpose() << ", batch "
+                << batch[20].transpose());
+    CHECK((single - expected).abs().maxCoeff() < 2e-4f);
+    for (const mpr::Color& c : batch) CHECK((c - expected).abs().maxCoeff() < 2e-4f);
+  }
+}

@@ -187,3 +187,39 @@ TEST_CASE("FrameDepthSampler's batch path gives the per-ray depths", "[view_dept
   CHECK(differ == 0);
 #endif
 }
+
+TEMPLATE_TEST_CASE("FrameDepthSampler: maps of FLT_MAX and FLT_MIN give a depth or +inf, never NaN",
+                   "[view_depth][numerics]", float, double) {
+  using T = TestType;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  const float big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::min();
+  // Uniform maps, and checkerboards of the two extremes (in float, a surface found at FLT_MAX
+  // along a ray of direction z-component 0.5 lies at t = +inf; ray.at(inf) multiplied a zero of
+  // the axis row by an infinity: NaN).
+  for (int pattern = 0; pattern < 4; ++pattern) {
+    std::vector<mpr::Image<float>> maps(cams.size(), mpr::Image<float>(40, 30, pattern % 2 == 0 ? big : tiny));
+    if (pattern >= 2)
+      for (mpr::Image<float>& m : maps)
+        for (int y = 0; y < 30; ++y)
+          for (int x = 0; x < 40; ++x)
+            if ((x + y) % 2 == 1) m(x, y) = pattern == 2 ? tiny : big;
+    const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+        mpr::CameraFrameSet<T, mpr::Color>(cams, mpr_test::plane_images(cams, 5.0)).with_depth(std::move(maps)));
+    const mpr::FrameDepthSampler<T, mpr::Color> depth(frames);
+    const mpr::FrameDepthSampler<T, mpr::Color> axis = depth.along_axis(frames->camera(4));
+    int nan = 0, rays = 0;
+    for (int n = 0; n < 100; ++n) {
+      const T ox = static_cast<T>(n % 10 - 5) * T(0.2), oy = static_cast<T>(n / 10 - 5) * T(0.2);
+      for (const T oz : {T(-1), T(0), T(1)})
+        for (const T dx : {T(0), T(0.3)})
+          for (const T dz : {T(1), T(0.5), T(-1), T(1e-3)}) {
+            const mpr::Ray<T> ray{mpr::Vec3<T>(ox, oy, oz), mpr::Vec3<T>(dx, 0, dz)};
+            nan += std::isnan(depth.sample(ray)) ? 1 : 0;
+            nan += std::isnan(axis.sample(ray)) ? 1 : 0;
+            ++rays;
+          }
+    }
+    INFO("pattern " << pattern << ": " << nan << " NaN depths of " << rays << " rays");
+    CHECK(nan == 0);
+  }
+}

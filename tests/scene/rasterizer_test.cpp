@@ -194,3 +194,33 @@ TEST_CASE("rasterize rejects bad buffers, cameras and options", "[scene][raster]
   const auto r = mpr::scene::rasterize(mpr::scene::Scene<float>{}, camera);
   CHECK(std::isinf(r.depth(3, 3)));
 }
+
+TEMPLATE_TEST_CASE("the z-buffer: coincident triangles tie, and the earlier triangle keeps the pixel",
+                   "[scene][raster]", float, double) {
+  using T = TestType;
+  using V = mpr::Vec3<T>;
+  const auto camera = simple_camera<T>(8, 16, 16);
+  // Two copies of the same quad at z = 2 (equal depth at every pixel), red and green, added in
+  // both orders: every covered pixel shows the one added first, whatever the threads and tiles.
+  for (const bool red_first : {true, false})
+    for (const int threads : {1, 3}) {
+      mpr::scene::Scene<T> s;
+      const auto red = mpr::scene::quad<T>(V(0, 0, 2), V(3, 0, 0), V(0, 3, 0), mpr::Color(1, 0, 0));
+      const auto green = mpr::scene::quad<T>(V(0, 0, 2), V(3, 0, 0), V(0, 3, 0), mpr::Color(0, 1, 0));
+      s.add(red_first ? red : green);
+      s.add(red_first ? green : red);
+      const auto r = mpr::scene::rasterize(s, camera, {.threads = threads});
+      int covered = 0, wrong = 0;
+      for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+          if (!std::isfinite(static_cast<double>(r.depth(x, y)))) continue;
+          ++covered;
+          const mpr::Color c = r.color(x, y);
+          const bool shows_red = c[0] > 0 && c[1] == 0, shows_green = c[1] > 0 && c[0] == 0;
+          wrong += (red_first ? shows_red : shows_green) ? 0 : 1;
+        }
+      INFO((red_first ? "red" : "green") << " first, " << threads << " threads");
+      CHECK(covered == 144); // the quad spans pixels [0, 12) x [0, 12) (f = 8, side 3 at z = 2)
+      CHECK(wrong == 0);
+    }
+}

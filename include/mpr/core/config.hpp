@@ -44,6 +44,11 @@
 /// |                       | of the AVX-512 kernels that call it                             |
 /// | `MPR_INLINE_LAMBDA`   | always-inline attribute for the lambdas handed to `run_at`      |
 /// | `MPR_RESTRICT`        | `__restrict__` (GCC/Clang), else nothing                        |
+/// | `MPR_EXACT_FP_BEGIN`, | around code whose results must not depend on the compiler's    |
+/// | `MPR_EXACT_FP_END`    | flags (the BVH walk): no multiply-add contraction in between.   |
+/// |                       | GCC: `optimize("fp-contract=off")`, whatever -march or          |
+/// |                       | -ffp-contract; Clang: `fp contract(off)`, honoured except under |
+/// |                       | `-ffp-contract=fast` (use `fast-honor-pragmas`); else nothing   |
 /// | `MPR_FLATTEN`         | `flatten` attribute (GCC/Clang): inline every call into the     |
 /// |                       | marked function, recursively                                    |
 ///
@@ -151,4 +156,18 @@
 #else
 #define MPR_HAVE_XSIMD 0
 #endif
+#endif
+
+// No multiply-add contraction between MPR_EXACT_FP_BEGIN and MPR_EXACT_FP_END (namespace scope),
+// whatever the translation unit's -march or -ffp-contract: the BVH walk promises the same hits
+// from single rays and packets, which fused and unfused multiply-adds would break.
+#if defined(__clang__)
+#define MPR_EXACT_FP_BEGIN _Pragma("float_control(push)") _Pragma("clang fp contract(off)")
+#define MPR_EXACT_FP_END _Pragma("float_control(pop)")
+#elif defined(__GNUC__)
+#define MPR_EXACT_FP_BEGIN _Pragma("GCC push_options") _Pragma("GCC optimize(\"fp-contract=off\")")
+#define MPR_EXACT_FP_END _Pragma("GCC pop_options")
+#else
+#define MPR_EXACT_FP_BEGIN
+#define MPR_EXACT_FP_END
 #endif

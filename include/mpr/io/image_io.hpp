@@ -38,19 +38,70 @@ struct StbFree {
   void operator()(unsigned char* p) const noexcept { stbi_image_free(p); }
 };
 
+/// Bytes of an image file read before its header is checked: enough for the header of every
+/// format stb_image reads (a JPEG's frame header follows its APP segments, 64 KiB each at most).
+inline constexpr std::size_t kImageHeaderBytes = std::size_t(1) << 20;
+
+/// Reads at most `count` bytes of `path` from byte `offset` on (fewer only at the end of the
+/// file). Throws `io_error` naming the file when it cannot be opened or read.
+[[nodiscard]] inline std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path, std::uint64_t offset,
+                                                                std::size_t count) {
+  std::vector<unsigned char> bytes(count);
+  std::FILE* file = std::fopen(path.string().c_str(), "rb");
+  if (file == nullptr) throw io_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  if (offset > 0 && std::fseek(file, static_cast<long>(offset), SEEK_SET) != 0) {
+    std::fclose(file);
+    throw io_error(path.string(), "read error (cannot seek)");
+  }
+  const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), file);
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) throw io_error(path.string(), "read error");
+  bytes.resize(got);
+  return bytes;
+}
+
+/// The size of image file `path` (a regular, non-empty file within
+/// `limits.max_image_file_bytes`) and its first `kImageHeaderBytes` bytes (all of it when
+/// shorter): what the header checks read before the file is read whole.
+struct ImageFileHead {
+  std::uint64_t size = 0;
+  std::vector<unsigned char> head;
+};
+
+[[nodiscard]] inline ImageFileHead read_image_head(const std::filesystem::path& path, const LoadLimits& limits) {
+  const std::uint64_t max_bytes = std::min<std::uint64_t>(limits.max_image_file_bytes, std::numeric_limits<int>::max());
+  ImageFileHead h;
+  h.size = require_regular_file(path, max_bytes, "image");
+  if (h.size == 0) throw io_error(path.string(), "empty file (not an image)");
+  h.head = read_file_bytes(path, 0, static_cast<std::size_t>(std::min<std::uint64_t>(h.size, kImageHeaderBytes)));
+  if (h.head.size() != std::min<std::uint64_t>(h.size, kImageHeaderBytes))
+    throw io_error(path.string(), "read error (file shorter than its size)");
+  return h;
+}
+
+/// The whole image file whose head `h` was read (`read_image_head`).
+[[nodiscard]] inline std::vector<unsigned char> read_image_rest(const std::filesystem::path& path, ImageFileHead&& h) {
+  std::vector<unsigned char> bytes = std::move(h.head);
+  if (bytes.size() < h.size) {
+    const std::vector<unsigned char> rest =
+        read_file_bytes(path, bytes.size(), static_cast<std::size_t>(h.size - bytes.size()));
+    bytes.insert(bytes.end(), rest.begin(), rest.end());
+  }
+  if (bytes.size() != h.size) throw io_error(path.string(), "read error (file shorter than its size)");
+  return bytes;
+}
+
 /// The bytes of the image file `path` (a regular file within `limits.max_image_file_bytes`).
 [[nodiscard]] inline std::vector<unsigned char> read_image_bytes(const std::filesystem::path& path,
                                                                  const LoadLimits& limits) {
-  const std::uint64_t max_bytes = std::min<std::uint64_t>(limits.max_image_file_bytes, std::numeric_limits<int>::max());
-  const std::uint64_t size = require_regular_file(path, max_bytes, "image");
-  if (size == 0) throw io_error(path.string(), "empty file (not an image)");
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-  std::FILE* file = std::fopen(path.string().c_str(), "rb");
-  if (file == nullptr) throw io_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
-  const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), file);
-  std::fclose(file);
-  if (got != bytes.size()) throw io_error(path.string(), "read error (file shorter than its size)");
-  return bytes;
+  return read_image_rest(path, read_image_head(path, limits));
+}
+
+/// The most bytes an image file of `pixels` pixels plausibly has: 8 a pixel (16-bit RGBA stored
+/// uncompressed) plus 16 MiB of metadata. A larger file is refused before it is read whole.
+[[nodiscard]] constexpr std::uint64_t max_image_file_bytes_for(std::uint64_t pixels) noexcept {
+  return 8 * pixels + (std::uint64_t(16) << 20);
 }
 
 /// stb's reason for the last failure, never empty.
@@ -101,8 +152,10 @@ inline void check_jpeg_tables(const std::filesystem::path& path, std::span<const
 /// Refuses a PNG with a chunk that claims more bytes than the file has left: stb_image grows
 /// its IDAT buffer to the claimed length before reading it (a 129-byte file asked for 2 GiB;
 /// found by fuzzing, see docs/reliability.md). Walks the chunks up to IEND; anything that is not
-/// a PNG, or a header cut short, is left to stb_image's own checks.
-inline void check_png_chunks(const std::filesystem::path& path, std::span<const unsigned char> b) {
+/// a PNG, or a header cut short, is left to stb_image's own checks. `b` may be the head of a file
+/// of `file_bytes` bytes (the chunks within `b` are walked, their lengths checked against the file).
+inline void check_png_chunks(const std::filesystem::path& path, std::span<const unsigned char> b,
+                             std::uint64_t file_bytes) {
   static constexpr unsigned char signature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
   if (b.size() < 8 || !std::equal(signature, signature + 8, b.begin())) return;
   std::size_t i = 8;
@@ -110,7 +163,7 @@ inline void check_png_chunks(const std::filesystem::path& path, std::span<const 
     const std::uint64_t length = (std::uint64_t(b[i]) << 24) | (std::uint64_t(b[i + 1]) << 16) |
                                  (std::uint64_t(b[i + 2]) << 8) | std::uint64_t(b[i + 3]);
     const std::string type(reinterpret_cast<const char*>(b.data() + i + 4), 4);
-    const std::uint64_t left = b.size() - (i + 8);
+    const std::uint64_t left = file_bytes - (i + 8);
     if (length > left) {
       std::string name;
       for (const char c : type) name += std::isalpha(static_cast<unsigned char>(c)) ? c : '?';
@@ -135,6 +188,36 @@ inline void check_image_pixels(const std::filesystem::path& path, int width, int
                                       std::to_string(limits.max_image_pixels) +
                                       " pixels (LoadLimits::max_image_pixels)");
 }
+/// Throws `io_error` naming `path` unless a file of `file_bytes` bytes is plausible for an image
+/// of `width` x `height` pixels (`max_image_file_bytes_for`).
+inline void check_image_file_size(const std::filesystem::path& path, std::uint64_t file_bytes, int width, int height) {
+  const std::uint64_t most =
+      max_image_file_bytes_for(static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height));
+  if (file_bytes > most)
+    throw io_error(path.string(), "file of " + std::to_string(file_bytes) + " bytes is far larger than an image of " +
+                                      std::to_string(width) + "x" + std::to_string(height) + " can be (at most " +
+                                      std::to_string(most) + " bytes)");
+}
+
+/// Reads the head of image file `path` and checks its header: stb_image recognises it, its size
+/// is within `limits.max_image_pixels` and the file is not far larger than such an image. Sets
+/// `width` and `height`; returns the head for `read_image_rest`.
+[[nodiscard]] inline ImageFileHead check_image_head(const std::filesystem::path& path, const LoadLimits& limits,
+                                                    int& width, int& height) {
+  ImageFileHead h = read_image_head(path, limits);
+  check_jpeg_tables(path, h.head); // stb_image reads the tables before the frame header
+  check_png_chunks(path, h.head, h.size);
+  int channels = 0;
+  if (stbi_info_from_memory(h.head.data(), static_cast<int>(h.head.size()), &width, &height, &channels) == 0) {
+    if (h.head.size() < h.size)
+      throw io_error(path.string(), "cannot decode image: no header stb_image reads in the first " +
+                                        std::to_string(kImageHeaderBytes) + " bytes (" + stb_reason() + ")");
+    throw io_error(path.string(), "cannot decode image: " + stb_reason());
+  }
+  check_image_pixels(path, width, height, limits);
+  check_image_file_size(path, h.size, width, height);
+  return h;
+}
 } // namespace detail
 
 /// The size of an image, read from its header.
@@ -143,31 +226,33 @@ struct ImageInfo {
   int height = 0;
 };
 
-/// Reads only the header of an image file (without decoding it). Throws `io_error` naming the
-/// file when it is not a regular file within the limits, not an image stb_image can read, or
-/// larger than `limits.max_image_pixels`.
+/// Reads only the header of an image file (its first `detail::kImageHeaderBytes` bytes at most;
+/// nothing is decoded). Throws `io_error` naming the file when it is not a regular file within
+/// the limits, not an image stb_image can read from that head, larger than
+/// `limits.max_image_pixels`, or a file far larger than an image of that size can be
+/// (`detail::max_image_file_bytes_for`).
 [[nodiscard]] inline ImageInfo read_image_info(const std::filesystem::path& path, const LoadLimits& limits = {}) {
-  const std::vector<unsigned char> bytes = detail::read_image_bytes(path, limits);
-  detail::check_jpeg_tables(path, bytes);
-  detail::check_png_chunks(path, bytes);
   ImageInfo info;
-  int channels = 0;
-  if (stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &info.width, &info.height, &channels) == 0)
-    throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
-  detail::check_image_pixels(path, info.width, info.height, limits);
+  (void)detail::check_image_head(path, limits, info.width, info.height);
   return info;
 }
 
+/// Bytes a loaded frame set takes per pixel: 3 for the decoded 8-bit RGB image, 3 for its copy in
+/// the set's texel buffer (`CameraFrameSet`, lightfield/frame_set.hpp).
+inline constexpr std::uint64_t kSetBytesPerPixel = 6;
+
 /// Throws `io_error` naming the first of `paths` above the budget when the images (sizes
-/// `infos`, in the same order) decode to more than `limits.max_set_bytes` bytes of 8-bit RGB.
+/// `infos`, in the same order) take more than `limits.max_set_bytes` bytes once loaded into a
+/// frame set (`kSetBytesPerPixel` a pixel).
 inline void check_set_budget(std::span<const std::filesystem::path> paths, std::span<const ImageInfo> infos,
                              const LoadLimits& limits) {
   std::uint64_t bytes = 0;
   for (std::size_t i = 0; i < infos.size() && i < paths.size(); ++i) {
-    bytes += 3 * static_cast<std::uint64_t>(infos[i].width) * static_cast<std::uint64_t>(infos[i].height);
+    bytes +=
+        kSetBytesPerPixel * static_cast<std::uint64_t>(infos[i].width) * static_cast<std::uint64_t>(infos[i].height);
     if (bytes > limits.max_set_bytes)
       throw io_error(paths[i].string(),
-                     "the " + std::to_string(infos.size()) + " images of this set decode to more than the limit of " +
+                     "the " + std::to_string(infos.size()) + " images of this set take more than the limit of " +
                          std::to_string(limits.max_set_bytes) +
                          " bytes (LoadLimits::max_set_bytes); reached at this image (" + std::to_string(i + 1) + ")");
   }
@@ -177,14 +262,12 @@ inline void check_set_budget(std::span<const std::filesystem::path> paths, std::
 /// are reduced to 8 bits). The header is checked against `limits` before decoding. Throws
 /// `io_error` with the path and the reason (stb's, or the limit exceeded).
 [[nodiscard]] inline Image<Rgb8> read_rgb8(const std::filesystem::path& path, const LoadLimits& limits = {}) {
-  const std::vector<unsigned char> bytes = detail::read_image_bytes(path, limits);
-  detail::check_jpeg_tables(path, bytes);
-  detail::check_png_chunks(path, bytes);
-  const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
-  if (stbi_info_from_memory(bytes.data(), length, &width, &height, &channels) == 0)
-    throw io_error(path.string(), "cannot decode image: " + detail::stb_reason());
-  detail::check_image_pixels(path, width, height, limits);
+  const std::vector<unsigned char> bytes =
+      detail::read_image_rest(path, detail::check_image_head(path, limits, width, height));
+  detail::check_jpeg_tables(path, bytes);
+  detail::check_png_chunks(path, bytes, bytes.size());
+  const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0;
   const std::unique_ptr<unsigned char, detail::StbFree> data(
       stbi_load_from_memory(bytes.data(), length, &w, &h, &channels, 3));

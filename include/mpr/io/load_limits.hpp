@@ -19,13 +19,14 @@
 namespace mpr {
 
 /// Limits applied while loading files. The defaults fit every real data set mpr is tested with
-/// (the largest, Stanford "chess", is 289 images of 1400x800 pixels, 0.97 GB decoded).
+/// (the largest, Stanford "chess", is 289 images of 1400x800 pixels, 1.94 GB loaded).
 struct LoadLimits {
   /// Pixels (width x height) of one image; larger images are refused before decoding.
   /// Default 2^26 (e.g. 8192 x 8192; 192 MiB as 8-bit RGB).
   std::uint64_t max_image_pixels = std::uint64_t(1) << 26;
-  /// Decoded bytes (3 per pixel, 8-bit RGB) of all images of one frame set together, checked
-  /// from the image headers before any image is decoded. Default 4 GiB.
+  /// Bytes all images of one frame set take once loaded (6 a pixel: the decoded 8-bit RGB image
+  /// and the set's texel copy; `kSetBytesPerPixel`), checked from the image headers before any
+  /// image is decoded. Default 4 GiB.
   std::uint64_t max_set_bytes = std::uint64_t(4) << 30;
   /// Size in bytes of one text file (calibration, OBJ, MTL). Default 1 GiB.
   std::uint64_t max_text_bytes = std::uint64_t(1) << 30;

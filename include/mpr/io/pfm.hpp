@@ -17,6 +17,7 @@
 #include <mpr/io/image_io.hpp>
 #include <mpr/io/load_limits.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -31,13 +33,19 @@ namespace mpr {
 
 namespace detail {
 
+/// The longest PFM header token read (a longer one is refused, never cut).
+inline constexpr std::size_t kPfmTokenBytes = 32;
+/// The PFM header must end within the file's first bytes (read before the data).
+inline constexpr std::size_t kPfmHeaderBytes = 4096;
+
 /// Reads one white-space separated token of the PFM header starting at `i` (skipping white
-/// space first); at most 32 bytes. Empty when the header ends first.
+/// space first); at most `kPfmTokenBytes` + 1 bytes, so a longer token shows as one above the
+/// limit and `i` never passes a byte of it. Empty when the header ends first.
 [[nodiscard]] inline std::string pfm_token(const std::vector<unsigned char>& b, std::size_t& i) {
   const auto space = [](unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
   while (i < b.size() && space(b[i])) ++i;
   std::string token;
-  while (i < b.size() && !space(b[i]) && token.size() <= 32) token.push_back(static_cast<char>(b[i++]));
+  while (i < b.size() && !space(b[i]) && token.size() <= kPfmTokenBytes) token.push_back(static_cast<char>(b[i++]));
   return token;
 }
 
@@ -53,44 +61,82 @@ namespace detail {
   return v;
 }
 
-} // namespace detail
+/// A PFM header: the image size, the byte order and where the data starts.
+struct PfmHeader {
+  long width = 0, height = 0;
+  bool little = true;
+  std::size_t data_offset = 0;
+};
 
-/// Reads a one-channel PFM file (see the file comment) into a float image, top row first.
-/// Values are returned as stored (NaN and infinities included; `CameraFrameSet::with_depth`
-/// checks depths). Throws `io_error` naming the file for a file that cannot be read or lies
-/// outside `limits`, a colour PFM ("PF"), a bad header (magic, size, scale) or data of the wrong
-/// length.
-[[nodiscard]] inline Image<float> read_pfm(const std::filesystem::path& path, const LoadLimits& limits = {}) {
-  const std::vector<unsigned char> b = detail::read_image_bytes(path, limits);
+/// Parses the PFM header in `head`, the first bytes of a file of `file_bytes` bytes, and checks
+/// the size against `limits` and the file's length; the data is not needed. The header ends with
+/// one white-space byte, or with `\r\n` when the data then has exactly the size's length.
+[[nodiscard]] inline PfmHeader parse_pfm_header(const std::filesystem::path& path,
+                                                const std::vector<unsigned char>& head, std::uint64_t file_bytes,
+                                                const LoadLimits& limits) {
   const auto bad = [&](const std::string& reason) { return io_error(path.string(), "bad PFM: " + reason); };
   std::size_t i = 0;
-  const std::string magic = detail::pfm_token(b, i);
+  const auto token = [&] {
+    std::string t = pfm_token(head, i);
+    if (i >= head.size() && head.size() < file_bytes)
+      throw bad("header longer than " + std::to_string(head.size()) + " bytes");
+    if (t.size() > kPfmTokenBytes)
+      throw bad("header token '" + t.substr(0, 16) + "...' longer than " + std::to_string(kPfmTokenBytes) + " bytes");
+    return t;
+  };
+  const std::string magic = token();
   if (magic == "PF") throw bad("a colour map (PF); a one-channel map (Pf) is expected");
   if (magic != "Pf") throw bad("the file does not start with Pf");
-  const std::string w_token = detail::pfm_token(b, i), h_token = detail::pfm_token(b, i);
-  const long width = detail::pfm_size(w_token), height = detail::pfm_size(h_token);
-  if (width <= 0 || height <= 0) throw bad("size '" + w_token + " " + h_token + "' is not two positive integers");
-  detail::check_image_pixels(path, static_cast<int>(width), static_cast<int>(height), limits);
-  const std::string scale_token = detail::pfm_token(b, i);
+  const std::string w_token = token(), h_token = token();
+  PfmHeader h;
+  h.width = pfm_size(w_token);
+  h.height = pfm_size(h_token);
+  if (h.width <= 0 || h.height <= 0) throw bad("size '" + w_token + " " + h_token + "' is not two positive integers");
+  check_image_pixels(path, static_cast<int>(h.width), static_cast<int>(h.height), limits);
+  const std::string scale_token = token();
   char* end = nullptr;
   errno = 0;
   const double scale = scale_token.empty() ? 0.0 : std::strtod(scale_token.c_str(), &end);
   if (scale_token.empty() || end != scale_token.c_str() + scale_token.size() || !std::isfinite(scale) || scale == 0)
     throw bad("scale '" + scale_token + "' is not a non-zero number");
-  if (i >= b.size()) throw bad("no data after the header");
-  ++i; // the single white-space byte that ends the header
-  const std::uint64_t count = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  const std::uint64_t have = b.size() - i;
+  if (i >= head.size()) throw bad("no data after the header"); // (a longer file was refused above)
+  h.little = scale < 0;
+  const std::uint64_t count = static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height);
+  h.data_offset = i + 1; // the single white-space byte that ends the header
+  if (head[i] == '\r' && i + 1 < head.size() && head[i + 1] == '\n' && file_bytes - (i + 2) == 4 * count)
+    h.data_offset = i + 2; // a header ending in "\r\n"
+  const std::uint64_t have = file_bytes - h.data_offset;
   if (have != 4 * count)
-    throw bad(std::to_string(width) + "x" + std::to_string(height) + " needs " + std::to_string(4 * count) +
+    throw bad(std::to_string(h.width) + "x" + std::to_string(h.height) + " needs " + std::to_string(4 * count) +
               " bytes of data, the file has " + std::to_string(have));
-  const bool little = scale < 0;
-  const bool swap = little != (std::endian::native == std::endian::little);
-  Image<float> image(static_cast<int>(width), static_cast<int>(height));
-  const unsigned char* p = b.data() + i;
-  for (long y = height - 1; y >= 0; --y) {
+  return h;
+}
+
+} // namespace detail
+
+/// Reads a one-channel PFM file (see the file comment) into a float image, top row first.
+/// Values are returned as stored (NaN and infinities included; `CameraFrameSet::with_depth`
+/// checks depths). The header (within the first `detail::kPfmHeaderBytes` bytes, tokens of at
+/// most 32 bytes) is checked, size and length included, before the data is read. Throws
+/// `io_error` naming the file for a file that cannot be read or lies outside `limits`, a colour
+/// PFM ("PF"), a bad header (magic, size, scale) or data of the wrong length.
+[[nodiscard]] inline Image<float> read_pfm(const std::filesystem::path& path, const LoadLimits& limits = {}) {
+  const std::uint64_t max_bytes = std::min<std::uint64_t>(limits.max_image_file_bytes, std::numeric_limits<int>::max());
+  const std::uint64_t file_bytes = detail::require_regular_file(path, max_bytes, "image");
+  if (file_bytes == 0) throw io_error(path.string(), "empty file (not an image)");
+  const std::vector<unsigned char> head = detail::read_file_bytes(
+      path, 0, static_cast<std::size_t>(std::min<std::uint64_t>(file_bytes, detail::kPfmHeaderBytes)));
+  const detail::PfmHeader h = detail::parse_pfm_header(path, head, file_bytes, limits);
+  const std::vector<unsigned char> data =
+      detail::read_file_bytes(path, h.data_offset, static_cast<std::size_t>(file_bytes - h.data_offset));
+  if (data.size() != file_bytes - h.data_offset)
+    throw io_error(path.string(), "read error (file shorter than its size)");
+  const bool swap = h.little != (std::endian::native == std::endian::little);
+  Image<float> image(static_cast<int>(h.width), static_cast<int>(h.height));
+  const unsigned char* p = data.data();
+  for (long y = h.height - 1; y >= 0; --y) {
     float* row = image.view().row(static_cast<int>(y));
-    for (long x = 0; x < width; ++x, p += 4) {
+    for (long x = 0; x < h.width; ++x, p += 4) {
       unsigned char v[4] = {p[0], p[1], p[2], p[3]};
       if (swap) {
         std::swap(v[0], v[3]);

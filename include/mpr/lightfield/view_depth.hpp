@@ -25,6 +25,7 @@
 #include <mpr/lightfield/frame_table.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -102,7 +103,13 @@ private:
     if (!t) return std::numeric_limits<float>::infinity();
     if (!axis_) return static_cast<float>(*t);
     const Vec3<T> X = ray.at(*t);
-    return static_cast<float>(axis_->row.dot(X) + axis_->offset);
+    const T depth = axis_->row.dot(X) + axis_->offset;
+    if (!std::isnan(depth)) return static_cast<float>(depth);
+    // A point beyond the scalar's range (a map of FLT_MAX depths): X holds an infinity that a
+    // zero of the axis row multiplies. The depth along the axis is linear in t instead; NaN only
+    // for an infinite t along a ray parallel to the image plane, where no depth is defined.
+    const T linear = (axis_->row.dot(ray.origin) + axis_->offset) + *t * axis_->row.dot(ray.direction);
+    return std::isnan(linear) ? std::numeric_limits<float>::infinity() : static_cast<float>(linear);
   }
 
   struct Axis {

@@ -19,8 +19,14 @@ namespace mpr::detail {
 /// Depth of map `d` (row-major `width * height`) at continuous pixel (x, y) inside the image:
 /// bilinear between the four nearest pixel centres when they agree within the relative
 /// `tolerance` x 4 (a smooth surface), else the nearest pixel (a depth edge is not blurred).
+/// A point outside the image (infinite coordinates included) reads the nearest edge pixels; a
+/// NaN coordinate reads column or row 0. The float-to-int conversion is always in range.
 template <std::floating_point T>
 [[nodiscard]] inline T depth_lookup(const float* d, int width, int height, T x, T y, T tolerance) noexcept {
+  // Clamped before floor and the conversion (a ray through a map of huge depths projects to
+  // huge or infinite coordinates): outside [0, size - 1] both taps are the edge pixel anyway.
+  x = x >= T(-1) ? std::min(x, static_cast<T>(width)) : T(-1);
+  y = y >= T(-1) ? std::min(y, static_cast<T>(height)) : T(-1);
   const T fx = std::floor(x), fy = std::floor(y);
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
   const int xa = std::clamp(x0, 0, width - 1), xb = std::clamp(x0 + 1, 0, width - 1);

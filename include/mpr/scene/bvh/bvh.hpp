@@ -5,8 +5,12 @@
 /// ray/triangle test (bvh/watertight.hpp) by walking a 4-wide collapse of the binary tree
 /// (bvh/traverse.hpp) with SSE box and triangle-edge tests on x86-64 (bvh/detail/kernels.hpp),
 /// bit-identical to the portable kernels; coherent rays also walk it 16 at a time as packets
-/// (bvh/packet.hpp), with the same hits.
+/// (bvh/packet.hpp), with the same hits. Every header of the walk is compiled without
+/// multiply-add contraction (`MPR_EXACT_FP_BEGIN`, core/config.hpp), so the hits do not depend on
+/// the program's flags: the same under any `-march` and `-ffp-contract` with GCC, and with Clang
+/// except under `-ffp-contract=fast` (which ignores the pragma; `fast-honor-pragmas` keeps it).
 
+#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/build.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
@@ -24,6 +28,8 @@
 #include <vector>
 
 namespace mpr::scene {
+
+MPR_EXACT_FP_BEGIN
 
 template <std::floating_point T>
 class Bvh {
@@ -88,5 +94,7 @@ public:
 private:
   BvhTree<T> tree_;
 };
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene

@@ -37,6 +37,8 @@
 
 namespace mpr::scene::detail {
 
+MPR_EXACT_FP_BEGIN
+
 /// Rays per packet (at most): a 4 x 4 block of pixels.
 inline constexpr int kPacketRays = 16;
 
@@ -314,5 +316,7 @@ void packet_closest_hits_with(const BvhTree<T>& tree, std::span<const Ray<T>> ra
     for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = closest_hit_walk<LeafKernels>(tree, rays[r], t_max);
   }
 }
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

@@ -5,6 +5,7 @@
 /// crosses (Ize, "Robust BVH ray traversal", JCGT 2(2), 2013). This is the portable reference;
 /// bvh/detail/kernels.hpp has its x86 twin.
 
+#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/node.hpp>
 
@@ -16,6 +17,8 @@
 #include <limits>
 
 namespace mpr::scene::detail {
+
+MPR_EXACT_FP_BEGIN
 
 /// Per-ray slab set-up: t = p * inv + offset for each axis; `near`, `far` are the rows of
 /// `WideNode::bounds` holding each axis' near and far plane (they follow the direction's sign).
@@ -80,5 +83,7 @@ template <std::floating_point T>
   }
   return mask;
 }
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

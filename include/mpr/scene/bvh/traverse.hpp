@@ -5,6 +5,7 @@
 /// per step, with the x86 kernels of bvh/detail/kernels.hpp or the portable ones; both give the
 /// same hit bit for bit.
 
+#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/detail/kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
@@ -16,6 +17,8 @@
 #include <cstdint>
 
 namespace mpr::scene::detail {
+
+MPR_EXACT_FP_BEGIN
 
 /// Tests the triangles of the leaf whose blocks start at `first`, in leaf order: the edge
 /// functions of a block at once, then the rest of the watertight test for each lane that may
@@ -101,5 +104,7 @@ template <class Kernels, std::floating_point T>
   }
   return hit;
 }
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

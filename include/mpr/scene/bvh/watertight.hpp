@@ -8,6 +8,7 @@
 /// the portable reference; bvh/detail/kernels.hpp computes the edge functions of four triangles
 /// at once.
 
+#include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/node.hpp>
 
@@ -19,6 +20,8 @@
 #include <utility>
 
 namespace mpr::scene::detail {
+
+MPR_EXACT_FP_BEGIN
 
 /// Per-ray set-up of the watertight test (Woop et al. section 3): the axis permutation
 /// (kx, ky, kz) and shear (sx, sy, sz), and the origin in the permuted frame.
@@ -123,5 +126,7 @@ inline void watertight_finish(const Edges<T>& e, T sz, std::uint32_t triangle, H
   hit.b2 = W * rcp;
   hit.triangle = triangle;
 }
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

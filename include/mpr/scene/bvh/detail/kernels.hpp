@@ -27,6 +27,8 @@
 
 namespace mpr::scene::detail {
 
+MPR_EXACT_FP_BEGIN
+
 /// The portable kernels, for any scalar type: the reference the SIMD ones must match.
 template <std::floating_point T>
 struct PortableKernels {
@@ -158,5 +160,7 @@ using WalkKernels = std::conditional_t<std::is_same_v<T, float>, SseKernels, Por
 template <std::floating_point T>
 using WalkKernels = PortableKernels<T>;
 #endif
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

@@ -33,6 +33,8 @@
 
 namespace mpr::scene::detail {
 
+MPR_EXACT_FP_BEGIN
+
 #if MPR_BVH_PACKET_AVX2
 
 /// `PortablePacketKernels<float>` with SSE (beam, four boxes) and AVX2 (rays, eight per
@@ -407,5 +409,7 @@ void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, s
 #endif
   packet_closest_hits_with<PortablePacketKernels<T>, WalkKernels<T>>(tree, rays, hits, t_max);
 }
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail

@@ -34,6 +34,8 @@
 
 namespace mpr::scene::detail {
 
+MPR_EXACT_FP_BEGIN
+
 #if MPR_BVH_PACKET_AVX512
 
 /// `watertight_finish` out of line, compiled without FMA (the AVX-512 leaf's scalar step): the
@@ -356,5 +358,7 @@ MPR_TARGET_AVX512 inline void packet_walk_avx512(const BvhTree<float>& tree, Ray
 }
 
 #endif
+
+MPR_EXACT_FP_END
 
 } // namespace mpr::scene::detail
