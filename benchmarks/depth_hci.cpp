@@ -6,7 +6,7 @@
 //
 //   build/bench/benchmarks/depth_hci [HCI_DIR] [--quick] [--threads=N] [--views=SET] [--out=DIR]
 //                                    [--planes=N] [--neighbours=N] [--best=N] [--spatial=X]
-//                                    [--range=X] [--truncation=X] [--no-classroom]
+//                                    [--range=X] [--truncation=X] [--selection=nearest] [--no-classroom]
 //
 // HCI_DIR (default $MPR_DATA_DIR/hci, else the build's data folder /hci) is one scene folder
 // (input_CamNNN.png ...) or a folder of them; every scene is estimated, those with
@@ -185,9 +185,11 @@ void hci(const std::filesystem::path& dir, Settings settings) {
                             [&](std::size_t i) { return std::pair<int, int>(lf.row(i), lf.column(i)); });
     if (!header_printed)
       std::printf("\nHCI 4D benchmark under %s: centre view, disparity range of each scene (default -4..4 px), "
-                  "%d planes, neighbours %d, best %d, spatial %.0f, range %.2f, %d threads\n\n",
-                  dir.string().c_str(), settings.sweep.planes, settings.sweep.neighbours, settings.sweep.best,
-                  settings.sweep.spatial, settings.sweep.range, settings.sweep.threads);
+                  "%d planes, %s neighbours %d, best %d, spatial %.0f, range %.2f, %d threads\n\n",
+                  dir.string().c_str(), settings.sweep.planes,
+                  settings.sweep.selection == mpr::NeighbourSelection::axes ? "row and column" : "nearest",
+                  settings.sweep.neighbours, settings.sweep.best, settings.sweep.spatial, settings.sweep.range,
+                  settings.sweep.threads);
     run_scene(name, set, centre, lf.disparity, lf.disparity_min, lf.disparity_max,
               lf.ground_truth ? &*lf.ground_truth : nullptr, settings);
     if (name == "backgammon" && !published) {
@@ -263,6 +265,8 @@ int main(int argc, char** argv) {
       settings.sweep.spatial = std::atof(value("--spatial=").c_str());
     else if (a.rfind("--range=", 0) == 0)
       settings.sweep.range = std::atof(value("--range=").c_str());
+    else if (a == "--selection=nearest")
+      settings.sweep.selection = mpr::NeighbourSelection::nearest;
     else if (a.rfind("--threads=", 0) == 0)
       settings.sweep.threads = std::atoi(value("--threads=").c_str());
     else if (a.rfind("--views=", 0) == 0)
