@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
   sweep.far = 1400;
   sweep.planes = 64;
   const std::size_t n = views > 0 ? std::min<std::size_t>(static_cast<std::size_t>(views), lf.size()) : lf.size();
-  std::printf("\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against its %d nearest), %d planes "
+  std::printf("\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against up to %d neighbours), %d planes "
               "%.0f..%.0f, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
               lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes, sweep.near,
               sweep.far, sweep.best, sweep.truncation, sweep.spatial, sweep.range);

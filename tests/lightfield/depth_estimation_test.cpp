@@ -410,6 +410,39 @@ TEST_CASE("extreme plane sweep settings stay finite: a huge truncation acts as 3
   CHECK(finite_and_near(subnormal) > 40 * 30 / 2);
 }
 
+TEST_CASE("the sweep's neighbours: the row and column through the camera, else the nearest", "[depth_estimation]") {
+  using T = double;
+  // A 4 x 3 grid, 0.5 apart (exact distances; camera index = row * 4 + column).
+  const auto grid = mpr_test::grid_cameras<T>(4, 3, 0.5, 16, 12, 16.0);
+  const mpr::CameraFrameSet<T> frames(grid, smooth_images(grid, 5.0));
+  mpr::PlaneSweepConfig config; // axes, 16 neighbours
+  using List = std::vector<std::size_t>;
+  // Camera 5 (row 1, column 1): its row 4, 6, 7 (nearest first), then its column 1, 9; the
+  // diagonals (0, 2, 8, 10) and cells off both lines are left out.
+  CHECK(mpr::detail::sweep_neighbours(frames, 5, config) == List{4, 6, 7, 1, 9});
+  // Corner 0: row 1, 2, 3; column 4, 8.
+  CHECK(mpr::detail::sweep_neighbours(frames, 0, config) == List{1, 2, 3, 4, 8});
+  // Half each of an even count; an odd count gives the row the extra one; a short column gives
+  // its share to the row.
+  config.neighbours = 2;
+  CHECK(mpr::detail::sweep_neighbours(frames, 0, config) == List{1, 4});
+  config.neighbours = 3;
+  CHECK(mpr::detail::sweep_neighbours(frames, 0, config) == List{1, 2, 4});
+  config.neighbours = 5;
+  CHECK(mpr::detail::sweep_neighbours(frames, 0, config) == List{1, 2, 3, 4, 8});
+  config.neighbours = 4;
+  config.best = 2;
+  // A column of one camera beside the row (a 4 x 2 grid's camera 0 has column {4} only): nearest
+  // by distance, which takes the diagonal 5 (0.71) before 2 (1.0).
+  const auto two_rows = mpr_test::grid_cameras<T>(4, 2, 0.5, 16, 12, 16.0);
+  const mpr::CameraFrameSet<T> short_columns(two_rows, smooth_images(two_rows, 5.0));
+  CHECK(mpr::detail::sweep_neighbours(short_columns, 0, config) == List{1, 4, 5, 2});
+  config.selection = mpr::NeighbourSelection::nearest;
+  List nearest = mpr::detail::sweep_neighbours(frames, 5, config); // the four at 0.5, tied up to rounding
+  std::sort(nearest.begin(), nearest.end());
+  CHECK(nearest == List{1, 4, 6, 9});
+}
+
 TEST_CASE("a plane sweep refuses a bad camera index, a single camera and lens distortion", "[depth_estimation]") {
   using T = double;
   const auto cams = mpr_test::grid_cameras<T>(2, 1, 0.3, 16, 12, 16.0);
@@ -450,6 +483,10 @@ Agreement agreement(const mpr::DepthEstimate& fast, const mpr::DepthEstimate& re
 TEMPLATE_TEST_CASE("the vectorised plane sweep agrees with the per-pixel sweep", "[depth_estimation]", float, double) {
   using T = TestType;
   mpr::PlaneSweepConfig config;
+  // The reference picks the nearest cameras; four of them, two kept, take the fused kernel.
+  config.selection = mpr::NeighbourSelection::nearest;
+  config.neighbours = 4;
+  config.best = 2;
   config.near = 2;
   config.far = 20;
   config.planes = 40;
@@ -486,6 +523,9 @@ TEMPLATE_TEST_CASE("the vectorised plane sweep agrees with the per-pixel sweep",
   config.best = 5;
   check(rectified, 1);
   config = {};
+  config.selection = mpr::NeighbourSelection::nearest;
+  config.neighbours = 4;
+  config.best = 2;
   config.near = 2;
   config.far = 20;
   config.planes = 40;

@@ -3,8 +3,9 @@
 /// Depth maps estimated from the images of a calibrated camera set by a plane sweep (Collins
 /// 1996): for each camera, fronto-parallel planes at depths sampled uniformly in inverse depth
 /// are swept through its view; at each plane every pixel's colour is compared with the
-/// neighbouring cameras' colours where they see the same point, the per-neighbour costs are
-/// combined robustly (the sum of the best few: a neighbour that is occluded there drops out),
+/// neighbouring cameras' colours where they see the same point (in a camera grid, the cameras
+/// along the camera's image rows and columns, long baselines included), the per-neighbour costs
+/// are combined robustly (the mean of the best half: a neighbour that is occluded there drops out),
 /// aggregated over an edge-aware support (the recursive domain-transform filter of Gastal &
 /// Oliveira 2011, guided by the camera's own image, so the support stops at colour edges), and
 /// the cheapest plane is refined to sub-plane depth by a parabola through its neighbours. Gives
@@ -35,6 +36,24 @@
 
 namespace mpr {
 
+/// How `estimate_depth` picks the cameras a camera is compared with.
+enum class NeighbourSelection {
+  /// The `neighbours` nearest by centre distance.
+  nearest,
+  /// In a camera grid: the cameras whose baseline, seen in the camera's image plane, lies within
+  /// `kSweepAxisDegrees` of its image rows, and those within it of its columns; of each line the
+  /// `neighbours / 2` nearest (the rest of `neighbours` from the other line when one is short).
+  /// Baselines along both image axes make edges of every direction count, and the longer
+  /// baselines of a whole row and column give finer depth than the nearest few cameras of a
+  /// dense grid (all one step away). Where the rows or the columns hold fewer than two cameras
+  /// (a ring, a single row): `nearest`.
+  axes,
+};
+
+/// The angle within which a baseline counts as running along an image axis
+/// (`NeighbourSelection::axes`), degrees.
+inline constexpr double kSweepAxisDegrees = 10.0;
+
 /// Settings of `estimate_depth`. Depths are along the camera's optical axis, world units.
 struct PlaneSweepConfig {
   /// Depth range swept, 0 < near < far, finite.
@@ -42,11 +61,13 @@ struct PlaneSweepConfig {
   double far = 100;
   /// Planes between near and far, uniform in inverse depth, 2..1024.
   int planes = 64;
-  /// Cameras compared with each camera: its nearest by centre distance, 1..32.
-  int neighbours = 4;
-  /// The cost of a pixel at a plane is the sum of the `best` smallest neighbour costs
+  /// How the neighbours are picked (see `NeighbourSelection`).
+  NeighbourSelection selection = NeighbourSelection::axes;
+  /// Cameras compared with each camera, 1..32.
+  int neighbours = 16;
+  /// The cost of a pixel at a plane is the mean of the `best` smallest neighbour costs
   /// (1..neighbours): cameras that are occluded there do not count.
-  int best = 2;
+  int best = 8;
   /// A neighbour's cost per pixel is the sum over channels of |difference| of the sRGB codes
   /// / 255, truncated at this value (robust to specularities and occlusion), > 0 and finite.
   /// Values above 3 act as 3: no cost is larger, so nothing is truncated, and a neighbour that
@@ -58,8 +79,9 @@ struct PlaneSweepConfig {
   double range = 0.2;
   /// Worker threads (the caller included); 0 or less: all hardware threads.
   int threads = 0;
-  /// Working memory of the sweep, bytes, > 0: each worker holds about 130 bytes per pixel of the
-  /// camera it sweeps (`plane_sweep_bytes`; 145 MB for a Chess view of 1400x800), so
+  /// Working memory of the sweep, bytes, > 0: each worker holds about 90 bytes per pixel of the
+  /// camera it sweeps plus 12 per neighbour (`plane_sweep_bytes`; 265 MB for a Chess view of
+  /// 1400x800 with its 12 neighbours of row and column), so
   /// `estimate_depth_maps` runs no more workers at once than fit (at least one), and a camera
   /// that alone needs more is refused. Default 2 GiB.
   double memory_limit = 2.0 * (1 << 30);
@@ -88,21 +110,43 @@ inline void validate(const PlaneSweepConfig& c) {
 
 namespace detail {
 
-/// The `config.neighbours` cameras nearest to `camera` by centre distance (ties by index).
-/// Throws `argument_error` ("frames") when one of them or the camera has lens distortion.
+/// The cameras `camera` is compared with, by `config.selection` (see `NeighbourSelection`;
+/// nearest first, ties by index; with `axes` the row cameras, then the column cameras). Throws
+/// `argument_error` ("frames") when one of them or the camera has lens distortion.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::vector<std::size_t> sweep_neighbours(const CameraFrameSet<T, Px>& frames, std::size_t camera,
                                                         const PlaneSweepConfig& config) {
   const PinholeCamera<T>& ref = frames.camera(camera);
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < frames.size(); ++i)
-    if (i != camera) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const T da = (frames.camera(a).centre() - ref.centre()).squaredNorm();
-    const T db = (frames.camera(b).centre() - ref.centre()).squaredNorm();
-    return da < db || (da == db && a < b);
-  });
-  order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(config.neighbours)));
+  const auto by_distance = [&](std::vector<std::size_t>& list) {
+    std::sort(list.begin(), list.end(), [&](std::size_t a, std::size_t b) {
+      const T da = (frames.camera(a).centre() - ref.centre()).squaredNorm();
+      const T db = (frames.camera(b).centre() - ref.centre()).squaredNorm();
+      return da < db || (da == db && a < b);
+    });
+  };
+  std::vector<std::size_t> order, rows, columns;
+  const double slope = std::tan(kSweepAxisDegrees * 3.14159265358979323846 / 180.0);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i == camera) continue;
+    order.push_back(i);
+    const Vec3<T> b = ref.R() * (frames.camera(i).centre() - ref.centre());
+    const double bx = std::abs(static_cast<double>(b.x())), by = std::abs(static_cast<double>(b.y()));
+    if (bx > 0 && by <= slope * bx) rows.push_back(i);
+    if (by > 0 && bx <= slope * by) columns.push_back(i);
+  }
+  const std::size_t want = static_cast<std::size_t>(config.neighbours);
+  if (config.selection == NeighbourSelection::axes && rows.size() >= 2 && columns.size() >= 2) {
+    by_distance(rows);
+    by_distance(columns);
+    // Half each; what one line lacks, the other gives.
+    std::size_t r = std::min(rows.size(), (want + 1) / 2), c = std::min(columns.size(), want - r);
+    r = std::min(rows.size(), want - c);
+    order.assign(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(r));
+    order.insert(order.end(), columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(c));
+  } else {
+    by_distance(order);
+    order.resize(std::min(order.size(), want));
+  }
   for (const std::size_t i : order)
     if (frames.camera(i).has_distortion() || ref.has_distortion())
       throw argument_error("frames", frames.name(i) + ": lens distortion is not supported by the plane sweep");
@@ -320,7 +364,7 @@ template <std::floating_point T, class Px>
 
 /// The estimated depth maps of every camera of `frames` (see `estimate_depth`), in camera order,
 /// for `CameraFrameSet::with_depth`. The cameras are shared among the `config.threads` workers
-/// (each worker's buffers take about 130 bytes per pixel of a camera, 145 MB for Chess, and no
+/// (each worker's buffers take about 90 + 12 x neighbours bytes per pixel of a camera, 265 MB for Chess, and no
 /// more workers run at once than `config.memory_limit` holds); with fewer cameras than workers,
 /// each camera's rows are shared too. Throws as `estimate_depth`, before any work.
 template <std::floating_point T, class Px>
