@@ -81,7 +81,10 @@ public:
       created_.push_back(folder);
     }
     std::filesystem::path staged = path;
-    staged.replace_filename("." + path.filename().string() + ".mpr-staged");
+    // append() rather than operator+ chains: GCC 12 raises a false -Wrestrict on the latter.
+    std::string name(".");
+    name.append(path.filename().string()).append(".mpr-staged");
+    staged.replace_filename(name);
     try {
       mpr::write_file_atomically(staged, bytes);
     } catch (const mpr::io_error& e) {
