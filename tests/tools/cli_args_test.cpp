@@ -31,6 +31,24 @@ TEST_CASE("parse_args rejects bad command lines with the option named", "[cli]")
   CHECK_THROWS_WITH(parse({"stray"}), Catch::Contains("unexpected"));
 }
 
+TEST_CASE("parse_args suggests the nearest option and blames the one whose value is missing", "[cli]") {
+  // Hand-worked distances: sise -> size one substitution, ey -> eye one insertion, zsie -> size
+  // one transposition plus one substitution; qqqq is 4 edits from everything.
+  CHECK(mpr_cli::edit_distance("sise", "size") == 1);
+  CHECK(mpr_cli::edit_distance("ey", "eye") == 1);
+  CHECK(mpr_cli::edit_distance("szie", "size") == 1);
+  CHECK(mpr_cli::edit_distance("zsie", "size") == 2);
+  CHECK(mpr_cli::edit_distance("", "eye") == 3);
+  CHECK_THROWS_WITH(parse({"--sise", "1x1"}), Catch::Contains("unknown option; did you mean --size?"));
+  CHECK_THROWS_WITH(parse({"--print-camrea"}), Catch::Contains("did you mean --print-camera?"));
+  CHECK_THROWS_WITH(parse({"--qqqq"}), !Catch::Contains("did you mean"));
+  CHECK_THROWS_WITH(parse({"--ey", "1,2,3"}), !Catch::Contains("did you mean")); // 1 edit of 2 letters: too far
+  // "--size --eye 1,2,3": --size lacks its value; the message names it and what followed.
+  CHECK_THROWS_WITH(parse({"--size", "--eye", "1,2,3"}),
+                    Catch::StartsWith("mpr: invalid --size: needs a value WxH before --eye"));
+  CHECK(parse({"--eye", "-1,2,3"}).get("eye") == "-1,2,3"); // a negative number is a value
+}
+
 TEST_CASE("value parsers are strict", "[cli]") {
   CHECK_THROWS_WITH(mpr_cli::parse_number("1.5x", "--radius"), Catch::Contains("--radius"));
   CHECK_THROWS_WITH(mpr_cli::parse_number("nan", "--radius"), Catch::Contains("not finite"));

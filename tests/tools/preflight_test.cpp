@@ -75,8 +75,17 @@ TEST_CASE("preflight refuses a job before any frame is rendered", "[tools][prefl
   message = run_counting(
       job_of({"--plane-centre", "0,0,1e39", "--look-at", "0,0,0", "--plane-size", "1,1", "--size", "16x12"}), frames);
   CHECK_THAT(message, Catch::Contains("invalid --plane-centre: 1e+39 is outside the range of float"));
+  // 1e30 lies beyond the square root of float's largest value (1.84e19), where products of it
+  // overflow: named as out of range; 1e15 is in range, and a 1 x 1 plane there is too small.
   message = run_counting(
       job_of({"--plane-centre", "0,0,1e30", "--look-at", "0,0,0", "--plane-size", "1,1", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --plane-centre: 1e+30 is outside the range of float (1.08e-19 to "
+                                      "1.84e+19 in magnitude); use --double"));
+  message = run_counting(
+      job_of({"--plane-centre", "0,0,1e15", "--look-at", "0,0,0", "--plane-size", "1,1", "--size", "16x12"}), frames);
   CHECK_THAT(message, Catch::Contains("invalid --plane-size: the image plane is too small for its distance"));
+  // Below the square root of float's smallest normal value: named, not "invalid width_vector".
+  message = run_counting(job_of({"--raster", "2x2", "--focal-depth", "1e-30", "--size", "16x12"}), frames);
+  CHECK_THAT(message, Catch::Contains("invalid --focal-depth: 1e-30 is outside the range of float"));
   CHECK(frames == 0);
 }

@@ -6,6 +6,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/core/vec.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -45,6 +46,32 @@ private:
   std::map<std::string, std::vector<std::string>> values_;
 };
 
+/// The edit distance (insertions, deletions, substitutions, transpositions of neighbours) between
+/// `a` and `b`.
+[[nodiscard]] inline std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+/// "; did you mean --NAME?" for the option of `specs` nearest to the unknown `name` (at most 2
+/// edits, and fewer than half its letters), else "".
+[[nodiscard]] inline std::string did_you_mean(const std::string& name, const std::vector<OptionSpec>& specs) {
+  const OptionSpec* best = nullptr;
+  std::size_t best_distance = 3;
+  for (const OptionSpec& s : specs)
+    if (const std::size_t d = edit_distance(name, s.name); d < best_distance && 2 * d < name.size())
+      best = &s, best_distance = d;
+  return best == nullptr ? std::string() : "; did you mean --" + best->name + "?";
+}
+
 /// Parses argv against `specs`. Throws argument_error for unknown options, missing values and
 /// stray positional arguments.
 inline ParsedArgs parse_args(int argc, const char* const* argv, const std::vector<OptionSpec>& specs) {
@@ -63,11 +90,15 @@ inline ParsedArgs parse_args(int argc, const char* const* argv, const std::vecto
     const OptionSpec* spec = nullptr;
     for (const OptionSpec& s : specs)
       if (s.name == name) spec = &s;
-    if (spec == nullptr) throw mpr::argument_error("--" + name, "unknown option (see --help)");
+    if (spec == nullptr)
+      throw mpr::argument_error("--" + name, "unknown option" + did_you_mean(name, specs) + " (see --help)");
     if (spec->value.empty()) {
       if (inline_value) throw mpr::argument_error("--" + name, "is a flag and takes no value");
     } else if (!inline_value) {
       if (i + 1 >= argc) throw mpr::argument_error("--" + name, "needs a value " + spec->value);
+      // "--view --output a.png": the value of --view is missing, not a.png misplaced.
+      if (const std::string next = argv[i + 1]; next.rfind("--", 0) == 0 && next.size() > 2)
+        throw mpr::argument_error("--" + name, "needs a value " + spec->value + " before " + next);
       value = argv[++i];
     }
     parsed.add(name, value);

@@ -7,6 +7,7 @@
 #include "framing.hpp"
 #include "job.hpp"
 #include "loading.hpp"
+#include "publish.hpp"
 
 #include <mpr/core/renderer.hpp>
 #include <mpr/io/depth_maps.hpp>
@@ -147,9 +148,11 @@ Job with_focus_at(const Job& job, const Loaded<T>& l, std::ostream* info) {
 
 /// --write-depth FILE.pfm: the depth of every view of the first frame, tiled as the image is
 /// (see make_depth_sampler for the depth measured), written as a PFM and as a colour-mapped
-/// preview (depth_preview_path); a line for each to `info` (when not null).
+/// preview (depth_preview_path); a line for each to `info` (when not null). With `publish`, both
+/// files are staged there (published with the run's other files, publish.hpp); without, they are
+/// published together at once.
 template <std::floating_point T>
-void write_view_depth(const Job& job, const Loaded<T>& l, std::ostream* info) {
+void write_view_depth(const Job& job, const Loaded<T>& l, std::ostream* info, Publication* publish = nullptr) {
   if (!job.write_depth) return;
   const auto [w, h] = view_size(job, l);
   const FrameParams p = frame_params(job, l.default_focal_depth, 0);
@@ -160,10 +163,14 @@ void write_view_depth(const Job& job, const Loaded<T>& l, std::ostream* info) {
     render_depth(make_camera(job, l, p, k, w, h), sampler, depth.view(), mpr::Region(col * w, row * h, w, h),
                  mpr::RenderOptions{job.threads});
   }
-  if (const auto parent = job.write_depth->parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
-  mpr::write_pfm(*job.write_depth, depth);
+  check_output_folder(*job.write_depth, "--write-depth");
+  Publication own;
+  Publication& files = publish != nullptr ? *publish : own;
+  files.stage(*job.write_depth, mpr::encode_pfm(depth.view()));
   const std::filesystem::path preview = depth_preview_path(*job.write_depth);
-  mpr::write_depth_preview(preview, depth.view());
+  const mpr::Image<mpr::Rgb8> colours = mpr::depth_preview(depth.view());
+  files.stage(preview, mpr::encode_png(colours.view()));
+  if (publish == nullptr) own.commit();
   if (info == nullptr) return;
   const mpr::DepthRange range = mpr::depth_range(depth.view());
   long unseen = 0;
@@ -175,5 +182,11 @@ void write_view_depth(const Job& job, const Loaded<T>& l, std::ostream* info) {
         << ", " << unseen << " of " << depth.width() * depth.height() << " pixels see nothing) and " << preview.string()
         << "\n";
 }
+
+// Compiled once, in mpr_tools (tools/dispatch/depth_float.cpp, depth_double.cpp).
+extern template Job with_focus_at<float>(const Job&, const Loaded<float>&, std::ostream*);
+extern template void write_view_depth<float>(const Job&, const Loaded<float>&, std::ostream*, Publication*);
+extern template Job with_focus_at<double>(const Job&, const Loaded<double>&, std::ostream*);
+extern template void write_view_depth<double>(const Job&, const Loaded<double>&, std::ostream*, Publication*);
 
 } // namespace mpr_cli

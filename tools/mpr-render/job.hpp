@@ -42,11 +42,13 @@ struct Job {
   std::filesystem::path output = "mpr-render.png";
   int threads = 0;
   bool use_double = false;
+  bool no_budget = false; ///< --no-budget: lift the preflight's memory and time limits (preflight.hpp)
   bool print_camera = false;
-  bool labels = false; ///< --labels: each tile labelled with its GLC type (and focus)
-  bool video = true;   ///< also write an MP4 of an animation when ffmpeg is on PATH
-  int frames = 0;      ///< 0: a single image; N >= 1: an animation of N frames
-  double fps = 12;     ///< frame rate of the MP4 of an animation
+  bool labels = false;                      ///< --labels: each tile labelled with its GLC type (and focus)
+  bool video = true;                        ///< also write an MP4 of an animation when ffmpeg is on PATH
+  std::optional<std::pair<int, int>> shard; ///< --shard K/N: only frames f (from 0) with f % N == K
+  int frames = 0;                           ///< 0: a single image; N >= 1: an animation of N frames
+  double fps = 12;                          ///< frame rate of the MP4 of an animation
   // Pixel sampling (pixel_sampling.hpp).
   int spp = 1;                          ///< samples per pixel (1: the pixel centre, as before)
   mpr::AnyFilter filter;                ///< reconstruction filter of spp > 1 (default: the box of radius 0.5)
@@ -142,6 +144,16 @@ inline void check_animation(const Job& job) {
   return p;
 }
 
+/// --shard K/N of an animation of `frames` frames: N in [1, frames], K in [0, N - 1] (0-based, as
+/// Slurm's $SLURM_ARRAY_TASK_ID of --array=0-(N-1)).
+inline std::pair<int, int> parse_shard(const std::string& text, int frames) {
+  if (frames == 0) throw mpr::argument_error("--shard", "splits an animation: needs --frames N");
+  const std::vector<std::string> parts = split(text, '/');
+  if (parts.size() != 2) throw mpr::argument_error("--shard", "'" + text + "' is not K/N");
+  const int n = parse_int(parts[1], "--shard", 1, frames);
+  return {parse_int(parts[0], "--shard", 0, n - 1), n};
+}
+
 /// What the program calling `make_job` does with the options beyond mpr-render's use of them.
 struct JobContext {
   /// The program reads --depth-maps itself (mpr-view: click-to-focus), so they need no other
@@ -180,9 +192,11 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
                                              "x" + std::to_string(job.rows) + " layout");
   if (const auto v = args.get("threads")) job.threads = parse_int(*v, "--threads", 0, 1024);
   job.use_double = args.has("double");
+  job.no_budget = args.has("no-budget");
   job.print_camera = args.has("print-camera");
   job.video = !args.has("no-video");
   if (const auto v = args.get("frames")) job.frames = parse_int(*v, "--frames", 1, 100000);
+  if (const auto v = args.get("shard")) job.shard = parse_shard(*v, job.frames);
   if (const auto v = args.get("spp")) job.spp = parse_spp(*v);
   if (const auto v = args.get("filter")) {
     job.filter = parse_filter(*v);
@@ -299,6 +313,12 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     if (!job.depth_estimate)
       throw mpr::argument_error("--save-depth-maps", "saves estimated maps: needs --depth-maps estimate:NEAR:FAR");
     job.save_depth_maps = *v;
+    // The Stanford reader refuses a folder holding out_*.pfm files beside the images.
+    std::error_code ec;
+    if (job.sampler == SamplerKind::stanford && std::filesystem::equivalent(*job.save_depth_maps, job.input, ec))
+      throw mpr::argument_error("--save-depth-maps", "'" + *v +
+                                                         "' is the --stanford folder, which the depth maps would make "
+                                                         "unreadable; save them in a folder of their own");
   }
   if (const auto v = args.get("focus-at")) {
     const std::vector<std::string> xy = split(*v, ',');

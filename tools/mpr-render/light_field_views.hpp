@@ -178,4 +178,10 @@ inline void warn_unseen(std::ostream& warn, const Job& job, const std::string& s
   warn << line;
 }
 
+// Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
+extern template Job with_array_defaults<float>(const Job&, const Loaded<float>&);
+extern template void warn_job<float>(std::ostream&, const Job&, const Loaded<float>&);
+extern template Job with_array_defaults<double>(const Job&, const Loaded<double>&);
+extern template void warn_job<double>(std::ostream&, const Job&, const Loaded<double>&);
+
 } // namespace mpr_cli

@@ -3,6 +3,7 @@
 // LFCA), loaded once for all frames, with the reference camera and default framing.
 
 #include "job.hpp"
+#include "publish.hpp"
 
 #include <mpr/camera/planar_camera_array.hpp>
 #include <mpr/lightfield.hpp>
@@ -21,6 +22,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -64,6 +66,21 @@ mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) 
 
 } // namespace detail
 
+/// --save-depth-maps FOLDER: writes the estimated depth maps of `l` (after the preflight check, so
+/// that a job refused there writes nothing), creating FOLDER only under an existing parent; a
+/// line to `info` (when not null).
+template <std::floating_point T>
+void save_depth_maps(const Job& job, const Loaded<T>& l, std::ostream* info) {
+  if (!job.save_depth_maps || !l.frames) return;
+  std::filesystem::path folder = *job.save_depth_maps;
+  check_output_folder(folder / "x", "--save-depth-maps");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec) && !std::filesystem::create_directory(folder, ec) && ec)
+    throw mpr::io_error(folder.string(), "cannot create the folder: " + ec.message());
+  mpr::write_depth_maps(folder, *l.frames);
+  if (info != nullptr) *info << "wrote " << l.frames->size() << " depth maps to " << folder.string() << '\n';
+}
+
 /// Loads the sampler's data (scene, OBJ or light field) and its default framing.
 template <std::floating_point T>
 Loaded<T> load(const Job& job) {
@@ -98,13 +115,6 @@ Loaded<T> load(const Job& job) {
                     sweep.range);
       l.notes.emplace_back(note);
       set = std::move(set).with_depth(std::move(maps));
-      if (job.save_depth_maps) {
-        std::error_code ec;
-        std::filesystem::create_directories(*job.save_depth_maps, ec);
-        if (ec) throw mpr::io_error(job.save_depth_maps->string(), "cannot create the folder: " + ec.message());
-        mpr::write_depth_maps(*job.save_depth_maps, set);
-        l.notes.push_back("wrote " + std::to_string(set.size()) + " depth maps to " + job.save_depth_maps->string());
-      }
     }
     return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));
   };
@@ -176,5 +186,9 @@ Loaded<T> load(const Job& job) {
   }
   return l;
 }
+
+// Compiled once, in mpr_tools (tools/dispatch/load_float.cpp, load_double.cpp).
+extern template Loaded<float> load<float>(const Job&);
+extern template Loaded<double> load<double>(const Job&);
 
 } // namespace mpr_cli

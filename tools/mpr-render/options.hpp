@@ -129,7 +129,9 @@ inline const std::vector<OptionSpec>& options() {
        "surface the depth maps show, along the reference camera's axis (the units of --focal-depth); scenes, also "
        "--raster: the ray cast's depth in front of the image plane. Any view, tilt or layout; not with --frames.",
        "--layout 2x1 --views A,G --write-depth depth_AG.pfm"},
-      {"radius", "R|A:B|T=V,...", "Cylinder aperture radius, world units (default 10); animatable.",
+      {"radius", "R|A:B|T=V,...",
+       "Cylinder aperture radius, world units; animatable. Default: the array's camera spacing (a light field's "
+       "median nearest-neighbour distance, the --raster grid's cell width; twice that for --interp depth).",
        "--raster 8x6 --interp cylinder --radius 0.5:3 --frames 9"},
       {"focal-depth", "D|A:B|T=V,...",
        "Light fields: depth of the focal (image) plane in front of the reference camera (default: the reference "
@@ -183,6 +185,15 @@ inline const std::vector<OptionSpec>& options() {
        "--view A --morph-to G --morph 0=0,0.5=1,1=0 --frames 24"},
       {"fps", "F", "Animation: frame rate of the MP4 in frames per second (default 12).",
        "--tilt-x 0:30 --frames 3 --fps 24"},
+      {"no-budget", "",
+       "Lift the documented limits that refuse a job before it starts (an image over 2^28 pixels, over 2^34 rays "
+       "in all, a --raster array over 1 GiB or 30 minutes): for a machine that can afford it.",
+       "--size 320x240 --spp 64 --no-budget"},
+      {"shard", "K/N",
+       "Render only the frames f (counted from 0) with f % N == K of an animation; they keep their global "
+       "numbers, so N processes (a Slurm job array: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT) write "
+       "the frames of one run between them. No MP4 and no stale-frame removal (no shard sees every frame).",
+       "--tilt-y -20:20 --frames 6 --shard 0/3 --no-video"},
       {"no-video", "", "Do not write an MP4 even when ffmpeg is available.", "--tilt-y -20:20 --frames 24 --no-video"},
   };
   return specs;
@@ -220,8 +231,9 @@ Examples:
   mpr-render --obj examples/boxes.obj --output boxes.jpg
   mpr-render --stanford $MPR_DATA_DIR/stanford/chess --interp cylinder --radius 10 --focal-depth 820 --output chess.png
   mpr-render --stanford $MPR_DATA_DIR/stanford/chess --focal-depth 820 --tilt-x 0:-28 --rectify plane --frames 24 --output tilt.png
-  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps $MPR_DATA_DIR/stanford/chess-depth --focus-at 1010,540 --write-depth chess_depth.pfm --output chess_autofocus.png
-  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps $MPR_DATA_DIR/stanford/chess-depth --all-in-focus --view G --output chess_all_in_focus_G.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps estimate:600:1400 --save-depth-maps chess-depth --all-in-focus --output chess_all_in_focus.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps chess-depth --focus-at 1010,540 --write-depth chess_depth.pfm --output chess_autofocus.png
+  mpr-render --stanford $MPR_DATA_DIR/stanford/chess --depth-maps chess-depth --all-in-focus --view G --output chess_all_in_focus_G.png
 )";
 }
 

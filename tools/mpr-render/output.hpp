@@ -50,29 +50,34 @@ inline void write_image(const std::filesystem::path& path, const mpr::Image<mpr:
     mpr::write_png(path, image);
 }
 
+/// `image` encoded as PNG or JPEG (quality `jpeg_quality`) by the extension of `path`.
+[[nodiscard]] inline std::vector<unsigned char> encode_image(const std::filesystem::path& path,
+                                                             const mpr::Image<mpr::Rgb8>& image) {
+  if (image_format(path) == ImageFormat::jpeg) return mpr::encode_jpeg(image.view(), jpeg_quality);
+  return mpr::encode_png(image.view());
+}
+
 /// The extension of an animation's frames: the output's for JPEG (".jpg", ".JPEG", ...), else ".png".
 [[nodiscard]] inline std::string frame_extension(const std::filesystem::path& output) {
   return image_format(output) == ImageFormat::jpeg ? output.extension().string() : std::string(".png");
 }
 
-/// Frames `<stem>_NNNN<ext>` (four or more digits, NNNN > `frames`) next to `output`: left by an
-/// earlier run of the same output name with more frames. Sorted.
+/// Frames left next to `output` by an earlier, longer run of the same output name: an animation
+/// of M frames writes `<stem>_0001<ext>` ... `<stem>_M<ext>` (four or more digits), so the stale
+/// frames of a run of `frames` frames are `<stem>_N<ext>` for N = frames + 1, frames + 2, ... as
+/// long as each exists. Any other file (a camera's IMG_0042.png beside --output IMG.png) is never
+/// counted. In order.
 [[nodiscard]] inline std::vector<std::filesystem::path> stale_frames(const std::filesystem::path& output, int frames) {
   std::vector<std::filesystem::path> stale;
-  const std::filesystem::path folder = output.parent_path().empty() ? std::filesystem::path(".") : output.parent_path();
-  const std::string prefix = output.stem().string() + "_", ext = frame_extension(output);
   std::error_code ec;
-  for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() < prefix.size() + 4 + ext.size() || name.compare(0, prefix.size(), prefix) != 0 ||
-        name.compare(name.size() - ext.size(), ext.size(), ext) != 0)
-      continue;
-    const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - ext.size());
-    if (digits.size() > 9 || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      continue;
-    if (std::stol(digits) > frames) stale.push_back(it->path());
+  for (long n = static_cast<long>(frames) + 1; n <= 999'999'999; ++n) {
+    char number[16];
+    std::snprintf(number, sizeof number, "_%04ld", n);
+    std::filesystem::path p = output;
+    p.replace_filename(output.stem().string() + number + frame_extension(output));
+    if (!std::filesystem::is_regular_file(p, ec)) break;
+    stale.push_back(p);
   }
-  std::sort(stale.begin(), stale.end());
   return stale;
 }
 

@@ -39,6 +39,16 @@ struct RasterBudget {
   double seconds_per_camera_triangle = 1e-8;        ///< rasterizing, per camera and triangle
   double seconds_per_camera_pixel = 2e-7;           ///< clearing, shading, converting
   double bytes_per_point = 16;                      ///< --raster-samples > 1: one camera's points
+  double max_seconds = 1800;                        ///< 30 minutes on one core, all frames together
+};
+
+/// The limits on the output of a job (lifted by --no-budget): the image's pixels (3 bytes each,
+/// 4 more with --write-depth; 2^28 pixels is 768 MiB) and the rays of the whole run (pixels x
+/// --spp x frames; 2^34 rays is about an hour at 5 Mrays/s, one core of docs/mpr-render.md's
+/// machine).
+struct OutputBudget {
+  std::uint64_t max_pixels = std::uint64_t(1) << 28;
+  std::uint64_t max_rays = std::uint64_t(1) << 34;
 };
 
 /// Estimated memory and time of building one virtual array.
@@ -71,17 +81,19 @@ inline std::string format_g(const char* format, double v) {
   return text;
 }
 
-/// Throws argument_error naming `option` unless `v` is 0 or a normal number of T.
+/// Throws argument_error naming `option` unless `v` is 0 or its magnitude lies between the
+/// square roots of T's smallest normal and largest numbers (float: about 1.1e-19 to 1.8e19), so
+/// that the squares and products the cameras form from it stay normal and finite: 1e-30 as a
+/// focal depth would otherwise surface as "invalid width_vector" deep in the library.
 template <std::floating_point T>
 void require_in_range(double v, const char* option) {
   const double a = std::abs(v);
-  if (a == 0 || (a >= static_cast<double>(std::numeric_limits<T>::min()) &&
-                 a <= static_cast<double>(std::numeric_limits<T>::max())))
-    return;
+  const double lo = std::sqrt(static_cast<double>(std::numeric_limits<T>::min()));
+  const double hi = std::sqrt(static_cast<double>(std::numeric_limits<T>::max()));
+  if (a == 0 || (a >= lo && a <= hi)) return;
   throw mpr::argument_error(option, format_g("%g", v) + " is outside the range of " +
-                                        (std::is_same_v<T, float> ? "float" : "double") + " (" +
-                                        format_g("%g", static_cast<double>(std::numeric_limits<T>::min())) + " to " +
-                                        format_g("%g", static_cast<double>(std::numeric_limits<T>::max())) + ")" +
+                                        (std::is_same_v<T, float> ? "float" : "double") + " (" + format_g("%.3g", lo) +
+                                        " to " + format_g("%.3g", hi) + " in magnitude)" +
                                         (std::is_same_v<T, float> ? "; use --double" : ""));
 }
 
@@ -106,6 +118,7 @@ void check_value_ranges(const Job& job) {
   require_in_range<T>(job.reference_depth, "--reference-depth");
   require_in_range<T>(job.position_scale, "--position-scale");
   require_in_range<T>(job.obj_scale, "--obj-scale");
+  require_in_range<T>(job.zoom, "--zoom");
   if (job.plane_centre) require_in_range<T>(*job.plane_centre, "--plane-centre");
   if (job.look_at) require_in_range<T>(*job.look_at, "--look-at");
   if (job.plane_size) {
@@ -131,6 +144,13 @@ inline std::string frame_label(int f, int count) {
 
 } // namespace detail
 
+/// Every number of `job` checked against T's range (require_in_range): before loading, so that no
+/// loader sees a value out of range (an OBJ scaled by 1e308), and again in preflight.
+template <std::floating_point T>
+void check_ranges(const Job& job) {
+  detail::check_value_ranges<T>(job);
+}
+
 /// Throws argument_error("--raster") when the virtual array of `job` would exceed `budget`.
 template <std::floating_point T>
 void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget& budget = {}) {
@@ -138,8 +158,9 @@ void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget&
   const mpr::scene::VirtualArrayConfig<T> config = raster_config<T>(job);
   const RasterEstimate e = estimate_raster(config.columns, config.rows, config.width, config.height, l.scene->size(),
                                            budget, config.samples);
-  if (e.bytes <= static_cast<double>(budget.max_bytes)) return;
   const int frames = std::max(job.frames, 1);
+  if (job.no_budget || (e.bytes <= static_cast<double>(budget.max_bytes) && e.seconds * frames <= budget.max_seconds))
+    return;
   throw mpr::argument_error(
       "--raster",
       std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second) + " cameras of " +
@@ -149,7 +170,31 @@ void check_raster_budget(const Job& job, const Loaded<T>& l, const RasterBudget&
           " need about " + detail::format_g("%.0f", e.bytes / (1 << 20)) + " MiB (limit " +
           std::to_string(budget.max_bytes >> 20) + " MiB) and roughly " + detail::format_g("%.0f", e.seconds * frames) +
           " s on one core to rasterize " + std::to_string(l.scene->size()) + " triangles" +
-          (frames > 1 ? " for " + std::to_string(frames) + " frames" : std::string()) + "; use fewer cameras");
+          (frames > 1 ? " for " + std::to_string(frames) + " frames" : std::string()) + " (limit " +
+          detail::format_g("%.0f", budget.max_seconds) +
+          " s); use fewer cameras or --raster-samples, or --no-budget to lift the limits");
+}
+
+/// Throws argument_error naming --size (or --spp) when the image of `job` (views of `w` x `h`
+/// pixels tiled by --layout) or the rays of the whole run exceed `budget`, unless --no-budget.
+inline void check_output_budget(const Job& job, int w, int h, const OutputBudget& budget = {}) {
+  if (job.no_budget) return;
+  const std::uint64_t pixels = std::uint64_t(job.cols) * std::uint64_t(w) * std::uint64_t(job.rows) * std::uint64_t(h);
+  const std::string image = std::to_string(job.cols * w) + "x" + std::to_string(job.rows * h);
+  if (pixels > budget.max_pixels)
+    throw mpr::argument_error(
+        "--size", "the image of " + image + " pixels (" + std::to_string(job.cols) + "x" + std::to_string(job.rows) +
+                      " views of " + std::to_string(w) + "x" + std::to_string(h) + ") exceeds the limit of " +
+                      std::to_string(budget.max_pixels) + " pixels; use a smaller --size or --layout, or --no-budget");
+  const double rays = static_cast<double>(pixels) * job.spp * std::max(job.frames, 1);
+  if (rays > static_cast<double>(budget.max_rays))
+    throw mpr::argument_error(job.spp > 1 ? "--spp" : "--size",
+                              detail::format_g("%.3g", rays) + " rays (" + image + " pixels x " +
+                                  std::to_string(job.spp) + " samples x " + std::to_string(std::max(job.frames, 1)) +
+                                  " frames) exceed the limit of " +
+                                  detail::format_g("%.3g", static_cast<double>(budget.max_rays)) +
+                                  " rays (about an hour on one core); use fewer samples, pixels or frames, or "
+                                  "--no-budget");
 }
 
 /// Builds every frame's cameras and sampler settings once (see the file comment); throws
@@ -159,6 +204,7 @@ void preflight(const Job& job, const Loaded<T>& l) {
   detail::check_value_ranges<T>(job);
   check_raster_budget(job, l);
   const auto [w, h] = view_size(job, l);
+  check_output_budget(job, w, h);
   const int count = std::max(job.frames, 1);
   for (int f = 0; f < count; ++f) {
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
@@ -205,5 +251,9 @@ void preflight(const Job& job, const Loaded<T>& l) {
     }
   }
 }
+
+// Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
+extern template void preflight<float>(const Job&, const Loaded<float>&);
+extern template void preflight<double>(const Job&, const Loaded<double>&);
 
 } // namespace mpr_cli

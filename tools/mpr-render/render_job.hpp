@@ -1,7 +1,8 @@
 #pragma once
 // mpr-render's run loop: a Job -> loaded data -> per frame and per view a camera (surface +
-// selector, framing.hpp) and a sampler (samplers.hpp), each a std::variant, combined by ONE
-// std::visit per view render into a fully typed mpr::Renderer. No per-pixel dispatch: inside the
+// selector, framing.hpp) and a sampler (samplers.hpp), each a std::variant, combined per view
+// render into a fully typed mpr::Renderer (render_view: one visit of the sampler here, one of
+// the camera and pixel sampling in render_dispatch.hpp's render_with_sampler). No per-pixel dispatch: inside the
 // visit the inner loop is the same template instantiation a C++ user writes by hand
 // (benchmarks/cli_dispatch.cpp).
 
@@ -15,6 +16,7 @@
 #include "prefilter.hpp"
 #include "preflight.hpp"
 #include "print_camera.hpp"
+#include "render_dispatch.hpp"
 #include "samplers.hpp"
 
 #include <mpr/mpr.hpp>
@@ -29,38 +31,24 @@
 namespace mpr_cli {
 
 /// Renders one view with the pixel sampling of --spp / --filter: the only run-time dispatch of a
-/// render (one std::visit). With `aperture` (and a supersampling policy: make_job requires
-/// --spp N > 1), the view's selector integrates over that finite aperture (aperture.hpp), opened
-/// to `aperture_size`.
+/// render. The visit here picks the sampler; render_with_sampler (render_dispatch.hpp, compiled
+/// in mpr_tools) visits the camera and the pixel sampling. With `aperture` (and a supersampling
+/// policy: make_job requires --spp N > 1), the view's selector integrates over that finite
+/// aperture (aperture.hpp), opened to `aperture_size`.
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
                  mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options,
                  const ApertureSpec* aperture = nullptr, double aperture_size = 0) {
-  std::visit(
-      [&](const auto& cam, const auto& smp, const auto& pixels) {
-        if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(pixels)>, mpr::PixelCentre>) {
-          if (aperture != nullptr) {
-            const auto lens = with_aperture(*aperture, aperture_size, plane_of(camera), cam.selector);
-            mpr::Renderer(cam.surface, lens, smp, pixels).render(out, region, options);
-            return;
-          }
-        }
-        const mpr::Renderer renderer(cam.surface, cam.selector, smp, pixels);
-        renderer.render(out, region, options);
-      },
-      camera, sampler, sampling);
+  const ViewTarget target{out, region, options, &sampling, aperture, aperture_size};
+  std::visit([&](const auto& smp) { render_with_sampler(camera, smp, target); }, sampler);
 }
 
 /// Renders one view through pixel centres (one ray per pixel; mpr-view, benchmarks).
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, mpr::ImageView<mpr::Rgb8> out,
                  const mpr::Region& region, const mpr::RenderOptions& options) {
-  std::visit(
-      [&](const auto& cam, const auto& smp) {
-        const mpr::Renderer renderer(cam.surface, cam.selector, smp);
-        renderer.render(out, region, options);
-      },
-      camera, sampler);
+  static const PixelSamplingVariant centre{mpr::PixelCentre{}};
+  render_view(camera, sampler, centre, out, region, options);
 }
 
 /// Warns about each view whose focal surface lies partly outside every camera's frame, at the
@@ -85,7 +73,9 @@ void warn_unseen_views(std::ostream& warn, const Job& job, const Loaded<T>& l, i
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
 
 template <std::floating_point T>
-void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings) {
+void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings,
+               Publication* publish) {
+  check_ranges<T>(given);
   const Loaded<T> loaded = load<T>(given);
   if (info != nullptr)
     for (const std::string& note : loaded.notes) *info << note << '\n';
@@ -98,6 +88,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     for (std::size_t n = loaded.notes.size(); n < l.notes.size(); ++n) *info << l.notes[n] << '\n';
 
   preflight(job, l); // every frame checked before the first is rendered
+  save_depth_maps(job, loaded, info);
   if (warnings != nullptr) warn_job(*warnings, job, l);
   const int count = std::max(job.frames, 1);
   if (warnings != nullptr && l.frames != nullptr && job.interpolation != Interpolation::depth && !job.all_in_focus)
@@ -105,6 +96,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
   const mpr::RenderOptions options{job.threads};
   const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
   for (int f = 0; f < count; ++f) {
+    if (job.shard && f % job.shard->second != job.shard->first) continue; // another shard's frame
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
     const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
     mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
@@ -123,17 +115,23 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     }
     sink(f, count, image);
   }
-  write_view_depth(job, loaded, info); // --write-depth (a single image)
+  write_view_depth(job, loaded, info, publish); // --write-depth (a single image)
 }
+
+// Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
+extern template void run_typed<float>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
+extern template void run_typed<double>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
 
 /// Runs the job: every frame goes to `sink`; --print-camera text, the depth of --focus-at and the
 /// files of --write-depth to `info`, and warnings about the views (light_field_views.hpp) to
-/// `warnings` (each when not null).
-inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr) {
+/// `warnings` (each when not null). With `publish`, the files of --write-depth are staged there
+/// (publish.hpp), else written at the end.
+inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr,
+                Publication* publish = nullptr) {
   if (job.use_double)
-    run_typed<double>(job, sink, info, warnings);
+    run_typed<double>(job, sink, info, warnings, publish);
   else
-    run_typed<float>(job, sink, info, warnings);
+    run_typed<float>(job, sink, info, warnings, publish);
 }
 
 /// All frames in memory (tests).

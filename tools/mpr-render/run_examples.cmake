@@ -9,7 +9,8 @@
 # Each command runs in SOURCE_DIR with $MPR_DATA_DIR replaced by DATA_DIR, small: `--size 32x24`
 # appended (the last value wins), `--frames N` above 3 lowered to 3, and `--output` appended as
 # OUT/<n>.png (.jpg when the example writes JPEG); a --write-depth file goes to OUT/<n>_depth.pfm,
-# --save-depth-maps to the folder OUT/<n>_depth_maps,
+# --save-depth-maps to the folder OUT/<n>_depth_maps (and a later --depth-maps of the same
+# folder reads it from there),
 # and a command with --focus-at keeps its size (its pixel must lie inside the image). It must exit
 # 0 and write its image (or its first frame). A command whose --stanford/--par/--lfca input (real data, never in the
 # repository) is missing is skipped with a line saying so. Prints one line per command: seconds, output, command.
@@ -101,6 +102,13 @@ foreach(_cmd IN LISTS _commands)
     if(_prev MATCHES "^--(stanford|par|lfca)$" AND NOT IS_ABSOLUTE "${_a}")
       set(_a "${SOURCE_DIR}/${_a}")
     endif()
+    # A folder an earlier command wrote with --save-depth-maps is read from where it went.
+    if(_prev STREQUAL "--depth-maps")
+      string(MAKE_C_IDENTIFIER "${_a}" _key)
+      if(DEFINED _saved_${_key})
+        set(_a "${_saved_${_key}}")
+      endif()
+    endif()
     if(_prev MATCHES "^--(stanford|par|lfca|depth-maps)$" AND NOT EXISTS "${_a}" AND NOT _a MATCHES "^estimate")
       set(_skip "${_a}")
     endif()
@@ -108,6 +116,8 @@ foreach(_cmd IN LISTS _commands)
       set(_a "${OUT}/${_n}_depth.pfm")
     endif()
     if(_prev STREQUAL "--save-depth-maps")
+      string(MAKE_C_IDENTIFIER "${_a}" _key)
+      set(_saved_${_key} "${OUT}/${_n}_depth_maps")
       set(_a "${OUT}/${_n}_depth_maps")
     endif()
     if(_prev STREQUAL "--focus-at")

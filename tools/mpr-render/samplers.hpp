@@ -75,4 +75,10 @@ SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FramePa
   return mpr::CameraFrameSampler<mpr::CylinderAperture, T>(l.frames, mpr::CylinderAperture{p.radius});
 }
 
+// Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
+extern template SamplerVariant<float> make_sampler<float>(const Job&, const Loaded<float>&, const FrameParams&, int,
+                                                          int);
+extern template SamplerVariant<double> make_sampler<double>(const Job&, const Loaded<double>&, const FrameParams&, int,
+                                                            int);
+
 } // namespace mpr_cli

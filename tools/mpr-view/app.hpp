@@ -215,7 +215,7 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
 
   const auto save = [&] {
     const std::filesystem::path png = next_save_path(job.output);
-    if (const auto parent = png.parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
+    mpr_cli::create_output_folder(png, "--output");
     mpr::write_png(png, picture);
     const std::string command = render_command(state.job, state.time(), W / state.job.cols, H / state.job.rows, png);
     std::filesystem::path txt = png;
@@ -396,7 +396,7 @@ int run_window(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, const Viewe
           break;
         }
         screenshot_waiting = false;
-        if (const auto parent = c.path.parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
+        mpr_cli::create_output_folder(c.path, "screenshot");
         mpr::write_png(c.path, screen);
         std::printf("screenshot %s: HUD '%s'\n", c.path.string().c_str(), hud_text(state, ctx, shown).c_str());
         std::fflush(stdout);

@@ -3,9 +3,9 @@
 // rasterized array (--raster) is mpr-render's --focus-at on the current view, so the viewer and
 // `mpr-render --focus-at X,Y` choose the same focal depth.
 
-#include "../mpr-render/depth_output.hpp"
-#include "../mpr-render/job.hpp"
-#include "../mpr-render/loading.hpp"
+#include "mpr-render/depth_output.hpp"
+#include "mpr-render/job.hpp"
+#include "mpr-render/loading.hpp"
 
 #include <mpr/core/error.hpp>
 

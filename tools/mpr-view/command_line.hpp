@@ -3,7 +3,7 @@
 // animated values are written at the time of the frame shown), with every number written so
 // that it reads back to the same double.
 
-#include "../mpr-render/job.hpp"
+#include "mpr-render/job.hpp"
 
 #include <mpr/core/vec.hpp>
 
@@ -136,6 +136,7 @@ inline std::string shell_word(const std::string& s) {
   }
   if (job.threads != 0) add("--threads", std::to_string(job.threads));
   if (job.use_double) a.push_back("--double");
+  if (job.no_budget) a.push_back("--no-budget");
   add("--output", output.string());
   return a;
 }

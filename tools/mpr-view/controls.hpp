@@ -3,7 +3,7 @@
 // mpr-render Job (so every view the user reaches is an mpr-render command line,
 // command_line.hpp). Independent of SDL: keys arrive by their SDL names ("G", "Left", "F1").
 
-#include "../mpr-render/job.hpp"
+#include "mpr-render/job.hpp"
 
 #include <mpr/core/vec.hpp>
 

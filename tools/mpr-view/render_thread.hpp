@@ -9,8 +9,8 @@
 // The thread never waits on the event loop: finished frames are left in a slot that the event
 // loop takes, and a callback (an SDL user event) says one is there.
 
-#include "../mpr-render/render_job.hpp"
 #include "band_pool.hpp"
+#include "mpr-render/render_job.hpp"
 
 #include <mpr/core/image.hpp>
 #include <mpr/glc.hpp>

@@ -14,6 +14,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -58,6 +59,11 @@ inline std::vector<std::string> words(const std::string& line) {
 
 /// Parses a script's text. `valid_key(name)` says whether a key name exists. Throws
 /// mpr::io_error naming `source` and the line for the first bad command.
+/// Largest --script file accepted, bytes (a script of 20,000 commands is about 300 KB).
+inline constexpr std::uintmax_t kMaxScriptBytes = 1u << 20;
+/// Longest script line accepted, bytes.
+inline constexpr std::size_t kMaxScriptLine = 1024;
+
 [[nodiscard]] inline std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& source,
                                                              const std::function<bool(const std::string&)>& valid_key,
                                                              int max_window = 16384) {
@@ -66,6 +72,9 @@ inline std::vector<std::string> words(const std::string& line) {
   int line_number = 0;
   while (std::getline(in, text)) {
     ++line_number;
+    if (text.size() > kMaxScriptLine)
+      throw mpr::io_error(source, "line longer than " + std::to_string(kMaxScriptLine) + " bytes",
+                          static_cast<std::size_t>(line_number));
     if (const auto hash = text.find('#'); hash != std::string::npos) text.erase(hash);
     if (!text.empty() && text.back() == '\r') text.pop_back();
     const std::vector<std::string> w = detail::words(text);
@@ -133,6 +142,9 @@ inline std::vector<std::string> words(const std::string& line) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw mpr::io_error(path.string(), std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxScriptBytes)
+    throw mpr::io_error(path.string(), std::to_string(size) + " bytes: scripts are limited to " +
+                                           std::to_string(kMaxScriptBytes) + " bytes");
   std::ifstream in(path);
   if (!in) throw mpr::io_error(path.string(), std::strerror(errno));
   return parse_script(in, path.string(), valid_key);

@@ -87,3 +87,10 @@ if(MPR_XVFB_RUN AND MPR_XDOTOOL)
 else()
   message(STATUS "mpr-view: xvfb-run or xdotool not found, the test with real X events is skipped")
 endif()
+# --script limits (issue 48): a line over 1024 bytes and a file over 1 MiB, one line each.
+mpr_view_test(bad_script_long_line SCRIPT long_line.txt -DDRIVER=no_such_driver -DEXPECT_RC=1
+              "-DEXPECT_REGEX=^mpr-view: [^\n]*long_line.txt:2: line longer than 1024 bytes\n$")
+string(REPEAT "wait 1\n" 160000 _big_script)
+file(WRITE "${_view_out}/big_script.txt" "${_big_script}")
+mpr_view_test(bad_script_size -DDRIVER=no_such_driver -DEXPECT_RC=1 "-DSCRIPT=${_view_out}/big_script.txt"
+              "-DEXPECT_REGEX=^mpr-view: [^\n]*big_script.txt: 1120000 bytes: scripts are limited to 1048576 bytes\n$")

@@ -2,9 +2,9 @@
 // mpr-view's command line: every mpr-render option (options.hpp of mpr-render, parsed into the
 // same Job by make_job) plus the viewer's own (--script, --benchmark, --benchmark-frames).
 
-#include "../mpr-render/cli_args.hpp"
-#include "../mpr-render/job.hpp"
-#include "../mpr-render/options.hpp"
+#include "mpr-render/cli_args.hpp"
+#include "mpr-render/job.hpp"
+#include "mpr-render/options.hpp"
 #include "overlay.hpp"
 
 #include <cstdio>
@@ -51,6 +51,8 @@ struct ViewerSettings {
 inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, const char* const* argv) {
   const mpr_cli::ParsedArgs args = mpr_cli::parse_args(argc, argv, all_options());
   ViewerSettings v;
+  if (args.has("shard"))
+    throw mpr::argument_error("--shard", "splits mpr-render's frames between processes; the viewer shows them all");
   mpr_cli::Job job = mpr_cli::make_job(args, {.reads_depth_maps = true}); // click-to-focus reads them
   if (const auto s = args.get("script")) {
     if (s->empty()) throw mpr::argument_error("--script", "empty file name");
@@ -78,7 +80,7 @@ inline void print_help() {
   std::printf("\nMPR-RENDER OPTIONS (--output: base name of the PNGs that S saves, default mpr-view.png; --frames N: "
               "the frames ',' and '.' step through)\n");
   for (const mpr_cli::OptionSpec& s : mpr_cli::options()) {
-    if (s.name == "help" || s.name == "no-video" || s.name == "print-camera") continue;
+    if (s.name == "help" || s.name == "no-video" || s.name == "print-camera" || s.name == "shard") continue;
     const std::string head = "--" + s.name + (s.value.empty() ? "" : " " + s.value);
     std::printf("  %s\n      %s\n", head.c_str(), s.help.c_str());
   }

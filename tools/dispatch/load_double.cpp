@@ -1,0 +1,10 @@
+// mpr_tools: loading for double (load<double>, loading.hpp: scene, OBJ, light fields and their depth
+// maps), declared `extern template` in its header. A unit of its own keeps each unit's compiler
+// memory and time small (docs/mpr-render.md, Building).
+#include "mpr-render/loading.hpp"
+
+namespace mpr_cli {
+
+template Loaded<double> load<double>(const Job&);
+
+} // namespace mpr_cli

@@ -1,0 +1,36 @@
+# --shard K/N (issue 47): an animation rendered by three processes (--shard 0/3, 1/3, 2/3) into one
+# folder gives the same frames, byte for byte and under the same global numbers, as one process.
+#   cmake -DTOOL=<mpr-render> -DDIR=<scratch folder> -P shard_run.cmake
+# Prints "shards: ok" when every frame matches.
+file(REMOVE_RECURSE "${DIR}")
+file(MAKE_DIRECTORY "${DIR}/one" "${DIR}/three")
+set(args --view G --size 24x18 --tilt-x 0:12 --frames 7 --no-video)
+execute_process(COMMAND "${TOOL}" ${args} --output "${DIR}/one/a.png" RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "one process: exit ${rc}: ${err}")
+endif()
+foreach(k 0 1 2)
+  execute_process(COMMAND "${TOOL}" ${args} --shard ${k}/3 --output "${DIR}/three/a.png" RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("shard ${k}/3: ${out}${err}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "shard ${k}/3: exit ${rc}")
+  endif()
+  # One progress line a frame on stderr (not a terminal here), with an ETA.
+  if(NOT err MATCHES "frame [0-9]+ of 7 rendered \\([0-9]/[0-9] of this run\\), [0-9.]+ s, ETA [0-9]+ s")
+    message(FATAL_ERROR "shard ${k}/3: no progress line")
+  endif()
+endforeach()
+file(GLOB one RELATIVE "${DIR}/one" "${DIR}/one/*.png")
+file(GLOB three RELATIVE "${DIR}/three" "${DIR}/three/*.png")
+list(LENGTH one n)
+if(NOT n EQUAL 7 OR NOT one STREQUAL three)
+  message(FATAL_ERROR "frames differ: one process wrote '${one}', three shards '${three}'")
+endif()
+foreach(f IN LISTS one)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E compare_files "${DIR}/one/${f}" "${DIR}/three/${f}" RESULT_VARIABLE same)
+  if(NOT same EQUAL 0)
+    message(FATAL_ERROR "${f} differs between the one-process run and the shards")
+  endif()
+endforeach()
+message("shards: ok")
