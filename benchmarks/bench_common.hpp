@@ -16,6 +16,14 @@
 
 namespace mpr_bench {
 
+/// The 1-, 5- and 15-minute load averages (/proc/loadavg), or "unknown".
+inline std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string a, b, c;
+  if (!(f >> a >> b >> c)) return "unknown";
+  return a + " " + b + " " + c;
+}
+
 /// CPU model (from /proc/cpuinfo), hardware threads, compiler, build type and flags.
 inline std::string machine_description() {
   std::string cpu = "unknown CPU";

@@ -34,18 +34,6 @@
 
 namespace {
 
-std::string load_average() {
-  std::FILE* f = std::fopen("/proc/loadavg", "r");
-  char text[64] = "unknown";
-  if (f != nullptr) {
-    if (std::fgets(text, sizeof text, f) == nullptr) std::snprintf(text, sizeof text, "unknown");
-    std::fclose(f);
-  }
-  std::string s = text;
-  while (!s.empty() && s.back() == '\n') s.pop_back();
-  return s;
-}
-
 template <class Fn>
 double seconds(Fn&& fn) {
   const auto start = std::chrono::steady_clock::now();
@@ -186,7 +174,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("plane-sweep kernels: %s; load average at start: %s\n", mpr::detail::simd_level_name(),
-              load_average().c_str());
+              mpr_bench::load_average().c_str());
   if (classroom) {
     std::vector<std::pair<std::string, mpr::PlaneSweepConfig>> runs{{options ? "given" : "defaults", classroom_config}};
     if (!options) {
@@ -215,10 +203,11 @@ int main(int argc, char** argv) {
   sweep.far = 1400;
   sweep.planes = 64;
   const std::size_t n = views > 0 ? std::min<std::size_t>(static_cast<std::size_t>(views), lf.size()) : lf.size();
-  std::printf("\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against up to %d neighbours), %d planes "
-              "%.0f..%.0f, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
-              lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes, sweep.near,
-              sweep.far, sweep.best, sweep.truncation, sweep.spatial, sweep.range);
+  std::printf(
+      "\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against up to %d neighbours), %d planes "
+      "%.0f..%.0f, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
+      lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes, sweep.near, sweep.far,
+      sweep.best, sweep.truncation, sweep.spatial, sweep.range);
   std::printf("| threads | total s (wall) | ms per view (wall) | CPU s (all threads) | load average after |\n"
               "|---|---|---|---|---|\n");
   for (const int threads : {2, 1}) {
@@ -232,7 +221,7 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < n; ++i) s += seconds([&] { (void)mpr::estimate_depth(lf, i, sweep); });
     }
     std::printf("| %d | %.2f | %.0f | %.2f | %s |\n", threads, s, 1000 * s / static_cast<double>(n),
-                cpu_seconds() - cpu, load_average().c_str());
+                cpu_seconds() - cpu, mpr_bench::load_average().c_str());
     std::fflush(stdout);
   }
   return 0;

@@ -41,18 +41,6 @@
 
 namespace {
 
-std::string load_average() {
-  std::FILE* f = std::fopen("/proc/loadavg", "r");
-  char text[64] = "unknown";
-  if (f != nullptr) {
-    if (std::fgets(text, sizeof text, f) == nullptr) std::snprintf(text, sizeof text, "unknown");
-    std::fclose(f);
-  }
-  std::string s = text;
-  while (!s.empty() && s.back() == '\n') s.pop_back();
-  return s;
-}
-
 struct Settings {
   mpr::PlaneSweepConfig sweep; // near and far are set per scene
   std::string views = "all";
@@ -285,7 +273,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("plane-sweep kernels: %s; load average at start: %s\n", mpr::detail::simd_level_name(),
-              load_average().c_str());
+              mpr_bench::load_average().c_str());
   try {
     hci(dir, settings);
     if (with_classroom) classroom(settings);
@@ -293,6 +281,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
   }
-  std::printf("\nload average at the end: %s\n", load_average().c_str());
+  std::printf("\nload average at the end: %s\n", mpr_bench::load_average().c_str());
   return 0;
 }

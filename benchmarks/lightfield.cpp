@@ -75,18 +75,6 @@ double thread_cpu_ms(int repeats, Fn&& fn) {
   return ms[ms.size() / 2];
 }
 
-std::string load_average() {
-  std::FILE* f = std::fopen("/proc/loadavg", "r");
-  char text[64] = "unknown";
-  if (f != nullptr) {
-    if (std::fgets(text, sizeof text, f) == nullptr) std::snprintf(text, sizeof text, "unknown");
-    std::fclose(f);
-  }
-  std::string s = text;
-  while (!s.empty() && (s.back() == '\n')) s.pop_back();
-  return s;
-}
-
 std::string g_only;      // --only=: label filter
 bool g_per_pixel = true; // --no-per-pixel clears it
 
@@ -263,7 +251,8 @@ int main(int argc, char** argv) {
       "unit deeper, every camera's shift a fraction of a pixel); cylinder radius %.1f grid "
       "steps = %.1f cameras per ray; "
       "median of %d runs (min-max); thread CPU time for 1 thread; load average at start: %s\n\n",
-      size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats, load_average().c_str());
+      size, size, nx * ny, cw, ch, static_cast<double>(radius), in_cylinder, repeats,
+      mpr_bench::load_average().c_str());
   std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s | vs 2004 "
               "(wall) |\n|---|---|---|---|---|---|---|\n");
   for (int threads : {1, 2}) {

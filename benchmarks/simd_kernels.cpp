@@ -51,13 +51,6 @@ double thread_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  std::string a, b, c;
-  f >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
-
 std::vector<Method> methods() {
   namespace d = mpr::detail;
   std::vector<Method> out;
@@ -115,7 +108,7 @@ int main(int argc, char** argv) {
   const bool quick = mpr_bench::quick_mode(argc, argv);
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("cpu level: %s%s, load average: %s\n", mpr::detail::simd_level_name(mpr::detail::cpu_simd_level()), "",
-              load_average().c_str());
+              mpr_bench::load_average().c_str());
   constexpr std::size_t kPixels = 1400, kRows = 256;
   constexpr std::size_t m = 3 * kPixels, stride = m + 64;
   const int frame_rows = quick ? 49 : 49 * 800, repeats = quick ? 1 : 9;
@@ -158,7 +151,7 @@ int main(int argc, char** argv) {
     std::printf("| %s | %.2f | %.2f | %.2f | %.1e |\n", k.name.c_str(), k.ms[k.ms.size() / 2], k.ms.front(),
                 k.ms.back(), k.max_diff);
   }
-  std::printf("load average after: %s\n", load_average().c_str());
+  std::printf("load average after: %s\n", mpr_bench::load_average().c_str());
   for (const Method& k : all)
     if (k.max_diff > 1e-5) return 1; // 1/500 of an 8-bit level's smallest linear step is 7.7e-6
   return 0;
