@@ -1,5 +1,6 @@
-// mpr-render's loading (tools/mpr-render/loading.hpp): the default framing of an OBJ scene, and
-// the camera a _par.txt light field is viewed from.
+// mpr-render's loading (tools/mpr-render/loading.hpp): the default framing of an OBJ scene, the
+// camera a _par.txt light field is viewed from, COLMAP models and HCI scenes.
+#include "io/light_field_test_files.hpp"
 #include "mpr-render/render_job.hpp"
 #include "tools_test_support.hpp"
 
@@ -7,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -59,3 +61,75 @@ TEST_CASE("mpr-render: an OBJ is framed from above at an angle by default", "[to
 }
 
 #endif
+
+TEST_CASE("mpr-render: --colmap loads the same array as --par and renders the same image", "[tools][loading][colmap]") {
+  // The three cameras of plane_light_field (R = I, f = 8, principal point (3.5, 2.5) in mpr's
+  // convention, (4, 3) in COLMAP's) written as PROJECT/sparse/0 beside PROJECT/images.
+  const std::filesystem::path dir = mpr_tools_test::plane_light_field("loading_colmap", 2.0f);
+  const std::filesystem::path project = mpr_tools_test::temp_folder("loading_colmap_project");
+  const std::filesystem::path model = project / "sparse" / "0", images = project / "images";
+  std::filesystem::create_directories(model);
+  std::filesystem::create_directories(images);
+  std::ofstream(model / "cameras.txt") << "# CAMERA_ID MODEL WIDTH HEIGHT PARAMS[]\n1 PINHOLE 8 6 8 8 4 3\n";
+  std::ofstream ims(model / "images.txt");
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "view" + std::to_string(i) + ".png";
+    std::filesystem::copy_file(dir / name, images / name, std::filesystem::copy_options::overwrite_existing);
+    ims << i + 1 << " 1 0 0 0 " << -0.1 * (i - 1) << " 0 0 1 " << name << "\n\n";
+  }
+  ims.close();
+
+  const std::string par = (dir / "tiny_par.txt").string();
+  const mpr_cli::Loaded<float> a = mpr_cli::load<float>(job_of({"--par", par, "--focal-depth", "2"}));
+  const mpr_cli::Loaded<float> b = mpr_cli::load<float>(job_of({"--colmap", model.string(), "--focal-depth", "2"}));
+  REQUIRE(b.frames);
+  REQUIRE(b.frames->size() == 3);
+  REQUIRE(b.reference);
+  CHECK(b.reference->centre().isApprox(a.reference->centre()));
+  CHECK(b.reference->K().isApprox(a.reference->K()));
+  // The default focus, the depth of the cameras' mean centre, is 0 here: both refuse it alike.
+  CHECK_THROWS_WITH(mpr_cli::load<float>(job_of({"--colmap", model.string()})),
+                    Catch::Matchers::Contains("--focal-depth"));
+  CHECK_THROWS_WITH(mpr_cli::load<float>(job_of({"--par", par})), Catch::Matchers::Contains("--focal-depth"));
+  const std::vector<mpr::Image<mpr::Rgb8>> pa = mpr_cli::render_frames(job_of({"--par", par, "--focal-depth", "2"}));
+  const std::vector<mpr::Image<mpr::Rgb8>> pb =
+      mpr_cli::render_frames(job_of({"--colmap", model.string(), "--focal-depth", "2"}));
+  REQUIRE(pa.size() == 1);
+  REQUIRE(pb.size() == 1);
+  REQUIRE(pa[0].width() == pb[0].width());
+  REQUIRE(pa[0].height() == pb[0].height());
+  int differ = 0;
+  for (int y = 0; y < pa[0].height(); ++y)
+    for (int x = 0; x < pa[0].width(); ++x) differ += pa[0](x, y) == pb[0](x, y) ? 0 : 1;
+  CHECK(differ == 0);
+
+  // --colmap-images names the folder; without one beside the model the error says how to give it.
+  const mpr_cli::Loaded<float> c = mpr_cli::load<float>(
+      job_of({"--colmap", model.string(), "--colmap-images", images.string(), "--focal-depth", "2"}));
+  CHECK(c.frames->size() == 3);
+  std::filesystem::remove_all(images);
+  CHECK_THROWS_WITH(mpr_cli::load<float>(job_of({"--colmap", model.string(), "--focal-depth", "2"})),
+                    Catch::Matchers::Contains("--colmap-images"));
+  CHECK_THROWS_WITH(job_of({"--par", par, "--colmap-images", dir.string()}),
+                    Catch::Matchers::Contains("applies to --colmap only"));
+}
+
+TEST_CASE("mpr-render: --hci views the centre camera focused on the zero-disparity plane",
+          "[tools][loading][real_data]") {
+  const std::filesystem::path root = mpr_test::data_dir();
+  const std::filesystem::path scene = root / "hci" / "backgammon";
+  if (root.empty() || !std::filesystem::is_directory(scene)) {
+    WARN("real data not found under '" << root.string() << "' (set MPR_DATA_DIR): skipped");
+    return;
+  }
+  const mpr_cli::Loaded<float> l = mpr_cli::load<float>(job_of({"--hci", scene.string()}));
+  const mpr::HciLightField<float> lf = mpr::read_hci_light_field<float>(scene);
+  REQUIRE(l.frames);
+  CHECK(l.frames->size() == lf.frames.size());
+  REQUIRE(l.reference);
+  CHECK(l.reference->centre().isApprox(lf.frames.camera(lf.centre).centre()));
+  // Disparity units (no parameters.cfg): f = width, B = 1, s = 10, so the zero-disparity plane
+  // lies at depth 512 / 10.
+  CHECK(l.default_focal_depth == Approx(lf.disparity.depth(0)));
+  CHECK(l.default_focal_depth == Approx(51.2));
+}

@@ -28,7 +28,12 @@
 
 namespace mpr_cli {
 
-enum class SamplerKind { scene, obj, par, stanford, lfca };
+enum class SamplerKind { scene, obj, par, stanford, lfca, hci, colmap };
+
+/// Whether `kind` is a light field (a calibrated camera array) rather than a scene to ray cast.
+[[nodiscard]] constexpr bool is_light_field(SamplerKind kind) noexcept {
+  return kind != SamplerKind::scene && kind != SamplerKind::obj;
+}
 enum class Interpolation { nearest, synthetic, cylinder, depth };
 
 /// Everything one invocation of mpr-render does. Lengths are world units of the sampler's data
@@ -55,7 +60,8 @@ struct Job {
   std::optional<ApertureSpec> aperture; ///< finite aperture (aperture.hpp); needs spp > 1
   // Sampler.
   SamplerKind sampler = SamplerKind::scene;
-  std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford folder or LFCA positions file
+  std::filesystem::path input; ///< OBJ file, _par.txt file, Stanford / HCI / COLMAP model folder or LFCA positions file
+  std::filesystem::path colmap_images; ///< --colmap-images (empty: found beside the model, loading.hpp)
   double obj_scale = 1;
   std::optional<std::pair<int, int>> raster; ///< scene/OBJ: rasterized virtual array of C x R cameras
   int raster_samples = 1;                    ///< --raster: N x N points a camera pixel (odd)
@@ -234,20 +240,33 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
       ++samplers;
       std::error_code ec;
       if (!std::filesystem::exists(job.input, ec))
-        throw mpr::io_error(job.input.string(), kind == SamplerKind::stanford ? "no such folder" : "no such file");
+        throw mpr::io_error(job.input.string(),
+                            kind == SamplerKind::stanford || kind == SamplerKind::hci || kind == SamplerKind::colmap
+                                ? "no such folder"
+                                : "no such file");
     }
   };
   input("obj", SamplerKind::obj);
   input("par", SamplerKind::par);
   input("stanford", SamplerKind::stanford);
   input("lfca", SamplerKind::lfca);
-  if (samplers > 1) throw mpr::argument_error("--scene/--obj/--par/--stanford/--lfca", "choose one sampler");
-  const bool light_field =
-      job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford || job.sampler == SamplerKind::lfca;
+  input("hci", SamplerKind::hci);
+  input("colmap", SamplerKind::colmap);
+  if (samplers > 1)
+    throw mpr::argument_error("--scene/--obj/--par/--stanford/--lfca/--hci/--colmap", "choose one sampler");
+  const bool light_field = is_light_field(job.sampler);
   const auto lf_only = [&](const char* name) {
     if (args.has(name) && !light_field)
-      throw mpr::argument_error(std::string("--") + name, "applies to light fields (--par, --stanford, --lfca) only");
+      throw mpr::argument_error(std::string("--") + name,
+                                "applies to light fields (--par, --stanford, --lfca, --hci, --colmap) only");
   };
+  if (const auto v = args.get("colmap-images")) {
+    if (job.sampler != SamplerKind::colmap) throw mpr::argument_error("--colmap-images", "applies to --colmap only");
+    job.colmap_images = *v;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(job.colmap_images, ec))
+      throw mpr::io_error(job.colmap_images.string(), "no such folder");
+  }
   if (const auto v = args.get("raster")) {
     if (light_field) throw mpr::argument_error("--raster", "applies to --scene and --obj only");
     job.raster = parse_size(*v, "--raster");

@@ -6,6 +6,7 @@
 #include "publish.hpp"
 
 #include <mpr/camera/planar_camera_array.hpp>
+#include <mpr/io/colmap.hpp>
 #include <mpr/lightfield.hpp>
 #include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
@@ -64,6 +65,18 @@ mpr::PinholeCamera<T> array_centre_camera(const mpr::CameraFrameSet<T>& frames) 
   return mpr::planar_array_reference_camera(frames.camera(0), mean);
 }
 
+/// --colmap's images folder: --colmap-images, else the first of MODEL/images, MODEL/../images and
+/// MODEL/../../images (COLMAP's own layout: PROJECT/sparse/0 beside PROJECT/images) that exists.
+inline std::filesystem::path colmap_images(const Job& job) {
+  if (!job.colmap_images.empty()) return job.colmap_images;
+  std::error_code ec;
+  for (const std::filesystem::path& p :
+       {job.input / "images", job.input / ".." / "images", job.input / ".." / ".." / "images"})
+    if (std::filesystem::is_directory(p, ec)) return p.lexically_normal();
+  throw mpr::io_error(job.input.string(), "no images folder beside the COLMAP model (images/, ../images/ or "
+                                          "../../images/): give --colmap-images FOLDER");
+}
+
 } // namespace detail
 
 /// --save-depth-maps FOLDER: writes the estimated depth maps of `l` (after the preflight check, so
@@ -118,6 +131,8 @@ Loaded<T> load(const Job& job) {
     }
     return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));
   };
+  std::size_t hci_centre = 0; // --hci: the centre view and the zero-disparity depth
+  double hci_focus = 0;
   switch (job.sampler) {
   case SamplerKind::scene:
     l.scene = std::make_shared<const mpr::scene::Scene<T>>(mpr::scene::classroom<T>());
@@ -162,20 +177,34 @@ Loaded<T> load(const Job& job) {
     l.frames = frames(mpr::read_lfca<T>(job.input, o, limits));
     break;
   }
+  case SamplerKind::hci: {
+    mpr::HciLightField<T> lf = mpr::read_hci_light_field<T>(job.input, {}, limits);
+    hci_centre = lf.centre;
+    hci_focus = lf.disparity.depth(0); // the benchmark's zero-disparity plane
+    l.frames = frames(std::move(lf.frames));
+    break;
+  }
+  case SamplerKind::colmap:
+    l.frames = frames(mpr::read_colmap<T>(job.input, detail::colmap_images(job), limits));
+    break;
   }
   if (l.scene) l.scene_sampler.emplace(l.scene);
   if (l.frames) {
     if (job.camera && *job.camera >= static_cast<int>(l.frames->size()))
       throw mpr::argument_error("--camera", std::to_string(*job.camera) + " is not below the camera count " +
                                                 std::to_string(l.frames->size()));
-    if (job.sampler == SamplerKind::par || job.camera) {
+    if (job.sampler == SamplerKind::hci && !job.camera) {
+      l.reference = l.frames->camera(hci_centre);
+      l.default_focal_depth = hci_focus;
+    } else if (job.sampler == SamplerKind::par || job.sampler == SamplerKind::colmap || job.camera) {
       l.reference = l.frames->camera(job.camera ? static_cast<std::size_t>(*job.camera) : l.frames->size() / 2);
       // Default focus: the depth of the mean camera centre's... projection of the array's middle.
       mpr::Vec3<double> mean = mpr::Vec3<double>::Zero();
       for (std::size_t i = 0; i < l.frames->size(); ++i) mean += l.frames->camera(i).centre().template cast<double>();
       mean /= static_cast<double>(l.frames->size());
       const double z = (l.reference->R().template cast<double>() * mean + l.reference->t().template cast<double>()).z();
-      l.default_focal_depth = job.sampler == SamplerKind::par ? z : job.reference_depth;
+      l.default_focal_depth =
+          job.sampler == SamplerKind::par || job.sampler == SamplerKind::colmap ? z : job.reference_depth;
       if (!(l.default_focal_depth > 0) && !job.focal_depth)
         throw mpr::argument_error("--focal-depth", "no default for this camera set: give --focal-depth");
     } else {

@@ -79,6 +79,18 @@ inline const std::vector<OptionSpec>& options() {
       {"lfca", "POSITIONS.txt",
        "Sampler: LFCA camera positions ('id X Y' lines) with {id}.png and {id}.homography.txt.",
        "--lfca $MPR_DATA_DIR/lfca/positions.txt"},
+      {"hci", "FOLDER",
+       "Sampler: a scene of the HCI 4D light-field benchmark (input_CamNNN.png views of a 9x9 grid or any subset "
+       "holding the centre; parameters.cfg for the metric array, else an array in disparity units: "
+       "docs/depth.md). Default view: the centre camera, focused on the zero-disparity plane.",
+       "--hci $MPR_DATA_DIR/hci/backgammon --size 256x256"},
+      {"colmap", "MODEL_FOLDER",
+       "Sampler: a COLMAP sparse model in text form (cameras.txt: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, "
+       "OPENCV without tangential terms; images.txt) with its images (--colmap-images, else images/ found beside the "
+       "model, as in PROJECT/sparse/0 and PROJECT/images).",
+       "--colmap $MPR_DATA_DIR/colmap/sparse/0"},
+      {"colmap-images", "FOLDER", "--colmap: the folder of the model's images.",
+       "--colmap $MPR_DATA_DIR/colmap/sparse/0 --colmap-images $MPR_DATA_DIR/colmap/images"},
       {"interp", "nearest|synthetic|cylinder|depth",
        "Light-field interpolation: nearest camera, full synthetic aperture, cylinder aperture of --radius, or depth "
        "proxy (the surface from per-camera depth maps, the cameras that see it blended by angle; --raster keeps the "
@@ -93,10 +105,11 @@ inline const std::vector<OptionSpec>& options() {
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
        "estimate:0.44:0.72"},
       {"sweep", "KEY=VALUE,...",
-       "With --depth-maps estimate: the plane sweep's other settings (mpr::PlaneSweepConfig; defaults suit "
-       "1400-pixel real arrays such as Chess): neighbours (cameras compared, 4), best (the smallest costs averaged, "
-       "2: occluded neighbours drop out), truncation (0.3), spatial (aggregation extent in pixels, 12), range "
-       "(colour difference that cuts it, 0.2). Clean synthetic arrays: best=4 and spatial scaled to the frames "
+       "With --depth-maps estimate: the plane sweep's other settings (mpr::PlaneSweepConfig): selection (axes: the "
+       "cameras along the camera's image row and column, the default; nearest: the nearest by distance), neighbours "
+       "(cameras compared, 16), best (the smallest costs averaged, 8: occluded neighbours drop out), truncation "
+       "(0.3), spatial (aggregation extent in pixels, 12), range (colour difference that cuts it, 0.2). Clean "
+       "synthetic arrays: best=4 and spatial scaled to the frames "
        "(docs/lightfield.md).",
        "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
        "estimate:0.44:0.72 --sweep best=3,spatial=6"},

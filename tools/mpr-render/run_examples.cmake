@@ -12,7 +12,7 @@
 # --save-depth-maps to the folder OUT/<n>_depth_maps (and a later --depth-maps of the same
 # folder reads it from there),
 # and a command with --focus-at keeps its size (its pixel must lie inside the image). It must exit
-# 0 and write its image (or its first frame). A command whose --stanford/--par/--lfca input (real data, never in the
+# 0 and write its image (or its first frame). A command whose --stanford/--par/--lfca/--hci/--colmap input (real data, never in the
 # repository) is missing is skipped with a line saying so. Prints one line per command: seconds, output, command.
 # With -DFULL=ON the commands run at their own size and frame count (for timing them; not in ctest).
 set(_commands)
@@ -99,7 +99,7 @@ foreach(_cmd IN LISTS _commands)
   set(_keep_size FALSE)
   set(_small)
   foreach(_a IN LISTS _args)
-    if(_prev MATCHES "^--(stanford|par|lfca)$" AND NOT IS_ABSOLUTE "${_a}")
+    if(_prev MATCHES "^--(stanford|par|lfca|hci|colmap|colmap-images)$" AND NOT IS_ABSOLUTE "${_a}")
       set(_a "${SOURCE_DIR}/${_a}")
     endif()
     # A folder an earlier command wrote with --save-depth-maps is read from where it went.
@@ -109,7 +109,7 @@ foreach(_cmd IN LISTS _commands)
         set(_a "${_saved_${_key}}")
       endif()
     endif()
-    if(_prev MATCHES "^--(stanford|par|lfca|depth-maps)$" AND NOT EXISTS "${_a}" AND NOT _a MATCHES "^estimate")
+    if(_prev MATCHES "^--(stanford|par|lfca|hci|colmap|colmap-images|depth-maps)$" AND NOT EXISTS "${_a}" AND NOT _a MATCHES "^estimate")
       set(_skip "${_a}")
     endif()
     if(_prev STREQUAL "--write-depth")

@@ -34,8 +34,7 @@ namespace mpr_view {
 template <std::floating_point T>
 ViewContext make_context(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int view_width, int view_height) {
   ViewContext ctx;
-  ctx.light_field = job.sampler == mpr_cli::SamplerKind::par || job.sampler == mpr_cli::SamplerKind::stanford ||
-                    job.sampler == mpr_cli::SamplerKind::lfca;
+  ctx.light_field = mpr_cli::is_light_field(job.sampler);
   ctx.raster = job.raster.has_value();
   ctx.plane_centre = job.plane_centre ? *job.plane_centre : l.plane_centre;
   ctx.look_at = job.look_at ? *job.look_at : l.look_at;

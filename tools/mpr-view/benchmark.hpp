@@ -116,8 +116,7 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
                        : job.interpolation == mpr_cli::Interpolation::synthetic ? "synthetic"
                        : job.interpolation == mpr_cli::Interpolation::depth     ? "depth"
                                                                                 : "cylinder";
-  const bool focus = job.raster || job.sampler == mpr_cli::SamplerKind::par ||
-                     job.sampler == mpr_cli::SamplerKind::stanford || job.sampler == mpr_cli::SamplerKind::lfca;
+  const bool focus = job.raster || mpr_cli::is_light_field(job.sampler);
   std::printf("mpr-view benchmark: %dx%d, %d view(s), %s, threads %d, %s%s, load average %.2f\n", view_w * job.cols,
               view_h * job.rows, job.cols * job.rows, sizeof(T) == 4 ? "float" : "double", job.threads,
               job.sampler == mpr_cli::SamplerKind::scene ? "scene" : job.input.filename().string().c_str(),

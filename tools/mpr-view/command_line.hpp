@@ -71,9 +71,15 @@ inline std::string shell_word(const std::string& s) {
   case SamplerKind::lfca:
     add("--lfca", job.input.string());
     break;
+  case SamplerKind::hci:
+    add("--hci", job.input.string());
+    break;
+  case SamplerKind::colmap:
+    add("--colmap", job.input.string());
+    if (!job.colmap_images.empty()) add("--colmap-images", job.colmap_images.string());
+    break;
   }
-  const bool light_field =
-      job.sampler == SamplerKind::par || job.sampler == SamplerKind::stanford || job.sampler == SamplerKind::lfca;
+  const bool light_field = is_light_field(job.sampler);
   if (job.raster) add("--raster", std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second));
   if (job.raster && job.raster_samples > 1) add("--raster-samples", std::to_string(job.raster_samples));
   if (light_field || job.raster) {
