@@ -305,7 +305,8 @@ TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, nami
                                                      {"spatial=-1", "--sweep spatial"},
                                                      {"range=nan", "--sweep range"},
                                                      {"range=0", "--sweep range"},
-                                                     {"best=2,,spatial=3", "KEY=VALUE"}};
+                                                     {"best=2,,spatial=3", "KEY=VALUE"},
+                                                     {"selection=diagonal", "'diagonal' is not axes or nearest"}};
   for (const auto& [item, expected] : bad) {
     INFO(item);
     std::vector<std::string> b = base;
@@ -316,6 +317,11 @@ TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, nami
   std::vector<std::string> extreme = base;
   extreme.insert(extreme.end(), {"--sweep", "truncation=1e39,range=1e-320,spatial=1e300"});
   CHECK_NOTHROW(job_of(extreme));
+  // The neighbour selection: the image axes by default, the nearest cameras on request.
+  CHECK(defaults.selection == mpr::NeighbourSelection::axes);
+  std::vector<std::string> nearest = base;
+  nearest.insert(nearest.end(), {"--sweep", "selection=nearest,neighbours=4,best=2"});
+  CHECK(job_of(nearest).depth_estimate->selection == mpr::NeighbourSelection::nearest);
   // Only with an estimate.
   CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", dir.string(), "--all-in-focus", "--sweep", "best=1"}),
                     Catch::Contains("--sweep") && Catch::Contains("estimate"));

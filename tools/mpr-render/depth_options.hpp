@@ -53,13 +53,17 @@ std::vector<std::string> for_each_setting(const std::string& text, const std::st
 }
 
 /// `--sweep KEY=VALUE[,KEY=VALUE...]`: the other settings of the plane sweep of `--depth-maps
-/// estimate:` (keys neighbours, best, truncation, spatial, range: `mpr::PlaneSweepConfig`), set
-/// in `c`, each key at most once. Throws argument_error naming --sweep and the key.
+/// estimate:` (keys selection (axes or nearest), neighbours, best, truncation, spatial, range:
+/// `mpr::PlaneSweepConfig`), set in `c`, each key at most once. Throws argument_error naming --sweep and the key.
 inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
-  const char* keys = "keys: neighbours, best, truncation, spatial, range";
+  const char* keys = "keys: selection, neighbours, best, truncation, spatial, range";
   const std::vector<std::string> given = for_each_setting(
       text, "--sweep", keys, [&](const std::string& key, const std::string& value, const std::string& option) {
-        if (key == "neighbours")
+        if (key == "selection") {
+          if (value != "axes" && value != "nearest")
+            throw mpr::argument_error(option, "'" + value + "' is not axes or nearest");
+          c.selection = value == "axes" ? mpr::NeighbourSelection::axes : mpr::NeighbourSelection::nearest;
+        } else if (key == "neighbours")
           c.neighbours = parse_int(value, option, 1, 32);
         else if (key == "best")
           c.best = parse_int(value, option, 1, 32);
