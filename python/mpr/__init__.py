@@ -20,12 +20,14 @@ from ._mpr import (  # noqa: F401
     interpolations,
     project,
     read_colmap,
+    read_hci,
     read_lfca,
     read_par,
     read_stanford,
     render,
     render_scene,
     render_views,
+    score_disparity,
     view_depth,
 )
 
@@ -37,5 +39,5 @@ except ImportError:
 __all__ = [
     "Camera", "FrameSet", "View", "classify", "estimate_depth", "filters", "frame_set", "gallery_ids",
     "interpolations", "project", "read_colmap", "read_lfca", "read_par", "read_stanford", "render",
-    "render_views", "Scene", "classroom", "render_scene", "view_depth",
+    "render_views", "Scene", "classroom", "render_scene", "view_depth", "read_hci", "score_disparity",
 ]

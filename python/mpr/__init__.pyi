@@ -1,7 +1,7 @@
 """Type stubs of the mpr Python module (see python/src for the documentation of each call)."""
 
 from os import PathLike
-from typing import Optional, Sequence, Tuple, Union
+from typing import Any, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -73,6 +73,8 @@ def read_stanford(folder: _Path, scale: float = 1.0, reference_depth: float = 10
 def read_lfca(positions: _Path, scale: float = 1.0, reference_depth: float = 1000.0,
               focal_length: float = 0.0) -> FrameSet: ...
 def read_colmap(model_dir: _Path, image_dir: _Path) -> FrameSet: ...
+def read_hci(folder: _Path) -> dict[str, Any]: ...
+def score_disparity(estimate: npt.ArrayLike, truth: npt.ArrayLike, border: int = 15) -> dict[str, float]: ...
 def frame_set(images: Sequence[npt.NDArray[Union[np.uint8, np.float32]]], K: npt.ArrayLike, R: npt.ArrayLike,
               t: npt.ArrayLike, names: Sequence[str] = ...,
               depths: Optional[Sequence[npt.NDArray[np.float32]]] = None) -> FrameSet: ...
@@ -93,9 +95,9 @@ def render_views(frames: FrameSet, views: Sequence[View], width: int, height: in
                  out: Optional[npt.NDArray[Union[np.uint8, np.float32]]] = None, aperture: str = "none",
                  aperture_size: float = 0.0, lens_distance: float = 0.0,
                  focus: float = 0.0) -> npt.NDArray[Union[np.uint8, np.float32]]: ...
-def estimate_depth(frames: FrameSet, camera: int, near: float, far: float, planes: int = 64, neighbours: int = 4,
-                   best: int = 2, truncation: float = 0.3, spatial: float = 12.0, range: float = 0.2,
-                   threads: int = 0) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
+def estimate_depth(frames: FrameSet, camera: int, near: float, far: float, planes: int = 64,
+                   selection: str = "axes", neighbours: int = 16, best: int = 8, truncation: float = 0.3,
+                   spatial: float = 12.0, range: float = 0.2, threads: int = 0) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
 
 class Scene:
     """A triangle scene with its BVH (world units)."""

@@ -3,10 +3,14 @@
 #include "bindings.hpp"
 
 #include <mpr/core/renderer.hpp>
+#include <mpr/io/hci_light_field.hpp>
+#include <mpr/lightfield/array_disparity.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/disparity_score.hpp>
 #include <mpr/lightfield/view_depth.hpp>
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <cstring>
 #include <optional>
@@ -15,15 +19,24 @@
 namespace mpr_py {
 namespace {
 
+const mpr::PlaneSweepConfig kSweep{}; // the library's defaults
+
 py::array_t<float> to_array(const mpr::Image<float>& image) {
   py::array_t<float> out({static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
   std::memcpy(out.mutable_data(), image.data(), sizeof(float) * static_cast<std::size_t>(out.size()));
   return out;
 }
 
-mpr::PlaneSweepConfig config_of(double near, double far, int planes, int neighbours, int best, double truncation,
-                                double spatial, double range, int threads) {
+mpr::NeighbourSelection selection_of(const std::string& name) {
+  if (name == "axes") return mpr::NeighbourSelection::axes;
+  if (name == "nearest") return mpr::NeighbourSelection::nearest;
+  throw mpr::argument_error("selection", "'" + name + "' is not axes or nearest");
+}
+
+mpr::PlaneSweepConfig config_of(double near, double far, int planes, const std::string& selection, int neighbours,
+                                int best, double truncation, double spatial, double range, int threads) {
   mpr::PlaneSweepConfig c;
+  c.selection = selection_of(selection);
   c.near = near;
   c.far = far;
   c.planes = planes;
@@ -61,10 +74,10 @@ py::array_t<float> view_depth(const FrameSet& frames, const View& view, int widt
 void bind_depth(py::module_& m) {
   m.def(
       "estimate_depth",
-      [](const FrameSet& frames, std::size_t camera, double near, double far, int planes, int neighbours, int best,
-         double truncation, double spatial, double range, int threads) {
+      [](const FrameSet& frames, std::size_t camera, double near, double far, int planes, const std::string& selection,
+         int neighbours, int best, double truncation, double spatial, double range, int threads) {
         const mpr::PlaneSweepConfig c =
-            config_of(near, far, planes, neighbours, best, truncation, spatial, range, threads);
+            config_of(near, far, planes, selection, neighbours, best, truncation, spatial, range, threads);
         mpr::DepthEstimate e;
         {
           py::gil_scoped_release release;
@@ -72,12 +85,67 @@ void bind_depth(py::module_& m) {
         }
         return py::make_tuple(to_array(e.depth), to_array(e.confidence));
       },
-      py::arg("frames"), py::arg("camera"), py::arg("near"), py::arg("far"), py::arg("planes") = 64,
-      py::arg("neighbours") = 4, py::arg("best") = 2, py::arg("truncation") = 0.3, py::arg("spatial") = 12.0,
-      py::arg("range") = 0.2, py::arg("threads") = 0,
-      "Plane-sweep depth of camera `camera` against its `neighbours` nearest cameras: returns (depth, confidence), "
-      "two H x W float32 arrays; depth along the camera's optical axis in world units within [near, far], "
-      "confidence in [0, 1]. The GIL is released while sweeping.");
+      py::arg("frames"), py::arg("camera"), py::arg("near"), py::arg("far"), py::arg("planes") = kSweep.planes,
+      py::arg("selection") = "axes", py::arg("neighbours") = kSweep.neighbours, py::arg("best") = kSweep.best,
+      py::arg("truncation") = kSweep.truncation, py::arg("spatial") = kSweep.spatial, py::arg("range") = kSweep.range,
+      py::arg("threads") = 0,
+      "Plane-sweep depth of camera `camera` (mpr::estimate_depth, defaults as mpr::PlaneSweepConfig): against up to "
+      "`neighbours` cameras, those along the camera's image row and column (`selection='axes'`, falling back to the "
+      "nearest where the array has no such axes) or the nearest (`'nearest'`), the `best` costs of each plane "
+      "kept; returns (depth, confidence), two H x W float32 arrays; depth along the camera's optical axis in world "
+      "units within [near, far], confidence in [0, 1]. The GIL is released while sweeping.");
+  m.def(
+      "read_hci",
+      [](const std::filesystem::path& folder) {
+        mpr::HciLightField<T> lf;
+        {
+          py::gil_scoped_release release;
+          lf = mpr::read_hci_light_field<T>(folder);
+        }
+        py::dict out;
+        out["centre"] = lf.centre;
+        out["views"] = lf.views;
+        out["focal_baseline"] = lf.disparity.focal_baseline;
+        out["offset"] = lf.disparity.offset;
+        out["disparity_min"] = lf.disparity_min;
+        out["disparity_max"] = lf.disparity_max;
+        out["near"] = lf.near_depth();
+        out["far"] = lf.far_depth();
+        out["ground_truth"] = lf.ground_truth ? py::object(to_array(*lf.ground_truth)) : py::object(py::none());
+        out["frames"] = FrameSet{std::make_shared<const FrameSet8>(std::move(lf.frames))};
+        return out;
+      },
+      py::arg("folder"),
+      "Reads a scene of the HCI 4D light-field benchmark (input_CamNNN.png views, parameters.cfg when present, "
+      "gt_disp_lowres.pfm when present): a dict with `frames` (FrameSet), `centre` (index of the centre view), "
+      "`views` (benchmark view numbers), `focal_baseline` and `offset` (disparity d = focal_baseline / depth - "
+      "offset, pixels per view step), `disparity_min`/`disparity_max`, `near`/`far` (their depths) and "
+      "`ground_truth` (H x W float32 disparity, top row first, or None). Raises OSError naming the file.");
+  m.def(
+      "score_disparity",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& estimate,
+         const py::array_t<float, py::array::c_style | py::array::forcecast>& truth, int border) {
+        if (estimate.ndim() != 2 || truth.ndim() != 2)
+          throw mpr::argument_error("estimate", "estimate and truth must be H x W arrays");
+        const auto view = [](const py::array_t<float, py::array::c_style | py::array::forcecast>& a) {
+          return mpr::ImageView<const float>(a.data(), static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)));
+        };
+        mpr::DisparityScoreRegion region;
+        region.border = border;
+        const mpr::DisparityScore s = mpr::score_disparity(view(estimate), view(truth), region);
+        py::dict out;
+        out["pixels"] = s.pixels;
+        out["badpix_001"] = s.badpix_001;
+        out["badpix_003"] = s.badpix_003;
+        out["badpix_007"] = s.badpix_007;
+        out["mse_x100"] = s.mse_x100;
+        out["q25_x100"] = s.q25_x100;
+        return out;
+      },
+      py::arg("estimate"), py::arg("truth"), py::arg("border") = 15,
+      "The HCI benchmark's scores of a disparity map against the truth (same H x W; pixels `border` or more from "
+      "every edge, truth finite): a dict with `badpix_001`, `badpix_003`, `badpix_007` (% of pixels off by more than "
+      "0.01/0.03/0.07 pixel), `mse_x100`, `q25_x100` and `pixels`.");
   m.def("view_depth", &view_depth, py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
         py::arg("along") = py::none(), py::arg("threads") = 0,
         "The depth of any view of a light field that carries depth maps (mpr-render --write-depth): a new height x "
