@@ -263,7 +263,15 @@ int main(int argc, char** argv) {
       settings.out = value("--out=");
     else if (a == "--no-classroom")
       with_classroom = false;
-    else if (a != "--quick")
+    else if (a == "--help" || a == "-h") {
+      std::printf("usage: depth_hci [HCI_DIR] [--quick] [--threads=N] [--views=all|row|column|cross|star] [--out=DIR]\n"
+                  "                 [--planes=N] [--neighbours=N] [--best=N] [--spatial=X] [--range=X] "
+                  "[--truncation=X]\n                 [--selection=nearest] [--no-classroom]\n");
+      return 0;
+    } else if (a.rfind("--", 0) == 0 && a != "--quick") {
+      std::fprintf(stderr, "depth_hci: unknown option '%s' (--help lists them)\n", a.c_str());
+      return 1;
+    } else if (a != "--quick")
       dir = a;
   }
   if (dir.empty()) {
