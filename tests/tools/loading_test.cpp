@@ -132,4 +132,8 @@ TEST_CASE("mpr-render: --hci views the centre camera focused on the zero-dispari
   // lies at depth 512 / 10.
   CHECK(l.default_focal_depth == Approx(lf.disparity.depth(0)));
   CHECK(l.default_focal_depth == Approx(51.2));
+  // Another camera keeps the focus (the benchmark's plane, not the Stanford reference depth).
+  const mpr_cli::Loaded<float> corner = mpr_cli::load<float>(job_of({"--hci", scene.string(), "--camera", "0"}));
+  CHECK(corner.reference->centre().isApprox(lf.frames.camera(0).centre()));
+  CHECK(corner.default_focal_depth == Approx(51.2));
 }

@@ -203,8 +203,9 @@ Loaded<T> load(const Job& job) {
       for (std::size_t i = 0; i < l.frames->size(); ++i) mean += l.frames->camera(i).centre().template cast<double>();
       mean /= static_cast<double>(l.frames->size());
       const double z = (l.reference->R().template cast<double>() * mean + l.reference->t().template cast<double>()).z();
-      l.default_focal_depth =
-          job.sampler == SamplerKind::par || job.sampler == SamplerKind::colmap ? z : job.reference_depth;
+      l.default_focal_depth = job.sampler == SamplerKind::par || job.sampler == SamplerKind::colmap ? z
+                              : job.sampler == SamplerKind::hci                                     ? hci_focus
+                                                                : job.reference_depth;
       if (!(l.default_focal_depth > 0) && !job.focal_depth)
         throw mpr::argument_error("--focal-depth", "no default for this camera set: give --focal-depth");
     } else {
