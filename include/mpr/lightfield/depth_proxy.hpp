@@ -13,6 +13,7 @@
 #include <mpr/core/ray.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/detail/depth_proxy_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
 #include <mpr/lightfield/detail/unit_acos.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -29,11 +31,6 @@
 #include <type_traits>
 
 namespace mpr {
-
-namespace detail {
-template <class Px>
-struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
-} // namespace detail
 
 /// Answers a ray from the surface point the depth maps give it (see the file comment).
 ///
@@ -76,7 +73,7 @@ struct DepthProxyLanes; // detail/depth_proxy_lanes.hpp
 /// walk from where the ray reaches the nearest depth of the camera's map, about one pixel a step,
 /// the crossing narrowed by regula falsi (about 4 lookups), then the visibility of the candidates
 /// in order of angle until k + 1 see the point. A batch path (`sample_rays`) takes sixteen rays
-/// at a time on AVX-512.
+/// at a time in SIMD lanes (SSE4, AVX2 or AVX-512).
 struct DepthProxy {
   /// Cameras farther than this from the ray line (world units, positive) are neither walked nor
   /// blended. About twice the camera spacing suits planar arrays.
@@ -137,18 +134,22 @@ struct DepthProxy {
     return blend(table, ray, X, c);
   }
 
-  /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On AVX-512,
-  /// for float tables of at most 64 undistorted cameras and k < 8: sixteen rays at a time
-  /// (detail/depth_proxy_lanes.hpp), one lane per ray, for the scan of the camera centres, the
-  /// walks through each ray's cameras and the blend's choice of cameras. Bit for bit the
-  /// per-ray answer where the per-ray code is built without fused multiply-adds (no -march or
-  /// -mfma); with them, a decision at a threshold that the rounding of a fused product moves
-  /// may go the other way (Chess: 8 of 1.12 million pixels; the classroom's exact z-buffers:
-  /// 0.24%). Elsewhere, `sample` per ray.
+  /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On x86 with
+  /// Highway (`MPR_HAVE_HWY`), at every `level` from SSE4.2 up (the kernels of
+  /// kernels/depth_lanes_hwy.hpp: SSE4 at `portable`, AVX2, AVX-512), for float tables of at
+  /// most 64 undistorted cameras and k < 8: sixteen rays at a time (detail/depth_proxy_lanes.hpp),
+  /// one lane per ray, for the scan of the camera centres, the walks through each ray's cameras,
+  /// the blend's choice of cameras and the weighing of 8-bit frames. Bit for bit the per-ray
+  /// answer where the per-ray code is built without fused multiply-adds (no -march or -mfma);
+  /// with them, a decision at a threshold that the rounding of a fused product moves may go the
+  /// other way (Chess: 8 of 1.12 million pixels; the classroom's exact z-buffers: 0.24%).
+  /// Elsewhere, `sample` per ray. `level` (default: `detail::dispatch_level()`) must be one the
+  /// CPU runs.
   template <std::floating_point T, class Px>
-  void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out) const noexcept {
-    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at, const auto& blend) {
-      detail::DepthProxyLanes<Px>::sample16(*this, table, group, blend, out.data() + at);
+  void sample_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<Color> out,
+                   detail::SimdLevel level = detail::dispatch_level()) const noexcept {
+    const bool lanes = by_sixteen(table, rays, level, [&](auto group, std::size_t at, const auto& blend) {
+      detail::DepthProxyLanes<DepthProxy, Px>::sample16(*this, table, group, blend, out.data() + at);
     });
     if (!lanes)
       for (std::size_t i = 0; i < rays.size(); ++i) out[i] = sample(table, rays[i]);
@@ -157,10 +158,10 @@ struct DepthProxy {
   /// `out[i] = surface(table, rays[i])` for every i (precondition: equal lengths), with the
   /// sixteen-lane walks of `sample_rays` where it has them.
   template <std::floating_point T, class Px>
-  void surface_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays,
-                    std::span<std::optional<T>> out) const noexcept {
-    const bool lanes = by_sixteen(table, rays, [&](auto group, std::size_t at, const auto&) {
-      detail::DepthProxyLanes<Px>::surface16(*this, table, group, out.data() + at);
+  void surface_rays(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, std::span<std::optional<T>> out,
+                    detail::SimdLevel level = detail::dispatch_level()) const noexcept {
+    const bool lanes = by_sixteen(table, rays, level, [&](auto group, std::size_t at, const auto& blend) {
+      detail::DepthProxyLanes<DepthProxy, Px>::surface16(*this, table, group, blend, out.data() + at);
     });
     if (!lanes)
       for (std::size_t i = 0; i < rays.size(); ++i) out[i] = surface(table, rays[i]);
@@ -178,29 +179,32 @@ struct DepthProxy {
   }
 
 private:
-  template <class Px>
+  template <class, class>
   friend struct detail::DepthProxyLanes;
 
   static constexpr int kMaxCandidates = 64;
   /// Up to this many cameras a linear scan finds the candidates faster than the ball tree.
   static constexpr std::size_t kScanCameras = 64;
 
-  // When the sixteen-lane path answers for `table` (see `sample_rays`): `lanes(group, at,
-  // blend)` for the groups of at most sixteen rays starting at rays[at] (`blend`: what the
-  // lanes' weighing reads of the table, prepared once), and true; else false.
+  // When the sixteen-lane path answers for `table` at `level` (see `sample_rays`): `lanes(group,
+  // at, blend)` for the groups of at most sixteen rays starting at rays[at] (`blend`: what the
+  // lane kernels read of the table, prepared once), and true; else false.
   template <std::floating_point T, class Px, class Lanes>
-  bool by_sixteen(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, const Lanes& lanes) const noexcept {
-#if defined(MPR_SIMD_X86)
+  bool by_sixteen(const FrameTable<T, Px>& table, std::span<const Ray<T>> rays, detail::SimdLevel level,
+                  const Lanes& lanes) const noexcept {
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
     if constexpr (std::is_same_v<T, float>) {
-      if (detail::dispatch_level() >= detail::SimdLevel::avx512 && detail::DepthProxyLanes<Px>::applies(*this, table)) {
-        const typename detail::DepthProxyLanes<Px>::Blend blend(table);
+      using Batch = detail::DepthProxyLanes<DepthProxy, Px>;
+      const std::int64_t target = detail::depth_lanes_target(level);
+      if (target != 0 && Batch::applies(*this, table)) {
+        const typename Batch::Blend blend(table, target);
         for (std::size_t at = 0; at < rays.size(); at += 16)
           lanes(rays.subspan(at, std::min<std::size_t>(16, rays.size() - at)), at, blend);
         return true;
       }
     }
 #endif
-    (void)table, (void)rays, (void)lanes;
+    (void)table, (void)rays, (void)level, (void)lanes;
     return false;
   }
 
@@ -363,5 +367,3 @@ private:
 };
 
 } // namespace mpr
-
-#include <mpr/lightfield/detail/depth_proxy_lanes.hpp>

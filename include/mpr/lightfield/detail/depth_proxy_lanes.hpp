@@ -1,21 +1,23 @@
 #pragma once
 /// \file
 /// `DepthProxy`'s batch path (lightfield/depth_proxy.hpp): sixteen rays at a time, one per lane
-/// of the AVX-512 kernels of detail/depth_lanes.hpp and detail/depth_walk_lanes.hpp. The scan of
-/// the camera centres gives each ray its candidates and its nearest camera; the rays that share
-/// a nearest camera walk its depth map together, and the rays that camera does not settle walk
-/// their next candidates in turn, again together where they share one; the blend's visibility
-/// tests, angles and choice of the k + 1 best cameras run across the lanes, and the weighing per
-/// ray. Included by depth_proxy.hpp.
+/// of the kernels of kernels/depth_lanes_hwy.hpp (SSE4, AVX2 or AVX-512). The scan of the camera
+/// centres gives each ray its candidates and its nearest camera; the rays that share a nearest
+/// camera walk its depth map together, and the rays that camera does not settle walk their next
+/// candidates in turn, again together where they share one; the blend's visibility tests, angles
+/// and choice of the k + 1 best cameras run across the lanes, and so does the weighing of 8-bit
+/// frames. Everything here but the kernels is per ray, compiled as the per-ray path is, so that
+/// both round alike. Templated on the proxy (`DepthProxy`, whose friend it is), so that this
+/// header needs only the proxy's declaration.
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/ray.hpp>
+#include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/depth_proxy.hpp>
-#include <mpr/lightfield/detail/depth_lanes.hpp>
-#include <mpr/lightfield/detail/depth_walk_lanes.hpp>
-#include <mpr/lightfield/detail/depth_weigh_lanes.hpp>
+#include <mpr/lightfield/detail/depth_walk.hpp>
 #include <mpr/lightfield/frame_table.hpp>
+#include <mpr/lightfield/kernels/depth_lane_data.hpp>
+#include <mpr/lightfield/kernels/depth_lanes_hwy.hpp>
 
 #include <algorithm>
 #include <array>
@@ -29,34 +31,52 @@
 
 namespace mpr::detail {
 
-#if defined(MPR_SIMD_X86)
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
 
-/// The sixteen-lane steps of `DepthProxy::sample_rays` for tables of texel type `Px` (a friend
-/// of `DepthProxy`).
-template <class Px>
+/// Whether the lanes run at `level` (0: the per-ray path), and at which Highway target.
+[[nodiscard]] inline std::int64_t depth_lanes_target(SimdLevel level) noexcept {
+  return kernels::depth_lanes_target(level);
+}
+
+/// The sixteen-lane steps of `Proxy::sample_rays` (`DepthProxy`) for tables of texel type `Px`
+/// (a friend of `Proxy`).
+template <class Proxy, class Px>
 struct DepthProxyLanes {
   /// Whether the sixteen-lane path answers for `p` over `table` (see `DepthProxy::sample_rays`).
-  [[nodiscard]] static bool applies(const DepthProxy& p, const FrameTable<float, Px>& table) noexcept {
-    if (table.size() > DepthProxy::kScanCameras || p.k + 1 > kDepthLaneSlots) return false;
+  [[nodiscard]] static bool applies(const Proxy& p, const FrameTable<float, Px>& table) noexcept {
+    if (table.size() > Proxy::kScanCameras || p.k + 1 > kDepthLaneSlots) return false;
     for (const auto& cam : table.cameras())
       if (cam.distorted || static_cast<long long>(cam.width) * cam.height >= (1ll << 31)) return false;
     return true;
   }
 
-  /// What the lanes' weighing (`weigh16`) reads of a table, prepared once per batch: each
-  /// camera's texels and size; `lanes` when it applies (8-bit frames, bilinear filter, images
-  /// `gather_indexable`), else the weighing stays per ray.
+  /// What the lane kernels read of a table, prepared once per batch (`target`: the Highway
+  /// target they run at): each camera's projection, centre, size and depth map; for the
+  /// weighing, each camera's texels, with `lanes` when it applies (8-bit frames, bilinear
+  /// filter), else the weighing stays per ray.
   struct Blend {
-    WeighCamera cameras[DepthProxy::kScanCameras];
+    LaneCamera lane[Proxy::kScanCameras];
+    WeighCamera cameras[Proxy::kScanCameras];
+    std::int64_t target = 0;
     bool lanes = false;
 
-    explicit Blend(const FrameTable<float, Px>& table) noexcept {
+    Blend(const FrameTable<float, Px>& table, std::int64_t target_) noexcept : target(target_) {
+      for (std::size_t i = 0; i < table.size(); ++i) {
+        const auto& c = table.camera(i);
+        lane[i] = LaneCamera{c.P,
+                             c.centre.x(),
+                             c.centre.y(),
+                             c.centre.z(),
+                             c.width,
+                             c.height,
+                             table.frames().depth(i).data(),
+                             table.frames().depth_near(i)};
+      }
       if constexpr (std::is_same_v<typename FrameTable<float, Px>::texel_type, Srgb8Texel>) {
-        lanes = table.config().filter == PixelFilter::bilinear && table.size() <= DepthProxy::kScanCameras;
-        for (std::size_t i = 0; i < table.size() && lanes; ++i) {
+        lanes = table.config().filter == PixelFilter::bilinear;
+        for (std::size_t i = 0; i < table.size(); ++i) {
           const auto& c = table.camera(i);
           cameras[i] = WeighCamera{&c.texels->c[0], c.width, c.height};
-          lanes = gather_indexable(c.width, c.height);
         }
       }
     }
@@ -66,18 +86,17 @@ struct DepthProxyLanes {
   /// `escaped`: it ran to infinity unseen), as `DepthProxy::surface` finds it.
   struct Group {
     RayLanes r;
-    alignas(64) float distance[DepthProxy::kScanCameras][16];
-    std::uint16_t near[DepthProxy::kScanCameras];
+    alignas(64) float distance[Proxy::kScanCameras][16];
+    std::uint16_t near[Proxy::kScanCameras];
     alignas(64) int first[16];
     std::optional<float> t[16];
     bool escaped[16] = {};
   };
 
-  /// Fills `g` for `rays` (at most sixteen). The steps across the lanes are AVX-512 kernels
-  /// (detail/depth_lanes.hpp, detail/depth_walk_lanes.hpp); the rest stays per ray here,
-  /// compiled as the per-ray path is, so that both round alike.
-  static void surfaces16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
-                         Group& g) noexcept {
+  /// Fills `g` for `rays` (at most sixteen; `blend` prepared for `table`). The steps across
+  /// the lanes are the kernels of kernels/depth_lanes_hwy.hpp; the rest stays per ray here.
+  static void surfaces16(const Proxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                         const Blend& blend, Group& g) noexcept {
     using T = float;
     const int n = static_cast<int>(rays.size());
     RayLanes& r = g.r;
@@ -102,7 +121,8 @@ struct DepthProxyLanes {
     auto& near = g.near;
     auto& first = g.first;
     const std::size_t cameras = table.size();
-    scan_cameras16(table, r, static_cast<T>(p.radius) * static_cast<T>(p.radius), valid, near, distance, first);
+    kernels::scan_cameras(blend.target, blend.lane, table.size(), r,
+                          static_cast<T>(p.radius) * static_cast<T>(p.radius), valid, near, distance, first);
     unsigned alone = 0, walking = 0; // lanes with no camera within the radius, lanes that walk
     for (int l = 0; l < n; ++l) {
       if (first[l] < 0) {
@@ -117,7 +137,7 @@ struct DepthProxyLanes {
       }
       walking |= 1u << l;
     }
-    const auto candidates = [&](int l, DepthProxy::Candidates<T>& cl) {
+    const auto candidates = [&](int l, typename Proxy::template Candidates<T>& cl) {
       if (alone >> l & 1u) {
         cl.count = first[l] < 0 ? 0 : 1;
         cl.index[0] = first[l];
@@ -126,7 +146,7 @@ struct DepthProxyLanes {
       }
       cl.count = 0;
       for (std::size_t i = 0; i < cameras; ++i)
-        if (near[i] >> l & 1u) DepthProxy::insert(cl, static_cast<int>(i), distance[i][l]);
+        if (near[i] >> l & 1u) Proxy::insert(cl, static_cast<int>(i), distance[i][l]);
     };
     // The surface of each ray: the rays that share their nearest camera walk its map together;
     // where that camera does not settle it, the search goes on through each ray's next
@@ -163,8 +183,7 @@ struct DepthProxyLanes {
         lanes &= ~group;
         const std::size_t i = static_cast<std::size_t>(camera);
         WalkLanesResult w;
-        walk_lanes16(table.camera(i), table.frames().depth(i).data(), table.frames().depth_near(i), r, group, search,
-                     static_cast<T>(p.tolerance), w);
+        kernels::walk_lanes(blend.target, blend.lane[i], r, group, search, static_cast<T>(p.tolerance), w);
         for (unsigned m = group; m != 0; m &= m - 1) {
           const int l = __builtin_ctz(m);
           search.t[l] = w.t[l];
@@ -180,7 +199,7 @@ struct DepthProxyLanes {
     };
     unsigned going = walk_round(walking, [&](int l) { return first[l]; });
     if (going != 0 && p.march_cameras > 1) {
-      DepthProxy::Candidates<T> c[16];
+      typename Proxy::template Candidates<T> c[16];
       for (unsigned m = going; m != 0; m &= m - 1) candidates(__builtin_ctz(m), c[__builtin_ctz(m)]);
       for (int j = 1; going != 0 && j < p.march_cameras; ++j) {
         for (unsigned m = going; m != 0; m &= m - 1)
@@ -194,21 +213,21 @@ struct DepthProxyLanes {
     }
   }
 
-  /// `out[l] = p.surface(table, rays[l])` for up to sixteen rays.
-  static void surface16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
-                        std::optional<float>* out) noexcept {
+  /// `out[l] = p.surface(table, rays[l])` for up to sixteen rays (`blend` prepared for `table`).
+  static void surface16(const Proxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+                        const Blend& blend, std::optional<float>* out) noexcept {
     Group g;
-    surfaces16(p, table, rays, g);
+    surfaces16(p, table, rays, blend, g);
     for (std::size_t l = 0; l < rays.size(); ++l) out[l] = g.escaped[l] ? std::nullopt : g.t[l];
   }
 
   /// `out[l] = p.sample(table, rays[l])` for up to sixteen rays (`blend` prepared for `table`).
-  static void sample16(const DepthProxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
+  static void sample16(const Proxy& p, const FrameTable<float, Px>& table, std::span<const Ray<float>> rays,
                        const Blend& blend, Color* out) noexcept {
     using T = float;
     const int n = static_cast<int>(rays.size());
     Group g;
-    surfaces16(p, table, rays, g);
+    surfaces16(p, table, rays, blend, g);
     const auto& first = g.first;
     const auto& escaped = g.escaped;
     alignas(64) T point[3][16] = {};
@@ -223,8 +242,8 @@ struct DepthProxyLanes {
     // the lanes, then weighed per ray.
     const int slots = p.k + 1;
     LaneChoice best;
-    choose_cameras16(table, g.r, point, g.distance, g.near, blended, slots, static_cast<T>(p.visibility_tolerance),
-                     best);
+    kernels::choose_cameras(blend.target, blend.lane, table.size(), g.r, point, g.distance, g.near, blended, slots,
+                            static_cast<T>(p.visibility_tolerance), best);
     prefetch_next(table, best, slots, n);
     // 8-bit frames, bilinear: every lane's weighing at once.
     unsigned weighed = 0;
@@ -232,7 +251,8 @@ struct DepthProxyLanes {
     if (blend.lanes) {
       for (int l = 0; l < n; ++l)
         if (!escaped[l] && best.camera[0][l] >= 0) weighed |= 1u << l;
-      weigh16(blend.cameras, best, slots, p.k, weighed, Srgb8Texel::linear16(), Srgb8Texel::scale, acc, weight);
+      kernels::weigh_lanes(blend.target, blend.cameras, best, slots, p.k, weighed, Srgb8Texel::linear16(),
+                           Srgb8Texel::scale, acc, weight);
     }
     for (int l = 0; l < n; ++l) {
       if (escaped[l]) {
@@ -252,7 +272,7 @@ struct DepthProxyLanes {
         continue;
       }
       out[l] = p.weigh(table, penalty, count, [&](int j) {
-        return DepthProxy::Seen<T>{best.camera[j][l], best.x[j][l], best.y[j][l]};
+        return typename Proxy::template Seen<T>{best.camera[j][l], best.x[j][l], best.y[j][l]};
       });
     }
   }
