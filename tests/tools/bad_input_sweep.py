@@ -735,6 +735,8 @@ def main():
     if a.view:
         tools["view"] = os.path.abspath(a.view)
 
+    # A sweep stopped with SIGTERM (or Ctrl-C) still removes its scratch folder.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(130))
     scratch = tempfile.mkdtemp(prefix="mpr-sweep-")
     base = os.path.join(scratch, "fixtures")
     os.makedirs(base)
