@@ -68,6 +68,14 @@ int main(int argc, char** argv) {
        {"Pf\n2 2\n-1\n" + f32(1) + f32(2.5f) + f32(3e38f) + f32(1e-45f),
         "Pf 1\t3\r\n1.0\r\n" + f32(-0.0f) + f32(7) + f32(1.0f / 0.0f), "Pf\n3 1\n-1.000\n" + f32(0) + f32(4) + f32(5),
         "PF\n1 1\n-1\n" + f32(1) + f32(1) + f32(1), "Pf\n1 1\n-1 " + f32(2)});
+  const std::string cfg = "[intrinsics]\nfocal_length_mm = 100\nsensor_size_mm = 34\nimage_resolution_x_px = 3\n"
+                          "image_resolution_y_px = 3\n[extrinsics]\nbaseline_mm = 90\nfocus_distance_m = 8\n"
+                          "num_cams_x = 9\nnum_cams_y = 9\n";
+  seed(dir, "hci",
+       {cfg + "\n--\n040\n041\n031\n", cfg + "[meta]\ndisp_min = -1.5\ndisp_max = 2\n\n--\n040\n039\n049",
+        "~\n--\n040\n041\n", "~\n--\n40\n41+\n@042\n",
+        "# comment\r\n; other\r\n" + cfg + "\n--\n040\n--\nPf\n3 3\n-1\n" + std::string(36, '\0'),
+        "~\n--\n040\n--\nPf\n2 3\n-1\n" + std::string(24, '\0')});
   std::printf("mpr fuzz seeds written to %s\n", dir.string().c_str());
   return 0;
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -124,4 +125,45 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
   }
   CHECK(cases > 500);
   CHECK(fused_partial > 20); // the split into edge segments and fused core was exercised
+}
+
+TEST_CASE("a neighbour row at extreme depths and offsets reads inside both images", "[sweep_row]") {
+  // Neighbour pixel (x + tx / d, y + ty / d): offsets and depths from ordinary to overflowing,
+  // infinite and NaN. A translated row must cover reference pixels [xb, xe) within the row and
+  // read neighbour columns x + s and rows v0, v1 inside the neighbour; every float converted to
+  // an int on the way stays in range (checked by the clang float-cast-overflow builds).
+  std::mt19937 rng(5);
+  mpr::detail::SweepPlanes reference, neighbour;
+  mpr::detail::sweep_planes(random_image(9, 4, rng), true, reference);
+  mpr::detail::sweep_planes(random_image(6, 3, rng), false, neighbour);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  const float big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min();
+  const float offsets[] = {0.0f,  2.5f,   -3.0f, 8.75f, -8.9f, 1e9f, -1e9f, 3e9f,
+                           1e30f, -1e30f, big,   -big,  inf,   -inf, nan};
+  const float depths[] = {1.0f, 0.25f, 1e-20f, tiny, 1e20f, big, inf, nan, 0.0f, -1.0f};
+  mpr::Mat3<float> M = mpr::Mat3<float>::Identity();
+  int shifted = 0;
+  for (const float tx : offsets)
+    for (const float ty : {0.0f, 0.5f, 1.75f, 1e30f, nan})
+      for (const float d : depths) {
+        const mpr::Vec3<float> A(tx * d, ty * d, 0);
+        const mpr::detail::SweepRowInputs in{&reference, &neighbour, &M, &A, 1, 1, 0.3f, SimdLevel::portable};
+        for (int y = 0; y < reference.height; ++y) {
+          const SweepNeighbourRow p = mpr::detail::sweep_neighbour_row(in, 0, reference.width, y, d);
+          if (p.kind != SweepNeighbourRow::shift) continue;
+          INFO("tx " << tx << " ty " << ty << " d " << d << " y " << y);
+          ++shifted;
+          CHECK(0 <= p.xb);
+          CHECK(p.xb < p.xe);
+          CHECK(p.xe <= reference.width);
+          CHECK(p.xb + p.s >= 0);
+          CHECK(p.xe - 1 + p.s <= neighbour.width - 1);
+          CHECK(0 <= p.v0);
+          CHECK(p.v0 <= p.v1);
+          CHECK(p.v1 <= neighbour.height - 1);
+          CHECK(p.fu >= 0.0f);
+          CHECK(p.fu <= 1.0f);
+        }
+      }
+  CHECK(shifted > 50);
 }

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <variant>
@@ -170,17 +171,20 @@ void write_view_depth(const Job& job, const Loaded<T>& l, std::ostream* info, Pu
   const std::filesystem::path preview = depth_preview_path(*job.write_depth);
   const mpr::Image<mpr::Rgb8> colours = mpr::depth_preview(depth.view());
   files.stage(preview, mpr::encode_png(colours.view()));
+  if (info != nullptr) {
+    const mpr::DepthRange range = mpr::depth_range(depth.view());
+    long unseen = 0;
+    for (int y = 0; y < depth.height(); ++y)
+      for (int x = 0; x < depth.width(); ++x) unseen += std::isfinite(depth(x, y)) ? 0 : 1;
+    std::ostringstream line;
+    line << "wrote " << job.write_depth->string() << " (depth "
+         << (range.valid() ? detail::format_depth(range.near) + " to " + detail::format_depth(range.far)
+                           : std::string("nowhere"))
+         << ", " << unseen << " of " << depth.width() * depth.height() << " pixels see nothing) and "
+         << preview.string() << "\n";
+    files.note(info, line.str()); // printed when the files are published, not before
+  }
   if (publish == nullptr) own.commit();
-  if (info == nullptr) return;
-  const mpr::DepthRange range = mpr::depth_range(depth.view());
-  long unseen = 0;
-  for (int y = 0; y < depth.height(); ++y)
-    for (int x = 0; x < depth.width(); ++x) unseen += std::isfinite(depth(x, y)) ? 0 : 1;
-  *info << "wrote " << job.write_depth->string() << " (depth "
-        << (range.valid() ? detail::format_depth(range.near) + " to " + detail::format_depth(range.far)
-                          : std::string("nowhere"))
-        << ", " << unseen << " of " << depth.width() * depth.height() << " pixels see nothing) and " << preview.string()
-        << "\n";
 }
 
 // Compiled once, in mpr_tools (tools/dispatch/depth_float.cpp, depth_double.cpp).

@@ -4,6 +4,8 @@
 # naming the check. Cases:
 #   failed_run  a run that fails at its last file (--write-depth into /proc) leaves the existing
 #               --output as it was, and no file (nor staging file) behind
+#   device      a run whose --write-depth is a link to /dev/full (a device, written in place at
+#               the end) leaves the existing --output as it was and reports nothing as written
 #   stale       --frames 2 beside a camera's IMG_0042.png: that file is kept
 #   new_folder  --output into a missing folder under an existing one: created
 #   deep_folder --output under a missing folder of a missing folder: refused, nothing created
@@ -35,6 +37,28 @@ if(CASE STREQUAL "failed_run")
   file(READ "${DIR}/view.png" content)
   if(NOT content STREQUAL "the user's file")
     message(FATAL_ERROR "the existing --output was replaced by a failed run")
+  endif()
+  expect_no_staging()
+elseif(CASE STREQUAL "device")
+  if(NOT EXISTS /dev/full)
+    message("file safety: ok (no /dev/full here, nothing checked)")
+    return()
+  endif()
+  file(WRITE "${DIR}/view.png" "the user's file")
+  file(CREATE_LINK /dev/full "${DIR}/depth.pfm" SYMBOLIC)
+  run_tool(1 --size 16x12 --output "${DIR}/view.png" --write-depth "${DIR}/depth.pfm")
+  if(NOT output MATCHES "mpr-render: [^\n]*depth.pfm: write failed")
+    message(FATAL_ERROR "the message does not name depth.pfm")
+  endif()
+  if(output MATCHES "wrote")
+    message(FATAL_ERROR "a failed run reports a file as written")
+  endif()
+  file(READ "${DIR}/view.png" content)
+  if(NOT content STREQUAL "the user's file")
+    message(FATAL_ERROR "the existing --output was replaced by a run that failed at a device")
+  endif()
+  if(EXISTS "${DIR}/depth_preview.png")
+    message(FATAL_ERROR "depth_preview.png was written by a failed run")
   endif()
   expect_no_staging()
 elseif(CASE STREQUAL "stale")

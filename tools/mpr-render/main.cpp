@@ -103,6 +103,8 @@ int main(int argc, char** argv) try {
   if (isatty(STDERR_FILENO)) job.load_progress = loading_progress;
   mpr_cli::check_output_folder(job.output, "--output");
   if (job.write_depth) mpr_cli::check_output_folder(*job.write_depth, "--write-depth");
+  // Before the plane sweep, not after it: a folder that cannot be made costs no estimate.
+  if (job.save_depth_maps) mpr_cli::check_output_folder(*job.save_depth_maps / "x", "--save-depth-maps");
   const bool animation = job.frames >= 1;
   const int run_frames = frames_of_run(job);
   const Progress progress(job.frames);

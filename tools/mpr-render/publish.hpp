@@ -9,6 +9,7 @@
 #include <mpr/io/file_write.hpp>
 
 #include <filesystem>
+#include <ostream>
 #include <span>
 #include <string>
 #include <system_error>
@@ -97,20 +98,28 @@ public:
     entries_.push_back({path, staged, {}});
   }
 
-  /// Publishes every staged file under its path, in the order staged. Throws io_error naming the
-  /// file when a rename or a write to a device fails.
+  /// A line to print to `out` once every file is published (commit()), never before: a run that
+  /// fails after staging a file does not report it as written.
+  void note(std::ostream* out, std::string line) {
+    if (out != nullptr) notes_.push_back({out, std::move(line)});
+  }
+
+  /// Publishes every staged file under its path: first the writes to devices (the targets that
+  /// can refuse bytes, e.g. a link to /dev/full), then the renames, in the order staged, so that
+  /// a device that fails leaves every regular file as it was. Then prints the notes. Throws
+  /// io_error naming the file when a write to a device or a rename fails.
   void commit() {
+    for (const Entry& e : entries_)
+      if (e.staged.empty()) mpr::write_file_atomically(e.path, e.bytes);
     std::error_code ec;
     for (Entry& e : entries_) {
-      if (e.staged.empty()) {
-        mpr::write_file_atomically(e.path, e.bytes);
-        continue;
-      }
+      if (e.staged.empty()) continue;
       std::filesystem::rename(e.staged, e.path, ec);
       if (ec) throw mpr::io_error(e.path.string(), "cannot replace the file: " + ec.message());
       e.staged.clear();
     }
     committed_ = true;
+    for (const auto& [out, line] : notes_) *out << line << std::flush;
   }
 
   /// The number of files staged.
@@ -124,6 +133,7 @@ private:
   };
   std::vector<Entry> entries_;
   std::vector<std::filesystem::path> created_;
+  std::vector<std::pair<std::ostream*, std::string>> notes_;
   bool committed_ = false;
 };
 

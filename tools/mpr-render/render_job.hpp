@@ -69,6 +69,24 @@ void warn_unseen_views(std::ostream& warn, const Job& job, const Loaded<T>& l, i
   }
 }
 
+/// --save-depth-maps FOLDER for a run that publishes its files together (`publish`, publish.hpp):
+/// the estimated maps are staged with the image, so a run that fails later (a full disk, a
+/// --write-depth that cannot be written) leaves no map and no new folder; without `publish`,
+/// written at once (save_depth_maps). The line to `info` is printed when they are published.
+template <std::floating_point T>
+void stage_depth_maps(const Job& job, const Loaded<T>& l, std::ostream* info, Publication* publish) {
+  if (publish == nullptr || !job.save_depth_maps || !l.frames) {
+    save_depth_maps(job, l, info);
+    return;
+  }
+  const std::filesystem::path folder = *job.save_depth_maps;
+  check_output_folder(folder / "x", "--save-depth-maps");
+  if (!l.frames->has_depth()) throw mpr::argument_error("--save-depth-maps", "the frame set carries no depth maps");
+  for (std::size_t i = 0; i < l.frames->size(); ++i)
+    publish->stage(folder / mpr::depth_map_name(l.frames->name(i)), mpr::encode_pfm(l.frames->depth(i).view()));
+  publish->note(info, "wrote " + std::to_string(l.frames->size()) + " depth maps to " + folder.string() + "\n");
+}
+
 /// Called with each finished frame (index from 0, and the frame count).
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
 
@@ -88,7 +106,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     for (std::size_t n = loaded.notes.size(); n < l.notes.size(); ++n) *info << l.notes[n] << '\n';
 
   preflight(job, l); // every frame checked before the first is rendered
-  save_depth_maps(job, loaded, info);
+  stage_depth_maps(job, loaded, info, publish);
   if (warnings != nullptr) warn_job(*warnings, job, l);
   const int count = std::max(job.frames, 1);
   if (warnings != nullptr && l.frames != nullptr && job.interpolation != Interpolation::depth && !job.all_in_focus)

@@ -106,7 +106,10 @@ struct SweepNeighbourRow {
   p.xe = xe;
   p.v0 = std::min(static_cast<int>(v), std::max(nb.height - 2, 0));
   p.v1 = std::min(p.v0 + 1, nb.height - 1);
-  p.s = static_cast<int>(std::floor(off));
+  // Here a reference pixel of [xb, xe) lands inside the neighbour, so off lies in
+  // (-width, nb.width) and the conversion is in range; the clamp (in float, before converting)
+  // keeps it so for any input (docs/reliability.md, Numerics on the render path).
+  p.s = static_cast<int>(std::floor(std::clamp(off, -static_cast<float>(width) - 1, static_cast<float>(nb.width))));
   p.fu = off - static_cast<float>(p.s);
   p.fv = v - static_cast<float>(p.v0);
   return p;
