@@ -84,14 +84,14 @@ def classify(view: View) -> dict[str, object]: ...
 def project(view: View, point: _Vec3) -> Optional[Tuple[float, float]]: ...
 def gallery_ids() -> list[Tuple[str, str]]: ...
 
-def render(frames: FrameSet, view: View, width: int, height: int, interpolation: str = "synthetic_aperture",
+def render(frames: FrameSet, view: View, width: int, height: int, interpolation: str = "synthetic",
            radius: float = 1.0, spp: int = 1, filter: str = "box", filter_radius: float = 0.0, linear: bool = False,
            threads: int = 0,
            out: Optional[npt.NDArray[Union[np.uint8, np.float32]]] = None, aperture: str = "none",
            aperture_size: float = 0.0, lens_distance: float = 0.0,
            focus: float = 0.0) -> npt.NDArray[Union[np.uint8, np.float32]]: ...
 def render_views(frames: FrameSet, views: Sequence[View], width: int, height: int, columns: int,
-                 interpolation: str = "synthetic_aperture", radius: float = 1.0, spp: int = 1, filter: str = "box",
+                 interpolation: str = "synthetic", radius: float = 1.0, spp: int = 1, filter: str = "box",
                  filter_radius: float = 0.0, linear: bool = False, threads: int = 0,
                  out: Optional[npt.NDArray[Union[np.uint8, np.float32]]] = None, aperture: str = "none",
                  aperture_size: float = 0.0, lens_distance: float = 0.0,
