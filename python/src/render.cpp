@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -141,20 +142,34 @@ void bind_render(py::module_& m) {
   m.def(
       "_render_seconds",
       [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation, int repeats,
-         int threads) {
+         int threads, const std::optional<py::array>& out) {
         const RenderJob job = job_of(interpolation, 1.0, 1, "box", 0.0, threads);
         const std::vector<Tile> tiles{Tile{&view, mpr::Region(0, 0, width, height)}};
-        mpr::Image<mpr::Rgb8> image(width, height);
+        mpr::Image<mpr::Rgb8> own(out ? 0 : width, out ? 0 : height);
+        py::array_t<std::uint8_t> given;
+        if (out) given = output_array<std::uint8_t>(out, width, height);
+        const mpr::ImageView<mpr::Rgb8> image =
+            out ? mpr::ImageView<mpr::Rgb8>(reinterpret_cast<mpr::Rgb8*>(given.mutable_data()), width, height)
+                : own.view();
         py::gil_scoped_release release;
+        const auto thread_seconds = [] {
+          timespec ts{};
+          clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+          return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+        };
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = thread_seconds();
         for (int r = 0; r < repeats; ++r)
-          std::visit([&](const auto& set) { render_tiles(set, job, std::span<const Tile>(tiles), image.view()); },
+          std::visit([&](const auto& set) { render_tiles(set, job, std::span<const Tile>(tiles), image); },
                      frames.frames);
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / std::max(repeats, 1);
+        const double n = std::max(repeats, 1);
+        return std::make_pair(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / n,
+                              (thread_seconds() - cpu_start) / n);
       },
       py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"), py::arg("interpolation"),
-      py::arg("repeats"), py::arg("threads") = 0,
-      "Benchmark aid: seconds per render of the same job timed inside C++ (8-bit output, no Python in the loop).");
+      py::arg("repeats"), py::arg("threads") = 0, py::arg("out") = py::none(),
+      "Benchmark aid: (wall, calling thread's CPU) seconds per render of the same job timed inside C++ (8-bit "
+      "output into `out` when given, else into an image of its own; no Python in the loop).");
   const auto listed = [](const auto& table) {
     py::list names;
     for (const auto& e : table)
