@@ -8,6 +8,7 @@
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/disparity_score.hpp>
 #include <mpr/lightfield/view_depth.hpp>
+#include <mpr/policy_names.hpp>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -27,16 +28,10 @@ py::array_t<float> to_array(const mpr::Image<float>& image) {
   return out;
 }
 
-mpr::NeighbourSelection selection_of(const std::string& name) {
-  if (name == "axes") return mpr::NeighbourSelection::axes;
-  if (name == "nearest") return mpr::NeighbourSelection::nearest;
-  throw mpr::argument_error("selection", "'" + name + "' is not axes or nearest");
-}
-
 mpr::PlaneSweepConfig config_of(double near, double far, int planes, const std::string& selection, int neighbours,
                                 int best, double truncation, double spatial, double range, int threads) {
   mpr::PlaneSweepConfig c;
-  c.selection = selection_of(selection);
+  c.selection = mpr::choose(mpr::neighbour_selection_names, selection, "selection");
   c.near = near;
   c.far = far;
   c.planes = planes;

@@ -47,8 +47,21 @@ void require_image(const py::array& image, const std::string& name) {
   if (image.shape(0) < 1 || image.shape(1) < 1) throw mpr::argument_error(name, "empty image");
 }
 
+/// A handle that holds a reference to `object` (taken with the GIL) and drops it with the GIL,
+/// whichever thread lets the last copy go.
+std::shared_ptr<const void> keep_alive(const py::object& object) {
+  PyObject* held = object.inc_ref().ptr();
+  return std::shared_ptr<const void>(held, [](PyObject* p) {
+    py::gil_scoped_acquire gil;
+    Py_DECREF(p);
+  });
+}
+
+/// The arrays as images: uint8 arrays borrowed in place (each holds a reference to its array; an
+/// array the samplers cannot read in place, see `CameraFrameSet::can_share`, is copied), float32
+/// arrays converted to linear `Color` images.
 template <class Px, class Channel>
-std::vector<mpr::Image<Px>> copy_images(const std::vector<py::array>& arrays) {
+std::vector<mpr::Image<Px>> frame_images(const std::vector<py::array>& arrays) {
   std::vector<mpr::Image<Px>> images;
   for (std::size_t i = 0; i < arrays.size(); ++i) {
     const py::array& a = arrays[i];
@@ -56,11 +69,20 @@ std::vector<mpr::Image<Px>> copy_images(const std::vector<py::array>& arrays) {
     require_image(a, name);
     if (!py::isinstance<py::array_t<Channel>>(a) || a.dtype().kind() != py::dtype::of<Channel>().kind())
       throw mpr::argument_error(name, "every image must have the dtype of images[0]");
-    mpr::Image<Px> image(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)));
+    const int width = static_cast<int>(a.shape(1)), height = static_cast<int>(a.shape(0));
     const auto* src = static_cast<const Channel*>(a.data());
     if constexpr (std::is_same_v<Px, mpr::Rgb8>) {
-      std::memcpy(image.view().row(0), src, static_cast<std::size_t>(a.size()));
+      // The set only reads frames: the pointer is const again inside it.
+      auto* pixels = const_cast<mpr::Rgb8*>(reinterpret_cast<const mpr::Rgb8*>(src));
+      mpr::Image<Px> image = mpr::Image<Px>::borrow(pixels, width, height, keep_alive(a));
+      if (!FrameSet8::can_share(image)) { // rare: copied, so that the set is all copy or all view
+        mpr::Image<Px> copy(width, height);
+        std::memcpy(copy.data(), src, static_cast<std::size_t>(a.size()));
+        image = std::move(copy);
+      }
+      images.push_back(std::move(image));
     } else {
+      mpr::Image<Px> image(width, height);
       for (py::ssize_t k = 0; k < a.size(); ++k)
         if (!std::isfinite(src[k])) throw mpr::argument_error(name, "not finite at flat index " + std::to_string(k));
       for (int y = 0; y < image.height(); ++y)
@@ -68,8 +90,8 @@ std::vector<mpr::Image<Px>> copy_images(const std::vector<py::array>& arrays) {
           const Channel* p = src + 3 * (static_cast<std::size_t>(y) * image.width() + x);
           image(x, y) = mpr::Color(p[0], p[1], p[2]);
         }
+      images.push_back(std::move(image));
     }
-    images.push_back(std::move(image));
   }
   return images;
 }
@@ -132,14 +154,14 @@ FrameSet from_arrays(const std::vector<py::array>& images, const py::array_t<dou
   std::vector<mpr::Image<float>> maps = depth_maps(depths);
   const py::dtype dtype = images[0].dtype();
   if (dtype.is(py::dtype::of<std::uint8_t>())) {
-    auto frames = copy_images<mpr::Rgb8, std::uint8_t>(images);
+    auto frames = frame_images<mpr::Rgb8, std::uint8_t>(images);
     py::gil_scoped_release release;
     FrameSet8 set(std::move(cameras), std::move(frames), std::move(names));
     if (!maps.empty()) set = std::move(set).with_depth(std::move(maps));
     return shared(std::move(set));
   }
   if (dtype.is(py::dtype::of<float>())) {
-    auto frames = copy_images<mpr::Color, float>(images);
+    auto frames = frame_images<mpr::Color, float>(images);
     py::gil_scoped_release release;
     FrameSetLinear set(std::move(cameras), std::move(frames), std::move(names));
     if (!maps.empty()) set = std::move(set).with_depth(std::move(maps));
@@ -176,7 +198,8 @@ py::array image_array(const FrameSet& fs, std::size_t i) {
 void bind_lightfields(py::module_& m) {
   py::class_<FrameSet>(m, "FrameSet",
                        "Calibrated cameras and the images they took (a light field). Frames are 8-bit sRGB "
-                       "(uint8) or linear RGB (float32); the set holds its own copy, shared by every sampler.")
+                       "(uint8) or linear RGB (float32), shared by every sampler; a set built by `frame_set` from "
+                       "uint8 arrays reads them in place (see `shares`).")
       .def("__len__", &FrameSet::size)
       .def_property_readonly(
           "linear", [](const FrameSet& f) { return f.frames.index() == 1; }, "True for float32 linear frames.")
@@ -189,6 +212,15 @@ void bind_lightfields(py::module_& m) {
       .def_property_readonly(
           "has_depth",
           [](const FrameSet& f) { return std::visit([](const auto& s) { return s->has_depth(); }, f.frames); })
+      .def(
+          "shares",
+          [](const FrameSet& f, std::size_t i) {
+            if (i >= f.size()) throw py::index_error("frame index out of range");
+            return std::visit([&](const auto& s) { return s->shares_image(i); }, f.frames);
+          },
+          py::arg("index"),
+          "True when frame `index` is read in place from the array it was built from (no copy): writing to that "
+          "array changes later renders. False for loaded, float32 and copied frames.")
       .def("image", &image_array, py::arg("index"),
            "Frame `index` as a new H x W x 3 array (uint8 sRGB codes or float32 linear).");
 
@@ -234,8 +266,12 @@ void bind_lightfields(py::module_& m) {
         "A frame set from numpy arrays: `images` a list of H x W x 3 C-contiguous arrays, all uint8 (sRGB codes) "
         "or all float32 (linear RGB); K (N, 3, 3) intrinsics in pixels (pixel centres at integers), R (N, 3, 3) "
         "and t (N, 3) world to camera (x_cam = R X + t); optional `depths`, one H x W float32 map per camera "
-        "(camera-space z, world units, inf where nothing). The pixels are copied into the set. Raises ValueError "
-        "naming the argument.");
+        "(camera-space z, world units, inf where nothing). uint8 images are not copied: the set reads each array "
+        "in place and keeps a reference to it, so writing to an array changes later renders (do not write while a "
+        "render runs; pass copies for a snapshot). An array whose last byte lies within 64 bytes of the end of a "
+        "4 KiB memory block (about 1 in 64; the kernels read up to 64 bytes past a frame) is copied instead: "
+        "`FrameSet.shares(i)` tells which. float32 images are converted (copied) to the set's linear frames, and "
+        "depth maps are copied. Raises ValueError naming the argument.");
 }
 
 } // namespace mpr_py

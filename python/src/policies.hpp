@@ -1,7 +1,8 @@
 #pragma once
-// The run-time choices of a render from Python and the policy types they select: ONE table per
-// choice (interpolation, pixel filter), each choice one std::variant alternative, resolved by one
-// std::visit per render (render_tiles.hpp). The names are mpr-render's (--interpolation, --filter).
+// The run-time choices of a render from Python and the policy types they select. The names are
+// mpr's one table of them (include/mpr/policy_names.hpp, which mpr-render and mpr-view parse
+// too); each choice is one std::variant alternative, resolved by one std::visit per render
+// (render_tiles.hpp).
 
 #include "bindings.hpp"
 
@@ -13,54 +14,19 @@
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/lightfield/synthetic_aperture.hpp>
+#include <mpr/policy_names.hpp>
 #include <mpr/sampling.hpp>
 
-#include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
-#include <string_view>
 #include <variant>
 
 namespace mpr_py {
 
-/// The interpolations a light-field render can use.
-enum class Interpolation { nearest, synthetic_aperture, cylinder, depth };
-
-struct InterpolationEntry {
-  std::string_view name;
-  Interpolation value;
-  std::string_view help;
-};
-
-/// The table of interpolations: name -> policy (make_sampler maps each to its type).
-inline constexpr std::array<InterpolationEntry, 4> interpolations{{
-    {"nearest", Interpolation::nearest, "the camera whose centre is nearest the ray"},
-    {"synthetic_aperture", Interpolation::synthetic_aperture, "every camera that sees the focal point, averaged"},
-    {"cylinder", Interpolation::cylinder, "cameras within `radius` (world units) of the ray line, averaged"},
-    {"depth", Interpolation::depth, "the cameras near the ray, blended at the surface their depth maps give"},
-}};
-
-struct FilterEntry {
-  std::string_view name;
-  /// pbrt-v4's default radius, pixels.
-  double default_radius;
-};
-
-/// The table of pixel filters of supersampling (spp > 1).
-inline constexpr std::array<FilterEntry, 5> filters{{
-    {"box", 0.5},
-    {"tent", 2},
-    {"gaussian", 1.5},
-    {"mitchell", 2},
-    {"lanczos", 4},
-}};
-
-[[nodiscard]] inline Interpolation parse_interpolation(const std::string& name) {
-  for (const InterpolationEntry& e : interpolations)
-    if (e.name == name) return e.value;
-  throw mpr::argument_error("interpolation", "'" + name + "' is not nearest, synthetic_aperture, cylinder or depth");
-}
+/// The interpolations a light-field render can use (names: `mpr::interpolation_names`).
+using Interpolation = mpr::InterpolationChoice;
 
 template <class Px>
 using SamplerVariant = std::variant<
@@ -73,7 +39,7 @@ template <class Px>
   switch (interpolation) {
   case Interpolation::nearest:
     return mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(std::move(frames));
-  case Interpolation::synthetic_aperture:
+  case Interpolation::synthetic:
     return mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(std::move(frames));
   case Interpolation::depth: {
     mpr::DepthProxy proxy;
@@ -90,54 +56,41 @@ template <class Px>
 /// combined by a filter.
 using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>>;
 
-/// The filter `name` (an entry of `filters`) of radius `r` pixels.
-[[nodiscard]] inline mpr::AnyFilter make_filter(std::string_view name, double r) {
-  if (name == "box") return mpr::BoxFilter(r);
-  if (name == "tent") return mpr::TentFilter(r);
-  if (name == "gaussian") return mpr::GaussianFilter(r);
-  if (name == "mitchell") return mpr::MitchellFilter(r);
-  return mpr::LanczosFilter(r);
+/// `spp` samples per pixel weighted by `filter` of radius `radius` pixels (0: its default): the
+/// pixel centre for one sample.
+[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, mpr::FilterChoice filter, double radius) {
+  if (spp == 1) return mpr::PixelCentre{};
+  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), mpr::make_filter(filter, radius));
 }
 
-[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, const std::string& filter, double radius) {
+/// The filter named `filter` (`mpr::filter_names`) after checking `spp` ([1, 4096]) and `radius`
+/// ([0, 64] pixels, 0: the filter's default); ValueError naming the argument.
+[[nodiscard]] inline mpr::FilterChoice checked_filter(int spp, const std::string& filter, double radius) {
   if (spp < 1 || spp > 4096) throw mpr::argument_error("spp", "must lie in [1, 4096]");
-  const FilterEntry* entry = nullptr;
-  for (const FilterEntry& e : filters)
-    if (e.name == filter) entry = &e;
-  if (entry == nullptr)
-    throw mpr::argument_error("filter", "'" + filter + "' is not box, tent, gaussian, mitchell or lanczos");
+  const mpr::FilterChoice choice = mpr::choose(mpr::filter_names, filter, "filter");
   if (!(radius >= 0 && radius <= 64))
     throw mpr::argument_error("filter_radius", "must lie in [0, 64] pixels (0: default)");
-  if (spp == 1) return mpr::PixelCentre{};
-  const double r = radius > 0 ? radius : entry->default_radius;
-  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), make_filter(entry->name, r));
+  return choice;
 }
 
-/// The table of finite-aperture shapes (mpr-render's --aperture SHAPE): "none" is the pinhole.
-inline constexpr std::array<std::string_view, 4> apertures{{"none", "disc", "square", "gaussian"}};
-
-/// A finite aperture's shape, one alternative per policy type.
-using ApertureShapeVariant = std::variant<mpr::glc::DiscAperture, mpr::glc::SquareAperture, mpr::glc::GaussianAperture>;
-
-/// The shape of `apertures[index]` (index >= 1).
-[[nodiscard]] inline ApertureShapeVariant make_aperture_shape(std::size_t index) {
-  if (index == 1) return mpr::glc::DiscAperture{};
-  if (index == 2) return mpr::glc::SquareAperture{};
-  return mpr::glc::GaussianAperture{};
+/// `make_pixel_sampling` of a filter name, checked (`checked_filter`).
+[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, const std::string& filter, double radius) {
+  return make_pixel_sampling(spp, checked_filter(spp, filter, radius), radius);
 }
 
 /// One render job: the choices above plus the output.
 struct RenderJob {
-  Interpolation interpolation = Interpolation::synthetic_aperture;
+  Interpolation interpolation = Interpolation::synthetic;
   double radius = 1;
   int spp = 1;
-  std::string filter = "box";
+  mpr::FilterChoice filter = mpr::FilterChoice::box;
+  /// Pixels; 0: the filter's default (`mpr::default_filter_radius`).
   double filter_radius = 0;
   int threads = 0;
-  /// Index into `apertures` (0: pinhole), its size (radius, half side or sigma, world units),
-  /// the lens plane's distance behind the image plane (0: the plane's width) and the focus depth
-  /// in front of the image plane (0: on the image plane).
-  std::size_t aperture = 0;
+  /// The finite aperture's shape (none: the pinhole of the view's GLC), its size (radius, half
+  /// side or sigma, world units), the lens plane's distance behind the image plane (0: the
+  /// plane's width) and the focus depth in front of the image plane (0: on the image plane).
+  std::optional<mpr::glc::AnyAperture> aperture;
   double aperture_size = 0;
   double lens_distance = 0;
   double focus_depth = 0;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -27,12 +28,8 @@ struct ApertureArgs {
 RenderJob job_of(const std::string& interpolation, double radius, int spp, const std::string& filter,
                  double filter_radius, int threads, const ApertureArgs& aperture = {}) {
   RenderJob job;
-  job.aperture = apertures.size();
-  for (std::size_t k = 0; k < apertures.size(); ++k)
-    if (apertures[k] == aperture.shape) job.aperture = k;
-  if (job.aperture == apertures.size())
-    throw mpr::argument_error("aperture", "'" + aperture.shape + "' is not none, disc, square or gaussian");
-  if (job.aperture != 0 && spp < 2)
+  if (aperture.shape != "none") job.aperture = mpr::aperture_by_name(aperture.shape, "aperture");
+  if (job.aperture && spp < 2)
     throw mpr::argument_error("aperture", "a finite aperture needs spp > 1 (each sample gets its own aperture point)");
   if (!(aperture.size >= 0) || !std::isfinite(aperture.size))
     throw mpr::argument_error("aperture_size", "must be finite and >= 0");
@@ -43,13 +40,12 @@ RenderJob job_of(const std::string& interpolation, double radius, int spp, const
   job.aperture_size = aperture.size;
   job.lens_distance = aperture.lens_distance;
   job.focus_depth = aperture.focus;
-  job.interpolation = parse_interpolation(interpolation);
+  job.interpolation = mpr::choose(mpr::interpolation_names, interpolation, "interpolation");
   job.radius = radius;
   job.spp = spp;
-  job.filter = filter;
+  job.filter = checked_filter(spp, filter, filter_radius); // errors before any pixel is written
   job.filter_radius = filter_radius;
   job.threads = threads;
-  (void)make_pixel_sampling(spp, filter, filter_radius); // errors before any pixel is written
   return job;
 }
 
@@ -119,52 +115,69 @@ void bind_render(py::module_& m) {
         return render_grid(frames, {view}, width, height, 1, interpolation, radius, spp, filter, filter_radius, linear,
                            threads, out, aperture, aperture_size, lens_distance, focus);
       },
-      py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"),
-      py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0, py::arg("spp") = 1,
-      py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
-      py::arg("out") = py::none(), py::arg("aperture") = "none", py::arg("aperture_size") = 0.0,
-      py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
+      py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"), py::arg("interpolation") = "synthetic",
+      py::arg("radius") = 1.0, py::arg("spp") = 1, py::arg("filter") = "box", py::arg("filter_radius") = 0.0,
+      py::arg("linear") = false, py::arg("threads") = 0, py::arg("out") = py::none(), py::arg("aperture") = "none",
+      py::arg("aperture_size") = 0.0, py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
       "Renders `view` of the light field into a new height x width x 3 array: uint8 sRGB codes, or float32 linear "
-      "RGB with linear=True. interpolation: 'nearest', 'synthetic_aperture', 'cylinder' (cameras within `radius` "
+      "RGB with linear=True. interpolation (`mpr.interpolations`, mpr-render's --interp names): 'nearest', "
+      "'synthetic' (alias 'synthetic_aperture'), 'cylinder' (cameras within `radius` "
       "world units of the ray line) or 'depth' (needs depth maps: the cameras within `radius` of the ray, blended at "
       "the surface the maps give); spp > 1 supersamples each pixel with Owen-scrambled Sobol points weighted by "
       "`filter` ('box', 'tent', 'gaussian', 'mitchell', 'lanczos'; `filter_radius` pixels, 0: its default). "
       "`threads` 0: all cores. The same image for every thread count; the GIL is released while rendering. "
       "`out`: an existing C-contiguous array of the output's shape and dtype to render into (no allocation); it is "
-      "returned. `aperture` ('none', 'disc', 'square', 'gaussian'; needs spp > 1): a finite aperture around "
+      "returned. `aperture` ('none', or mpr-render's --aperture shapes 'disc', 'square', 'gaussian', 'polygonN' "
+      "with N = 3..64 blades; needs spp > 1): a finite aperture around "
       "the view's GLC (Adams and Levoy 2007) of `aperture_size` (radius, half side or sigma, world units) on a lens "
       "plane `lens_distance` behind the image plane (0: the plane's width), focused `focus` in front of the image "
       "plane (0: on it).");
   m.def("render_views", &render_grid, py::arg("frames"), py::arg("views"), py::arg("width"), py::arg("height"),
-        py::arg("columns"), py::arg("interpolation") = "synthetic_aperture", py::arg("radius") = 1.0,
-        py::arg("spp") = 1, py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false,
-        py::arg("threads") = 0, py::arg("out") = py::none(), py::arg("aperture") = "none",
-        py::arg("aperture_size") = 0.0, py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
+        py::arg("columns"), py::arg("interpolation") = "synthetic", py::arg("radius") = 1.0, py::arg("spp") = 1,
+        py::arg("filter") = "box", py::arg("filter_radius") = 0.0, py::arg("linear") = false, py::arg("threads") = 0,
+        py::arg("out") = py::none(), py::arg("aperture") = "none", py::arg("aperture_size") = 0.0,
+        py::arg("lens_distance") = 0.0, py::arg("focus") = 0.0,
         "Renders several views into one image: view k into the tile (k % columns, k // columns) of width x height "
         "pixels; tiles without a view are black in a new array and untouched in `out`. Options as `render`.");
   m.def(
       "_render_seconds",
       [](const FrameSet& frames, const View& view, int width, int height, const std::string& interpolation, int repeats,
-         int threads) {
+         int threads, const std::optional<py::array>& out) {
         const RenderJob job = job_of(interpolation, 1.0, 1, "box", 0.0, threads);
         const std::vector<Tile> tiles{Tile{&view, mpr::Region(0, 0, width, height)}};
-        mpr::Image<mpr::Rgb8> image(width, height);
+        mpr::Image<mpr::Rgb8> own(out ? 0 : width, out ? 0 : height);
+        py::array_t<std::uint8_t> given;
+        if (out) given = output_array<std::uint8_t>(out, width, height);
+        const mpr::ImageView<mpr::Rgb8> image =
+            out ? mpr::ImageView<mpr::Rgb8>(reinterpret_cast<mpr::Rgb8*>(given.mutable_data()), width, height)
+                : own.view();
         py::gil_scoped_release release;
+        const auto thread_seconds = [] {
+          timespec ts{};
+          clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+          return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+        };
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = thread_seconds();
         for (int r = 0; r < repeats; ++r)
-          std::visit([&](const auto& set) { render_tiles(set, job, std::span<const Tile>(tiles), image.view()); },
+          std::visit([&](const auto& set) { render_tiles(set, job, std::span<const Tile>(tiles), image); },
                      frames.frames);
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / std::max(repeats, 1);
+        const double n = std::max(repeats, 1);
+        return std::make_pair(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / n,
+                              (thread_seconds() - cpu_start) / n);
       },
       py::arg("frames"), py::arg("view"), py::arg("width"), py::arg("height"), py::arg("interpolation"),
-      py::arg("repeats"), py::arg("threads") = 0,
-      "Benchmark aid: seconds per render of the same job timed inside C++ (8-bit output, no Python in the loop).");
-  py::list names;
-  for (const InterpolationEntry& e : interpolations) names.append(std::string(e.name));
-  m.attr("interpolations") = names;
-  py::list filter_names;
-  for (const FilterEntry& e : filters) filter_names.append(std::string(e.name));
-  m.attr("filters") = filter_names;
+      py::arg("repeats"), py::arg("threads") = 0, py::arg("out") = py::none(),
+      "Benchmark aid: (wall, calling thread's CPU) seconds per render of the same job timed inside C++ (8-bit "
+      "output into `out` when given, else into an image of its own; no Python in the loop).");
+  const auto listed = [](const auto& table) {
+    py::list names;
+    for (const auto& e : table)
+      if (!e.alias) names.append(std::string(e.name));
+    return names;
+  };
+  m.attr("interpolations") = listed(mpr::interpolation_names);
+  m.attr("filters") = listed(mpr::filter_names);
 }
 
 } // namespace mpr_py

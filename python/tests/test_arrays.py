@@ -185,7 +185,7 @@ def test_depth_interpolation_refocuses_onto_the_depth_maps():
     frames = mpr.frame_set(images, K, R, t, depths=[plane_depth(c) for c in cams])
     centre = frames.camera(4)
     view = mpr.View.pinhole(centre, 2.0)  # focused far in front of the plane
-    wrong = np.abs(mpr.render(frames, view, 80, 60, interpolation="synthetic_aperture").astype(int) - images[4])
+    wrong = np.abs(mpr.render(frames, view, 80, 60, interpolation="synthetic").astype(int) - images[4])
     right = np.abs(mpr.render(frames, view, 80, 60, interpolation="depth", radius=0.5).astype(int) - images[4])
     assert right.mean() < 0.5 * wrong.mean() and right.mean() < 6, (right.mean(), wrong.mean())
     with pytest.raises(ValueError):

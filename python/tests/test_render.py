@@ -14,7 +14,7 @@ def jobs(frames, depth, w, h):
     target = camera.centre + 2 * depth * camera.R[2]
     gallery = mpr.View.gallery("G", view.origin, view.width_vector, view.height_vector, target, depth)
     return {
-        "synthetic8": mpr.render(frames, view, w, h, interpolation="synthetic_aperture"),
+        "synthetic8": mpr.render(frames, view, w, h, interpolation="synthetic"),
         "nearest_linear": mpr.render(frames, view, w, h, interpolation="nearest", linear=True),
         "cylinder_tent4": mpr.render(frames, view, w, h, interpolation="cylinder", radius=0.25, spp=4,
                                      filter="tent"),
@@ -102,8 +102,14 @@ def test_aperture_errors(golden):
     view = mpr.View.pinhole(frames.camera(4), 4.0)
     with pytest.raises(ValueError, match="needs spp > 1"):
         mpr.render(frames, view, 8, 8, aperture="disc", aperture_size=0.1)
-    with pytest.raises(ValueError, match="'hexagon' is not none"):
+    with pytest.raises(ValueError, match=r"invalid aperture: 'hexagon' is not disc, square, gaussian or polygonN"):
         mpr.render(frames, view, 8, 8, spp=4, aperture="hexagon")
+    with pytest.raises(ValueError, match=r"invalid aperture: 2 is outside \[3, 64\]"):
+        mpr.render(frames, view, 8, 8, spp=4, aperture="polygon2")
+    with pytest.raises(ValueError, match="invalid interpolation: 'linear' is not nearest, synthetic, cylinder or depth"):
+        mpr.render(frames, view, 8, 8, interpolation="linear")
+    with pytest.raises(ValueError, match="invalid filter: 'sinc' is not box, tent, gaussian, mitchell or lanczos"):
+        mpr.render(frames, view, 8, 8, filter="sinc")
     with pytest.raises(ValueError, match="invalid aperture_size"):
         mpr.render(frames, view, 8, 8, spp=4, aperture="disc", aperture_size=-1)
     # A zero-size aperture is the pinhole: the image without one (within a code: the renderer may
@@ -113,3 +119,11 @@ def test_aperture_errors(golden):
     # An open aperture focused off the plane blurs: the image changes.
     b = mpr.render(frames, view, 40, 30, spp=8, aperture="disc", aperture_size=0.2, focus=1.0).astype(int)
     assert np.abs(b - a).mean() > 1
+    # The names are mpr-render's: a polygon aperture (mpr-render --aperture polygon6:SIZE) and the
+    # alias "synthetic_aperture" of "synthetic".
+    hexagon = mpr.render(frames, view, 40, 30, spp=8, aperture="polygon6", aperture_size=0.2, focus=1.0).astype(int)
+    assert np.abs(hexagon - a).mean() > 1
+    assert mpr.interpolations == ["nearest", "synthetic", "cylinder", "depth"]
+    assert mpr.filters == ["box", "tent", "gaussian", "mitchell", "lanczos"]
+    assert np.array_equal(mpr.render(frames, view, 40, 30, interpolation="synthetic_aperture"),
+                          mpr.render(frames, view, 40, 30, interpolation="synthetic"))

@@ -4,10 +4,15 @@
 
 #include <mpr/lightfield/frame_set.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <new>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 TEST_CASE("CameraFrameSet keeps cameras, images, names and linear texels together", "[camera_frame_set]") {
   const auto cams = mpr_test::grid_cameras<double>(3, 1, 1.0, 4, 3, 4.0);
@@ -234,4 +239,61 @@ TEMPLATE_TEST_CASE("CameraFrameSet::depth_bounds holds every surface point the d
   CHECK_FALSE(unseen.depth_bounds()[0].z() <= unseen.depth_bounds()[1].z());
   CHECK_FALSE(mpr::CameraFrameSet<T>(cams, images).depth_bounds()[0].z() <=
               mpr::CameraFrameSet<T>(cams, images).depth_bounds()[1].z());
+}
+
+TEST_CASE("CameraFrameSet reads borrowed 8-bit images in place when 64 bytes after them are readable",
+          "[camera_frame_set]") {
+  // Three 7x5 images in one 4 KiB-aligned block of memory, placed so that each ends at a chosen
+  // offset in a 4 KiB block: 105 bytes of pixels ending at offset 1000 and 4032 (64 bytes of the
+  // block left after them: shared) and at 4050 (46 left: decoded into the set's buffer).
+  const auto cams = mpr_test::grid_cameras<double>(3, 1, 1.0, 7, 5, 4.0);
+  constexpr std::size_t kBlock = 4096, kBytes = 7 * 5 * 3;
+  const std::shared_ptr<std::uint8_t[]> memory(
+      new (std::align_val_t(kBlock)) std::uint8_t[3 * kBlock],
+      [](std::uint8_t* p) { ::operator delete[](p, std::align_val_t(kBlock)); });
+  const std::array<std::size_t, 3> ends{1000, 4032, 4050};
+  std::vector<mpr::Image<mpr::Rgb8>> images;
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::uint8_t* start = memory.get() + k * kBlock + ends[k] - kBytes;
+    for (std::size_t b = 0; b < kBytes; ++b) start[b] = static_cast<std::uint8_t>(b + 40 * k);
+    images.push_back(mpr::Image<mpr::Rgb8>::borrow(reinterpret_cast<mpr::Rgb8*>(start), 7, 5, memory));
+  }
+  CHECK(mpr::CameraFrameSet<double>::can_share(images[0]));
+  CHECK(mpr::CameraFrameSet<double>::can_share(images[1]));
+  CHECK(!mpr::CameraFrameSet<double>::can_share(images[2]));
+  CHECK(!mpr::CameraFrameSet<double>::can_share(mpr::Image<mpr::Rgb8>(7, 5))); // owned
+  CHECK(memory.use_count() == 4);
+
+  const mpr::CameraFrameSet<double> frames(cams, std::move(images)); // moved: a copy would own its pixels
+  CHECK(memory.use_count() == 4); // the set's three images borrow it (the third's texels decoded)
+  for (std::size_t k = 0; k < 3; ++k) {
+    INFO("image " << k);
+    CHECK(frames.shares_image(k) == (k < 2));
+    CHECK(frames.image(k).data() == reinterpret_cast<const mpr::Rgb8*>(memory.get() + k * kBlock + ends[k] - kBytes));
+    const auto t = frames.texels(k);
+    REQUIRE(t.size() == 35);
+    if (k < 2)
+      CHECK(static_cast<const void*>(t.data()) == static_cast<const void*>(frames.image(k).data()));
+    else
+      CHECK(reinterpret_cast<std::uintptr_t>(t.data()) % 64 == 0);
+    // Texel 6 is pixel (6, 0): bytes 18, 19, 20 of the image.
+    CHECK(t[6].c[0] == 18 + 40 * k);
+    CHECK(t[6].c[2] == 20 + 40 * k);
+  }
+  // A shared image's texels are the borrowed memory: a change there shows to the samplers.
+  memory[kBlock + ends[1] - kBytes + 18] = 7;
+  CHECK(frames.texels(1)[6].c[0] == 7);
+  // without() and cast<U>() keep reading it in place.
+  CHECK(frames.without(0).shares_image(0));
+  CHECK(frames.without(0).texels(0).data() == frames.texels(1).data());
+  CHECK(frames.cast<float>().shares_image(1));
+  CHECK(frames.cast<float>().texels(2).data() == frames.texels(2).data());
+
+  // Linear images are always decoded (their texels are floats in the set's layout).
+  std::vector<mpr::Color> linear(35, mpr::Color(0.25f, 0.5f, 2.0f));
+  const auto borrowed = mpr::Image<mpr::Color>::borrow(linear.data(), 7, 5);
+  CHECK(!mpr::CameraFrameSet<double, mpr::Color>::can_share(borrowed));
+  const mpr::CameraFrameSet<double, mpr::Color> hdr({cams[0]}, {borrowed});
+  CHECK(!hdr.shares_image(0));
+  CHECK(hdr.texels(0)[34].c[2] == 2.0f);
 }

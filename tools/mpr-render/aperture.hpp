@@ -9,6 +9,7 @@
 #include "cli_args.hpp"
 
 #include <mpr/glc.hpp>
+#include <mpr/policy_names.hpp>
 
 #include <algorithm>
 #include <optional>
@@ -34,14 +35,9 @@ struct ApertureSpec {
   std::vector<double> focus;      ///< {} (on the image plane), {D} or {DU, DV} in front of the image plane
 };
 
-/// SHAPE of --aperture: disc, square, gaussian or polygonN (N blades, 3 to 64).
+/// SHAPE of --aperture: disc, square, gaussian or polygonN (N blades, 3 to 64): `mpr::aperture_by_name`.
 inline mpr::glc::AnyAperture parse_aperture_shape(const std::string& name) {
-  if (name == "disc") return mpr::glc::DiscAperture{};
-  if (name == "square") return mpr::glc::SquareAperture{};
-  if (name == "gaussian") return mpr::glc::GaussianAperture{};
-  if (name.rfind("polygon", 0) == 0 && name.size() > 7)
-    return mpr::glc::PolygonAperture(parse_int(name.substr(7), "--aperture", 3, 64));
-  throw mpr::argument_error("--aperture", "'" + name + "' is not disc, square, gaussian or polygonN (N = 3..64)");
+  return mpr::aperture_by_name(name, "--aperture");
 }
 
 /// --aperture SHAPE:SIZE, SIZE a number, FROM:TO or keyframes T=V,T=V,... (animation.hpp), each

@@ -7,6 +7,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
+#include <mpr/policy_names.hpp>
 
 #include <algorithm>
 #include <string>
@@ -60,9 +61,7 @@ inline void parse_sweep(const std::string& text, mpr::PlaneSweepConfig& c) {
   const std::vector<std::string> given = for_each_setting(
       text, "--sweep", keys, [&](const std::string& key, const std::string& value, const std::string& option) {
         if (key == "selection") {
-          if (value != "axes" && value != "nearest")
-            throw mpr::argument_error(option, "'" + value + "' is not axes or nearest");
-          c.selection = value == "axes" ? mpr::NeighbourSelection::axes : mpr::NeighbourSelection::nearest;
+          c.selection = mpr::choose(mpr::neighbour_selection_names, value, option);
         } else if (key == "neighbours")
           c.neighbours = parse_int(value, option, 1, 32);
         else if (key == "best")

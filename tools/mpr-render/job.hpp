@@ -15,6 +15,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
+#include <mpr/policy_names.hpp>
 
 #include <algorithm>
 #include <array>
@@ -34,7 +35,8 @@ enum class SamplerKind { scene, obj, par, stanford, lfca, hci, colmap };
 [[nodiscard]] constexpr bool is_light_field(SamplerKind kind) noexcept {
   return kind != SamplerKind::scene && kind != SamplerKind::obj;
 }
-enum class Interpolation { nearest, synthetic, cylinder, depth };
+/// --interp: the names are `mpr::interpolation_names`.
+using Interpolation = mpr::InterpolationChoice;
 
 /// Everything one invocation of mpr-render does. Lengths are world units of the sampler's data
 /// (classroom: metres), angles in degrees.
@@ -290,16 +292,7 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
   }
   if (const auto v = args.get("interp")) {
     job.interpolation_given = true;
-    if (*v == "nearest")
-      job.interpolation = Interpolation::nearest;
-    else if (*v == "synthetic")
-      job.interpolation = Interpolation::synthetic;
-    else if (*v == "cylinder")
-      job.interpolation = Interpolation::cylinder;
-    else if (*v == "depth")
-      job.interpolation = Interpolation::depth;
-    else
-      throw mpr::argument_error("--interp", "'" + *v + "' is not nearest, synthetic, cylinder or depth");
+    job.interpolation = mpr::choose(mpr::interpolation_names, *v, "--interp");
   }
   if (args.has("all-in-focus")) {
     if (job.interpolation_given && job.interpolation != Interpolation::depth)

@@ -6,6 +6,7 @@
 #include "mpr-render/job.hpp"
 
 #include <mpr/core/vec.hpp>
+#include <mpr/policy_names.hpp>
 
 #include <cctype>
 #include <charconv>
@@ -83,10 +84,7 @@ inline std::string shell_word(const std::string& s) {
   if (job.raster) add("--raster", std::to_string(job.raster->first) + "x" + std::to_string(job.raster->second));
   if (job.raster && job.raster_samples > 1) add("--raster-samples", std::to_string(job.raster_samples));
   if (light_field || job.raster) {
-    add("--interp", job.interpolation == Interpolation::nearest     ? "nearest"
-                    : job.interpolation == Interpolation::synthetic ? "synthetic"
-                    : job.interpolation == Interpolation::depth     ? "depth"
-                                                                    : "cylinder");
+    add("--interp", std::string(mpr::choice_name(mpr::interpolation_names, job.interpolation)));
     if (job.interpolation == Interpolation::cylinder || job.interpolation == Interpolation::depth)
       add("--radius", detail::number(job.radius.at(time)));
     // The depth maps and the proxy's settings shape the image under the depth interpolation

@@ -82,10 +82,13 @@ static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(Srgb8Texel) == 
 /// Every image has exactly its camera's width and height; different cameras may differ in size.
 /// At construction every image is also decoded once into linear texels, which the samplers read:
 /// `Srgb8Texel` (3 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
-/// this is the bulk of the memory a frame set takes. Optionally the set carries one depth map per
-/// camera (`with_depth`), read only by geometry-aware interpolations (`DepthProxy`). Images,
-/// texels and depth maps are immutable once in a set and shared: a copy, `without(i)` and
-/// `cast<U>()` copy no pixel.
+/// this is the bulk of the memory a frame set takes. An 8-bit image that borrows its pixels
+/// (`Image::borrow`, e.g. a numpy array) is not copied at all when its memory allows: its pixels
+/// are its texels (the same 3 bytes), read in place (`shares_image`). Optionally the set carries
+/// one depth map per camera (`with_depth`), read only by geometry-aware interpolations
+/// (`DepthProxy`). Images, texels and depth maps are immutable once in a set (borrowed memory
+/// must not change while a render reads it) and shared: a copy, `without(i)` and `cast<U>()`
+/// copy no pixel.
 template <std::floating_point T, class Px = Rgb8>
 class CameraFrameSet {
   static_assert(std::is_same_v<Px, Rgb8> || std::is_same_v<Px, Color>, "frames are Rgb8 or linear Color");
@@ -102,7 +105,9 @@ public:
 
   CameraFrameSet() = default;
 
-  /// Throws `argument_error` ("frames") when the lists differ in length, when `names` is neither
+  /// Borrowed images are kept borrowed (their owner handles live as long as the set); see
+  /// `shares_image` for when their texels are read in place. Throws `argument_error` ("frames")
+  /// when the lists differ in length, when `names` is neither
   /// empty nor of the same length, or when an image's size differs from its camera's.
   /// Empty `names` are replaced by "frame <i>".
   CameraFrameSet(std::vector<camera_type> cameras, std::vector<Image<Px>> images, std::vector<std::string> names = {})
@@ -121,7 +126,7 @@ public:
                                            std::to_string(cameras_[i].height()));
     images_.reserve(images.size());
     for (Image<Px>& image : images) images_.push_back(std::make_shared<const Image<Px>>(std::move(image)));
-    texels_ = decode(images_, offsets_);
+    texels_ = decode(images_, texel_data_);
   }
 
   [[nodiscard]] std::size_t size() const noexcept { return cameras_.size(); }
@@ -131,11 +136,38 @@ public:
   [[nodiscard]] const std::string& name(std::size_t i) const noexcept { return names_[i]; }
   [[nodiscard]] const std::vector<camera_type>& cameras() const noexcept { return cameras_; }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
-  /// Image `i` as the samplers read it, row-major, `width * height` texels, starting on a
-  /// 64-byte boundary, with at least 64 readable bytes after the last.
+  /// Image `i` as the samplers read it, row-major, `width * height` texels, with at least 64
+  /// readable bytes after the last: decoded by the set (starting on a 64-byte boundary), or the
+  /// image's own pixels when `shares_image(i)`.
   [[nodiscard]] std::span<const texel_type> texels(std::size_t i) const noexcept {
-    return {texels_->data() + offsets_[i],
+    return {texel_data_[i],
             static_cast<std::size_t>(images_[i]->width()) * static_cast<std::size_t>(images_[i]->height())};
+  }
+
+  /// True when the samplers read image `i`'s pixels in place: the set holds no copy of it, and a
+  /// change to the borrowed memory shows in later renders. So for every 8-bit image that borrows
+  /// its pixels (`Image::borrow`) and that `can_share`; every other image is decoded into the
+  /// set's buffer at construction.
+  [[nodiscard]] bool shares_image(std::size_t i) const noexcept {
+    return static_cast<const void*>(texel_data_[i]) == static_cast<const void*>(images_[i]->data());
+  }
+
+  /// Whether a set would read `image` in place (`shares_image`): an 8-bit image that borrows its
+  /// pixels, non-empty, whose 64 bytes after the last pixel are readable. The kernels load whole
+  /// words from a texel and may read that far past the last one; the bytes are known readable
+  /// when they lie in the 4 KiB block of the last pixel (memory is mapped in pages of 4 KiB or
+  /// multiples), so an image is shared unless its end lies in the last 64 bytes of such a block
+  /// (1 image in 64 at random addresses), and then decoded like an owned one.
+  [[nodiscard]] static bool can_share(const Image<Px>& image) noexcept {
+    if constexpr (!std::is_same_v<Px, Rgb8>) {
+      return false;
+    } else {
+      if (!image.borrowed() || image.empty()) return false;
+      constexpr std::uintptr_t kBlock = 4096, kPadding = 64;
+      const auto end = reinterpret_cast<std::uintptr_t>(image.data() + static_cast<std::size_t>(image.width()) *
+                                                                           static_cast<std::size_t>(image.height()));
+      return (end - 1) / kBlock == (end + kPadding - 1) / kBlock;
+    }
   }
 
   /// The plane every camera centre lies on, when whoever built the set knows it (the Stanford
@@ -201,7 +233,7 @@ public:
     out.cameras_.erase(out.cameras_.begin() + static_cast<std::ptrdiff_t>(i));
     out.images_.erase(out.images_.begin() + static_cast<std::ptrdiff_t>(i));
     out.names_.erase(out.names_.begin() + static_cast<std::ptrdiff_t>(i));
-    out.offsets_.erase(out.offsets_.begin() + static_cast<std::ptrdiff_t>(i)); // the buffer is shared
+    out.texel_data_.erase(out.texel_data_.begin() + static_cast<std::ptrdiff_t>(i)); // the buffer is shared
     if (!out.depths_.empty()) {
       out.depths_.erase(out.depths_.begin() + static_cast<std::ptrdiff_t>(i));
       out.depth_near_.erase(out.depth_near_.begin() + static_cast<std::ptrdiff_t>(i));
@@ -227,7 +259,7 @@ public:
     out.images_ = images_;
     out.names_ = names_;
     out.texels_ = texels_;
-    out.offsets_ = offsets_;
+    out.texel_data_ = texel_data_;
     out = std::move(out).with_shared_depth(depths_);
     if (array_plane_)
       return std::move(out).on_plane(
@@ -335,25 +367,40 @@ private:
     return out;
   }
 
-  // Every image decoded into one buffer, image i from texel offsets[i]: a multiple of 64 texels
-  // (64-byte aligned, as the buffer is); the images that follow and the buffer's padding keep at
-  // least 64 bytes readable after each. One buffer rather than one per image: frames each under
-  // the allocator's huge-page threshold are in huge pages too, and a render that reads a few rows
-  // of each of many frames misses the TLB far less often.
+  // Every image the set does not share (`can_share`) decoded into one buffer, each from a multiple
+  // of 64 texels (64-byte aligned, as the buffer is); the images that follow and the buffer's
+  // padding keep at least 64 bytes readable after each. One buffer rather than one per image:
+  // frames each under the allocator's huge-page threshold are in huge pages too, and a render
+  // that reads a few rows of each of many frames misses the TLB far less often. `at[i]` receives
+  // image i's first texel (its own pixels when shared). Null when every image is shared.
   [[nodiscard]] static std::shared_ptr<const texel_vector>
-  decode(const std::vector<std::shared_ptr<const Image<Px>>>& images, std::vector<std::size_t>& offsets) {
+  decode(const std::vector<std::shared_ptr<const Image<Px>>>& images, std::vector<const texel_type*>& at) {
     constexpr std::size_t kAlign = 64;
-    offsets.clear();
+    static_assert(!std::is_same_v<Px, Rgb8> ||
+                      (sizeof(Rgb8) == sizeof(Srgb8Texel) && alignof(Rgb8) == alignof(Srgb8Texel) &&
+                       std::is_standard_layout_v<Rgb8> && std::is_trivially_copyable_v<Rgb8>),
+                  "an 8-bit pixel is its texel: r, g, b bytes");
+    std::vector<std::size_t> offsets(images.size(), 0);
+    std::vector<bool> shared(images.size(), false);
     std::size_t total = 0;
-    for (const auto& image : images) {
-      offsets.push_back(total);
-      const std::size_t n = static_cast<std::size_t>(image->width()) * static_cast<std::size_t>(image->height());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      shared[i] = can_share(*images[i]);
+      if (shared[i]) continue;
+      offsets[i] = total;
+      const std::size_t n =
+          static_cast<std::size_t>(images[i]->width()) * static_cast<std::size_t>(images[i]->height());
       total += (n + kAlign) / kAlign * kAlign; // at least one texel of gap, a multiple of kAlign
     }
-    auto out = std::make_shared<texel_vector>(total);
+    auto out = total == 0 ? nullptr : std::make_shared<texel_vector>(total);
+    at.assign(images.size(), nullptr);
     for (std::size_t i = 0; i < images.size(); ++i) {
-      texel_type* t = out->data() + offsets[i];
       const Px* p = images[i]->data();
+      if (shared[i]) { // the same bytes: r, g, b of each pixel (see the static_assert)
+        at[i] = reinterpret_cast<const texel_type*>(p);
+        continue;
+      }
+      texel_type* t = out->data() + offsets[i];
+      at[i] = t;
       const std::size_t n =
           static_cast<std::size_t>(images[i]->width()) * static_cast<std::size_t>(images[i]->height());
       if constexpr (std::is_same_v<Px, Rgb8>) {
@@ -368,8 +415,8 @@ private:
   std::vector<camera_type> cameras_;
   std::vector<std::shared_ptr<const Image<Px>>> images_;
   std::vector<std::string> names_;
-  std::shared_ptr<const texel_vector> texels_; // null in a default-constructed (empty) set
-  std::vector<std::size_t> offsets_;           // image i's first texel in *texels_
+  std::shared_ptr<const texel_vector> texels_; // the decoded images; null when none is (or the set is empty)
+  std::vector<const texel_type*> texel_data_;  // image i's first texel: in *texels_, or its own pixels
   std::vector<std::shared_ptr<const Image<float>>> depths_;
   std::vector<float> depth_near_;
   std::vector<Box> depth_boxes_;
