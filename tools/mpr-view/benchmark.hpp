@@ -112,10 +112,7 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
     latency_ms.push_back(wait_for(false).latency_ms);
     (void)wait_for(true);
   }
-  const char* interp = job.interpolation == mpr_cli::Interpolation::nearest     ? "nearest"
-                       : job.interpolation == mpr_cli::Interpolation::synthetic ? "synthetic"
-                       : job.interpolation == mpr_cli::Interpolation::depth     ? "depth"
-                                                                                : "cylinder";
+  const std::string interp(mpr_cli::interpolation_name(job.interpolation));
   const bool focus = job.raster || mpr_cli::is_light_field(job.sampler);
   std::printf("mpr-view benchmark: %dx%d, %d view(s), %s, threads %d, %s%s, load average %.2f\n", view_w * job.cols,
               view_h * job.rows, job.cols * job.rows, sizeof(T) == 4 ? "float" : "double", job.threads,
