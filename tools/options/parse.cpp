@@ -38,7 +38,8 @@ namespace {
 
 /// The checks CLI11 does not word for the user: each argument is a known option, a flag has no
 /// value, and an option's value is there (not the next option).
-void check_arguments(int argc, const char* const* argv, Tools tool) {
+std::vector<std::string> check_arguments(int argc, const char* const* argv, Tools tool) {
+  std::vector<std::string> args; // argv[1..] for CLI11, "--name=" as "--name" ""
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg.rfind("--", 0) != 0)
@@ -51,22 +52,27 @@ void check_arguments(int argc, const char* const* argv, Tools tool) {
     if (option == nullptr)
       throw mpr::argument_error("--" + name, "unknown option" + did_you_mean(name, tool) + " (see --help)");
     const std::string value(option->value);
+    args.push_back(arg);
     if (option->kind == ValueKind::flag) {
       if (inline_value) throw mpr::argument_error("--" + name, "is a flag and takes no value");
+    } else if (inline_value && eq + 3 == arg.size()) {
+      args.back().pop_back(); // an empty value, read as the option's (CLI11 refuses "--name=")
+      args.emplace_back();
     } else if (!inline_value) {
       if (i + 1 >= argc) throw mpr::argument_error("--" + name, "needs a value " + value);
       // "--view --output a.png": the value of --view is missing, not a.png misplaced.
       if (const std::string next = argv[i + 1]; next.rfind("--", 0) == 0 && next.size() > 2)
         throw mpr::argument_error("--" + name, "needs a value " + value + " before " + next);
-      ++i;
+      args.emplace_back(argv[++i]);
     }
   }
+  return args;
 }
 
 } // namespace
 
 OptionValues parse_options(int argc, const char* const* argv, Tools tool) {
-  check_arguments(argc, argv, tool);
+  std::vector<std::string> args = check_arguments(argc, argv, tool);
   CLI::App app;
   app.set_help_flag(); // --help is an entry of the table, answered before parsing
   std::vector<std::pair<const Option*, CLI::Option*>> declared;
@@ -82,8 +88,7 @@ OptionValues parse_options(int argc, const char* const* argv, Tools tool) {
     cli->description(std::string(o.help));
     declared.emplace_back(&o, cli);
   }
-  std::vector<std::string> args;
-  for (int i = argc - 1; i >= 1; --i) args.emplace_back(argv[i]); // CLI11 takes them reversed
+  std::reverse(args.begin(), args.end()); // CLI11 takes them reversed
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {

@@ -36,6 +36,7 @@ TEST_CASE("parse_options rejects bad command lines with the option named", "[cli
   CHECK_THROWS_WITH(parse({"--size"}), Catch::Contains("--size") && Catch::Contains("needs a value"));
   CHECK_THROWS_WITH(parse({"--print-camera=yes"}), Catch::Contains("flag"));
   CHECK_THROWS_WITH(parse({"stray"}), Catch::Contains("unexpected"));
+  CHECK(parse({"--output="}).get("output") == ""); // an empty value is the option's to judge
 }
 
 TEST_CASE("parse_options suggests the nearest option and blames the one whose value is missing", "[cli]") {
