@@ -9,6 +9,7 @@
 #include "bench_common.hpp"
 
 #include "../tools/mpr-render/render_job.hpp"
+#include "../tools/options/make_job.hpp"
 
 #include <cstdio>
 #include <cstring>

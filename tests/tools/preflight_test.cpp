@@ -1,6 +1,7 @@
 // mpr-render's checks before rendering (tools/mpr-render/preflight.hpp): a job that cannot
 // finish fails before the first frame reaches the sink.
 #include "mpr-render/render_job.hpp"
+#include "options/make_job.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -3,6 +3,7 @@
 // temporary folders, and a tiny light field with depth maps.
 
 #include "mpr-render/job.hpp"
+#include "options/make_job.hpp"
 
 #include <mpr/core/image.hpp>
 #include <mpr/io/image_io.hpp>

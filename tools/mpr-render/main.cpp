@@ -5,6 +5,9 @@
 #include "error_line.hpp"
 #include "render_job.hpp"
 
+#include "options/help.hpp"
+#include "options/make_job.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -15,16 +18,6 @@
 #include <unistd.h>
 
 namespace {
-
-void print_help() {
-  std::printf("usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field to PNG "
-              "or JPEG.\n\n");
-  for (const mpr_cli::OptionSpec& s : mpr_cli::options()) {
-    std::string head = "--" + s.name + (s.value.empty() ? "" : " " + s.value);
-    std::printf("  %s\n      %s\n      e.g. %s\n", head.c_str(), s.help.c_str(), s.example.c_str());
-  }
-  std::printf("\n%s", mpr_cli::view_help());
-}
 
 /// The progress of an animation on stderr: a bar on a terminal; otherwise (a batch job's log)
 /// one line a frame with the time so far and the estimated time left.
@@ -96,7 +89,7 @@ void finish_animation(const mpr_cli::Job& job) {
 int main(int argc, char** argv) try {
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
-      print_help();
+      std::fputs(mpr_cli::render_help().c_str(), stdout);
       return 0;
     }
   mpr_cli::Job job = mpr_cli::parse_job(argc, argv);

@@ -1,5 +1,5 @@
 #pragma once
-// mpr-render's VIEW grammar (options.hpp, view_help): a view spec on an image plane -> the GLC
+// mpr-render's VIEW grammar (tools/options/help.cpp, view_help): a view spec on an image plane -> the GLC
 // ray selector (gallery letters and names, pinhole, orthographic, oblique, pushbroom, cross-slit,
 // pencil, twisted, bilinear, explicit corners).
 

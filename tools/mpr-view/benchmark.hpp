@@ -7,8 +7,6 @@
 
 #include "render_thread.hpp"
 
-#include <mpr/policy_names.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -114,7 +112,7 @@ int run_benchmark(const mpr_cli::Job& job, const mpr_cli::Loaded<T>& l, int fram
     latency_ms.push_back(wait_for(false).latency_ms);
     (void)wait_for(true);
   }
-  const std::string interp(mpr::choice_name(mpr::interpolation_names, job.interpolation));
+  const std::string interp(mpr_cli::interpolation_name(job.interpolation));
   const bool focus = job.raster || mpr_cli::is_light_field(job.sampler);
   std::printf("mpr-view benchmark: %dx%d, %d view(s), %s, threads %d, %s%s, load average %.2f\n", view_w * job.cols,
               view_h * job.rows, job.cols * job.rows, sizeof(T) == 4 ? "float" : "double", job.threads,
