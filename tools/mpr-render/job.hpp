@@ -45,6 +45,7 @@ struct Job {
   int cols = 1, rows = 1;
   std::vector<std::string> views{"default"}; ///< view specs, row-major, one per tile
   std::filesystem::path output = "mpr-render.png";
+  OutputEncoding encoding; ///< --bit-depth, --exr-pixel (output.hpp; 8-bit PNG, half-float EXR by default)
   int threads = 0;
   bool use_double = false;
   bool no_budget = false; ///< --no-budget: lift the preflight's memory and time limits (preflight.hpp)
@@ -160,6 +161,28 @@ inline std::pair<int, int> parse_shard(const std::string& text, int frames) {
   return {parse_int(parts[0], "--shard", 0, n - 1), n};
 }
 
+/// --bit-depth 8|16 (PNG only) and --exr-pixel half|float (OpenEXR only) for the output `output`;
+/// throws argument_error naming the option for another value or format.
+inline OutputEncoding parse_output_encoding(const ParsedArgs& args, const std::filesystem::path& output) {
+  OutputEncoding e;
+  const ImageFormat format = image_format(output);
+  if (const auto v = args.get("bit-depth")) {
+    if (*v != "8" && *v != "16") throw mpr::argument_error("--bit-depth", "'" + *v + "' is not 8 or 16");
+    e.png_bits = *v == "16" ? 16 : 8;
+    if (format == ImageFormat::jpeg && e.png_bits == 16)
+      throw mpr::argument_error("--bit-depth", "JPEG is 8-bit; write .png for 16 bits, .pfm or .exr for linear floats");
+    if (is_linear(format))
+      throw mpr::argument_error("--bit-depth", "applies to .png; '" + output.string() + "' stores linear floats");
+  }
+  if (const auto v = args.get("exr-pixel")) {
+    if (*v != "half" && *v != "float") throw mpr::argument_error("--exr-pixel", "'" + *v + "' is not half or float");
+    if (format != ImageFormat::exr)
+      throw mpr::argument_error("--exr-pixel", "applies to .exr output, not '" + output.string() + "'");
+    e.exr_pixel = *v == "float" ? ExrPixel::full : ExrPixel::half;
+  }
+  return e;
+}
+
 /// What the program calling `make_job` does with the options beyond mpr-render's use of them.
 struct JobContext {
   /// The program reads --depth-maps itself (mpr-view: click-to-focus), so they need no other
@@ -174,7 +197,8 @@ inline Job make_job(const ParsedArgs& args, const JobContext& context = {}) {
     if (v->empty()) throw mpr::argument_error("--output", "empty file name");
     job.output = *v;
   }
-  (void)image_format(job.output); // .png, .jpg, .jpeg or none; anything else is refused
+  (void)image_format(job.output); // .png, .jpg, .jpeg, .pfm, .exr or none; anything else is refused
+  job.encoding = parse_output_encoding(args, job.output);
   if (const auto v = args.get("size")) {
     std::tie(job.width, job.height) = parse_size(*v, "--size");
     job.size_given = true;

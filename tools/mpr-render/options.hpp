@@ -12,11 +12,18 @@ namespace mpr_cli {
 inline const std::vector<OptionSpec>& options() {
   static const std::vector<OptionSpec> specs = {
       {"help", "", "Print this help and exit.", "mpr-render --help"},
-      {"output", "FILE.png|FILE.jpg",
-       "Output image, PNG or JPEG (quality 95) by the extension (.png, .jpg, .jpeg; default mpr-render.png). "
-       "With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames FILE_NNNN.png beyond N of an earlier run "
-       "are removed).",
+      {"output", "FILE.png|FILE.jpg|FILE.pfm|FILE.exr",
+       "Output image by the extension (default mpr-render.png): .png (8-bit sRGB; 16-bit with --bit-depth 16), "
+       ".jpg or .jpeg (JPEG, quality 95), or the linear render as floats: .pfm (RGB PFM, 32-bit) or .exr "
+       "(OpenEXR, half floats; --exr-pixel float). With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames "
+       "FILE_NNNN.png beyond N of an earlier run are removed; the MP4 only from .png or .jpg frames).",
        "--output out/cross.png"},
+      {"bit-depth", "8|16",
+       "Bits per channel of a .png output (default 8): 16 writes 16-bit sRGB-encoded PNG (libpng).",
+       "--bit-depth 16 --output view16.png"},
+      {"exr-pixel", "half|float",
+       "Sample type of an .exr output (default half: 16-bit floats; float: the render's 32-bit values exactly).",
+       "--exr-pixel float --output linear.exr"},
       {"size", "WxH",
        "Size of one view in pixels (default 480x360; light fields: the reference camera's size, and another "
        "aspect ratio crops the camera's view instead of stretching it).",
