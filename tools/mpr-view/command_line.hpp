@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace mpr_view {
@@ -40,6 +42,36 @@ inline std::string shell_word(const std::string& s) {
   std::string out = "'";
   for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
+}
+
+/// --filter NAME:RADIUS of `filter` (mpr-render's parse_filter reads it back).
+inline std::string filter_text(const mpr::AnyFilter& filter) {
+  const char* name = std::visit(
+      [](const auto& f) -> const char* {
+        using F = std::remove_cvref_t<decltype(f)>;
+        if constexpr (std::is_same_v<F, mpr::BoxFilter>) return "box";
+        if constexpr (std::is_same_v<F, mpr::TentFilter>) return "tent";
+        if constexpr (std::is_same_v<F, mpr::GaussianFilter>) return "gaussian";
+        if constexpr (std::is_same_v<F, mpr::MitchellFilter>) return "mitchell";
+        return "lanczos";
+      },
+      filter.variant());
+  return std::string(name) + ":" + number(filter.radius());
+}
+
+/// --aperture SHAPE:SIZE of `spec` at animation time `time`.
+inline std::string aperture_text(const mpr_cli::ApertureSpec& spec, double time) {
+  const std::string shape = std::visit(
+      [](const auto& a) -> std::string {
+        using A = std::remove_cvref_t<decltype(a)>;
+        if constexpr (std::is_same_v<A, mpr::glc::DiscAperture>) return "disc";
+        if constexpr (std::is_same_v<A, mpr::glc::SquareAperture>) return "square";
+        if constexpr (std::is_same_v<A, mpr::glc::GaussianAperture>) return "gaussian";
+        if constexpr (std::is_same_v<A, mpr::glc::PolygonAperture>) return "polygon" + std::to_string(a.blades());
+        return "disc";
+      },
+      spec.shape.variant());
+  return shape + ":" + number(spec.size.at(time));
 }
 
 } // namespace detail
@@ -139,6 +171,17 @@ inline std::string shell_word(const std::string& s) {
   if (job.morph_to && job.morph.at(time) != 0) {
     add("--morph-to", *job.morph_to);
     add("--morph", detail::number(job.morph.at(time)));
+  }
+  if (job.spp > 1) {
+    add("--spp", std::to_string(job.spp));
+    add("--filter", detail::filter_text(job.filter));
+  }
+  if (job.aperture) {
+    add("--aperture", detail::aperture_text(*job.aperture, time));
+    if (job.aperture->distance) add("--lens-distance", detail::number(*job.aperture->distance));
+    std::string focus;
+    for (const double d : job.aperture->focus) focus += (focus.empty() ? "" : ",") + detail::number(d);
+    if (!focus.empty()) add("--focus", focus);
   }
   if (job.threads != 0) add("--threads", std::to_string(job.threads));
   if (job.use_double) a.push_back("--double");

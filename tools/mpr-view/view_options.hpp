@@ -53,6 +53,9 @@ inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, cons
   ViewerSettings v;
   if (args.has("shard"))
     throw mpr::argument_error("--shard", "splits mpr-render's frames between processes; the viewer shows them all");
+  for (const char* option : {"bit-depth", "exr-pixel"})
+    if (args.has(option))
+      throw mpr::argument_error(std::string("--") + option, "sets mpr-render's output file; the viewer saves 8-bit PNG");
   mpr_cli::Job job = mpr_cli::make_job(args, {.reads_depth_maps = true}); // click-to-focus reads them
   if (const auto s = args.get("script")) {
     if (s->empty()) throw mpr::argument_error("--script", "empty file name");
@@ -80,7 +83,9 @@ inline void print_help() {
   std::printf("\nMPR-RENDER OPTIONS (--output: base name of the PNGs that S saves, default mpr-view.png; --frames N: "
               "the frames ',' and '.' step through)\n");
   for (const mpr_cli::OptionSpec& s : mpr_cli::options()) {
-    if (s.name == "help" || s.name == "no-video" || s.name == "print-camera" || s.name == "shard") continue;
+    if (s.name == "help" || s.name == "no-video" || s.name == "print-camera" || s.name == "shard" ||
+        s.name == "bit-depth" || s.name == "exr-pixel")
+      continue;
     const std::string head = "--" + s.name + (s.value.empty() ? "" : " " + s.value);
     std::printf("  %s\n      %s\n", head.c_str(), s.help.c_str());
   }
