@@ -129,9 +129,10 @@ TEST_CASE("orbit_degrees: azimuth about up and elevation from the command line's
   mpr_view::ViewState s;                                                     // up (0, 1, 0)
   CHECK(mpr_view::orbit_degrees(s, ctx) == std::pair<double, double>{0, 0}); // no explicit plane yet
   s.job.look_at = mpr::Vec3<double>(0, 0, 0);
-  s.job.plane_centre = mpr::Vec3<double>(10, 0, 0); // +z to +x: a quarter turn, clockwise seen from above
+  // +z to +x: a quarter turn about +y, counter-clockwise seen from above (z x x = +y).
+  s.job.plane_centre = mpr::Vec3<double>(10, 0, 0);
   auto [azimuth, elevation] = mpr_view::orbit_degrees(s, ctx);
-  CHECK(azimuth == Approx(-90));
+  CHECK(azimuth == Approx(90));
   CHECK(elevation == Approx(0).margin(1e-12));
   s.job.plane_centre = mpr::Vec3<double>(0, 10, 10); // raised to 45 degrees, same azimuth
   std::tie(azimuth, elevation) = mpr_view::orbit_degrees(s, ctx);
