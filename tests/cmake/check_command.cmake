@@ -3,12 +3,14 @@
 # PASS_REGULAR_EXPRESSION (the exit status is ignored).
 #
 #   cmake -DEXPECT_RC=<n> [-DEXPECT_REGEX=<regex>] [-DPNG=<file> [-DPNG_SIZE=<W>x<H>]]
-#         [-DJPEG=<file>] [-DNO_FILE=<file>] -P check_command.cmake -- <command> [args...]
+#         [-DJPEG=<file>] [-DNO_FILE=<file>] [-DFILE=<file> -DFILE_HEAD=<hex>]
+#         -P check_command.cmake -- <command> [args...]
 #
 # EXPECT_REGEX is matched against stdout and stderr together. PNG: the file must be written by
 # this run (it is removed first) with a PNG signature and, with PNG_SIZE, that width and height.
 # JPEG: likewise, a file starting with a JPEG's SOI marker and a segment marker (FF D8 FF).
 # NO_FILE: the file must not exist afterwards (a failed run leaves no partial output).
+# FILE: written by this run, its first bytes FILE_HEAD (lower-case hex), e.g. "50460a" for "PF\n".
 
 set(_cmd)
 set(_after_separator FALSE)
@@ -26,7 +28,7 @@ endif()
 if(NOT DEFINED EXPECT_RC)
   message(FATAL_ERROR "check_command: EXPECT_RC not set")
 endif()
-foreach(f IN ITEMS "${PNG}" "${JPEG}" "${NO_FILE}")
+foreach(f IN ITEMS "${PNG}" "${JPEG}" "${NO_FILE}" "${FILE}")
   if(f)
     file(REMOVE "${f}")
   endif()
@@ -70,5 +72,16 @@ if(JPEG)
   file(READ "${JPEG}" head LIMIT 3 HEX)
   if(NOT head STREQUAL "ffd8ff")
     message(FATAL_ERROR "check_command: ${JPEG} is not a JPEG (starts with ${head})")
+  endif()
+endif()
+if(FILE)
+  if(NOT EXISTS "${FILE}")
+    message(FATAL_ERROR "check_command: ${FILE} was not written")
+  endif()
+  string(LENGTH "${FILE_HEAD}" _hex_length)
+  math(EXPR _bytes "${_hex_length} / 2")
+  file(READ "${FILE}" head LIMIT ${_bytes} HEX)
+  if(NOT head STREQUAL FILE_HEAD)
+    message(FATAL_ERROR "check_command: ${FILE} starts with ${head}, expected ${FILE_HEAD}")
   endif()
 endif()

@@ -1,7 +1,10 @@
 #include <mpr/io/pfm.hpp>
 
+#include "io/linear_render.hpp"
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -172,4 +175,53 @@ TEST_CASE("PFM: a depth map with structure comes back bit for bit, rows in place
   CHECK(std::isnan(back(5, 1)));
   CHECK(std::signbit(back(6, 1)));
   std::filesystem::remove(path);
+}
+
+TEMPLATE_TEST_CASE("RGB PFM keeps the renderer's linear values exactly", "[io][pfm]", float, double) {
+  const mpr::Image<mpr::Color> render = mpr_test::linear_render<TestType>();
+  // The render spans values outside [0, 1], which an 8-bit file would clamp.
+  float low = 1, high = 0;
+  for (int y = 0; y < render.height(); ++y)
+    for (int x = 0; x < render.width(); ++x)
+      low = std::min(low, render(x, y).minCoeff()), high = std::max(high, render(x, y).maxCoeff());
+  REQUIRE(low < 0);
+  REQUIRE(high > 1);
+  const auto path = temp_path("rgb.pfm");
+  mpr::write_pfm(path, render);
+  const mpr::Image<mpr::Color> back = mpr::read_pfm_rgb(path);
+  REQUIRE(back.width() == render.width());
+  REQUIRE(back.height() == render.height());
+  for (int y = 0; y < render.height(); ++y)
+    for (int x = 0; x < render.width(); ++x) CHECK((back(x, y) == render(x, y)).all());
+  // A one-channel reader refuses the colour file, and the colour reader a one-channel one.
+  CHECK_THROWS_WITH(mpr::read_pfm(path), Catch::Contains("colour map (PF)"));
+  mpr::write_pfm(temp_path("grey.pfm"), mpr::Image<float>(2, 2));
+  CHECK_THROWS_WITH(mpr::read_pfm_rgb(temp_path("grey.pfm")), Catch::Contains("one-channel map (Pf)"));
+}
+
+TEST_CASE("RGB PFM bytes worked out by hand: PF header, bottom row first, R G B per pixel", "[io][pfm]") {
+  mpr::Image<mpr::Color> image(2, 2);
+  image(0, 0) = mpr::Color(1, 2, 3); // top row
+  image(1, 0) = mpr::Color(4, 5, 6);
+  image(0, 1) = mpr::Color(-0.5f, 0, 7); // bottom row: first in the file
+  image(1, 1) = mpr::Color(8, 9, 1e30f);
+  const std::vector<unsigned char> bytes = mpr::encode_pfm(image.view());
+  const std::string header = "PF\n2 2\n-1\n";
+  REQUIRE(bytes.size() == header.size() + 48);
+  CHECK(std::string(bytes.begin(), bytes.begin() + static_cast<long>(header.size())) == header);
+  const float expected[12] = {-0.5f, 0, 7, 8, 9, 1e30f, 1, 2, 3, 4, 5, 6};
+  for (int k = 0; k < 12; ++k)
+    CHECK(std::string(reinterpret_cast<const char*>(bytes.data()) + header.size() + 4 * k, 4) ==
+          float_bytes(expected[k], true));
+}
+
+TEST_CASE("RGB PFM of a big-endian file reads the same values", "[io][pfm]") {
+  const auto path = temp_path("rgb_big.pfm");
+  write_bytes(path, "PF\n1 1\n1.0\n" + float_bytes(0.25f, false) + float_bytes(-3, false) + float_bytes(1e-20f, false));
+  const mpr::Image<mpr::Color> image = mpr::read_pfm_rgb(path);
+  CHECK(image(0, 0)[0] == 0.25f);
+  CHECK(image(0, 0)[1] == -3.0f);
+  CHECK(image(0, 0)[2] == 1e-20f);
+  write_bytes(path, "PF\n2 1\n-1\n" + float_bytes(1, true)); // 3 of the 24 bytes
+  CHECK_THROWS_WITH(mpr::read_pfm_rgb(path), Catch::Contains("needs 24 bytes of data, the file has 4"));
 }

@@ -12,6 +12,6 @@ template void preflight<double>(const Job&, const Loaded<double>&);
 template Job with_array_defaults<double>(const Job&, const Loaded<double>&);
 template void warn_job<double>(std::ostream&, const Job&, const Loaded<double>&);
 template SamplerVariant<double> make_sampler<double>(const Job&, const Loaded<double>&, const FrameParams&, int, int);
-template void run_typed<double>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
+template void run_typed<double>(const Job&, const LinearFrameSink&, std::ostream*, std::ostream*, Publication*);
 
 } // namespace mpr_cli

@@ -12,6 +12,6 @@ template void preflight<float>(const Job&, const Loaded<float>&);
 template Job with_array_defaults<float>(const Job&, const Loaded<float>&);
 template void warn_job<float>(std::ostream&, const Job&, const Loaded<float>&);
 template SamplerVariant<float> make_sampler<float>(const Job&, const Loaded<float>&, const FrameParams&, int, int);
-template void run_typed<float>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
+template void run_typed<float>(const Job&, const LinearFrameSink&, std::ostream*, std::ostream*, Publication*);
 
 } // namespace mpr_cli

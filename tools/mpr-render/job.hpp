@@ -59,7 +59,7 @@ struct Job {
   int cols = 1, rows = 1;
   std::vector<std::string> views{"default"}; ///< view specs, row-major, one per tile
   std::filesystem::path output = "mpr-render.png";
-  int bit_depth = 8; ///< --bit-depth: bits per channel of a PNG output, 8 or 16
+  OutputEncoding encoding; ///< --bit-depth, --exr-pixel (output.hpp; 8-bit PNG, half-float EXR by default)
   int threads = 0;
   bool use_double = false;
   bool no_budget = false; ///< --no-budget: lift the preflight's memory and time limits (preflight.hpp)

@@ -48,4 +48,22 @@ inline void draw_tile_label(mpr::ImageView<mpr::Rgb8> image, const mpr::Region& 
   }
 }
 
+/// draw_tile_label on a linear image: the tile is encoded to 8-bit sRGB, labelled, and every
+/// pixel the label changed is decoded back (`mpr::to_color`), so an 8-bit output of the image
+/// shows the label exactly as draw_tile_label on the encoded image would (`to_rgb8(to_color(p))
+/// == p`) and a linear output carries the label's own colours.
+inline void draw_tile_label(mpr::ImageView<mpr::Color> image, const mpr::Region& tile,
+                            const std::vector<std::string>& lines) {
+  const mpr::ImageView<mpr::Color> view = image.subview(tile.x, tile.y, tile.width, tile.height);
+  const mpr::Image<mpr::Rgb8> before = mpr::convert_image<mpr::Rgb8>(
+      mpr::ImageView<const mpr::Color>(view), [](const mpr::Color& c) { return mpr::to_rgb8(c); });
+  mpr::Image<mpr::Rgb8> after = before;
+  draw_tile_label(after.view(), mpr::Region(0, 0, tile.width, tile.height), lines);
+  for (int y = 0; y < view.height(); ++y)
+    for (int x = 0; x < view.width(); ++x) {
+      const mpr::Rgb8 a = before(x, y), b = after(x, y);
+      if (a.r != b.r || a.g != b.g || a.b != b.b) view(x, y) = mpr::to_color(b);
+    }
+}
+
 } // namespace mpr_cli

@@ -1,7 +1,9 @@
 // mpr-render: multi-perspective rendering from the shell. Chooses the image surface, the GLC
 // ray selector and the sampler (classroom scene, OBJ mesh, light field) at run time, renders to
-// PNG, and renders animations (tilt, aperture, focal-depth sweeps, GLC morphs) as numbered PNGs
-// plus an MP4 when ffmpeg is on PATH. See `mpr-render --help` and docs/mpr-render.md.
+// PNG, JPEG or the linear PFM and OpenEXR, and renders animations (tilt, aperture, focal-depth
+// sweeps, GLC morphs) as numbered images plus an MP4 when ffmpeg is on PATH. See
+// `mpr-render --help` and docs/mpr-render.md.
+#include "encode_output.hpp"
 #include "error_line.hpp"
 #include "render_job.hpp"
 
@@ -70,7 +72,7 @@ void finish_animation(const mpr_cli::Job& job) {
   if (const int removed = mpr_cli::remove_stale_frames(job.output, job.frames); removed > 0)
     std::printf("removed %d stale frame%s of an earlier run (%s onwards)\n", removed, removed == 1 ? "" : "s",
                 mpr_cli::frame_path(job.output, job.frames).filename().string().c_str());
-  if (!job.video) return;
+  if (!job.video || mpr_cli::is_linear(mpr_cli::image_format(job.output))) return; // no MP4 of linear frames
   const std::filesystem::path mp4 = mpr_cli::video_path(job.output);
   if (!mpr_cli::ffmpeg_available()) {
     std::fprintf(stderr,
@@ -105,11 +107,11 @@ int main(int argc, char** argv) try {
   // that fails leaves every existing file as it was and writes none.
   mpr_cli::Publication files;
   int done = 0, first = -1, last = -1;
-  mpr_cli::run(
+  mpr_cli::run_linear(
       job,
-      [&](int index, int, const mpr::Image<mpr::Rgb8>& image) {
+      [&](int index, int, const mpr::Image<mpr::Color>& image) {
         const std::filesystem::path path = animation ? mpr_cli::frame_path(job.output, index) : job.output;
-        files.stage(path, mpr_cli::encode_image(path, image));
+        files.stage(path, mpr_cli::encode_output(path, image, job.encoding));
         if (first < 0) first = index;
         last = index;
         if (animation) progress.frame(index, ++done, run_frames);

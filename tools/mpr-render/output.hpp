@@ -1,7 +1,8 @@
 #pragma once
-// mpr-render's output files: the image format from the file name (PNG or JPEG), the numbered
-// frames of an animation, stale frames of an earlier, longer run of the same name, and the
-// ffmpeg command that turns the frames into an MP4.
+// mpr-render's output files: the image format from the file name (PNG, JPEG, or the linear-light
+// PFM and OpenEXR), the numbered frames of an animation, stale frames of an earlier, longer run
+// of the same name, and the ffmpeg command that turns the frames into an MP4. The encoders of
+// the linear formats are in encode_output.hpp.
 
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
@@ -18,10 +19,35 @@
 
 namespace mpr_cli {
 
-enum class ImageFormat { png, jpeg };
+enum class ImageFormat { png, jpeg, pfm, exr };
 
 /// JPEG quality of mpr-render's .jpg output (stb_image_write, 1..100).
 inline constexpr int jpeg_quality = 95;
+
+/// The sample type of an OpenEXR output: 16-bit half floats (the default; about 3 decimal
+/// digits, up to 65504) or 32-bit floats (the render's values exactly).
+enum class ExrPixel { half, full };
+
+/// How the linear render is written, by format: the PNG's bits per channel (8 or 16, sRGB-encoded
+/// either way) and the OpenEXR sample type. PFM is always 32-bit float, JPEG 8-bit.
+struct OutputEncoding {
+  int png_bits = 8;                    ///< --bit-depth: 8 or 16
+  ExrPixel exr_pixel = ExrPixel::half; ///< --exr-pixel: half or float
+};
+
+/// Whether this build writes OpenEXR (OpenEXR found at configure time: MPR_HAVE_OPENEXR).
+[[nodiscard]] constexpr bool exr_available() noexcept {
+#if defined(MPR_HAVE_OPENEXR)
+  return true;
+#else
+  return false;
+#endif
+}
+
+/// Whether `format` stores the linear render (PFM, OpenEXR) rather than sRGB codes.
+[[nodiscard]] constexpr bool is_linear(ImageFormat format) noexcept {
+  return format == ImageFormat::pfm || format == ImageFormat::exr;
+}
 
 namespace detail {
 inline std::string lower(std::string s) {
@@ -31,13 +57,23 @@ inline std::string lower(std::string s) {
 } // namespace detail
 
 /// The format of an output file from its extension (any case): .png -> PNG, .jpg or .jpeg ->
-/// JPEG, no extension (e.g. /dev/stdout) -> PNG. Throws argument_error("--output") for any other
-/// extension, so a file is never written in a format its name does not say.
+/// JPEG, .pfm -> RGB PFM, .exr -> OpenEXR, no extension (e.g. /dev/stdout) -> PNG. Throws
+/// argument_error("--output") for any other extension, so a file is never written in a format
+/// its name does not say, and for .exr in a build without OpenEXR.
 [[nodiscard]] inline ImageFormat image_format(const std::filesystem::path& path) {
   const std::string ext = detail::lower(path.extension().string());
   if (ext.empty() || ext == ".png") return ImageFormat::png;
   if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::jpeg;
-  throw mpr::argument_error("--output", "'" + path.string() + "': mpr-render writes .png, .jpg or .jpeg, not '" +
+  if (ext == ".pfm") return ImageFormat::pfm;
+  if (ext == ".exr") {
+    if (!exr_available())
+      throw mpr::argument_error("--output", "'" + path.string() +
+                                                "': this mpr-render was built without OpenEXR (install libopenexr-dev "
+                                                "and rebuild); .pfm also writes the linear render");
+    return ImageFormat::exr;
+  }
+  throw mpr::argument_error("--output", "'" + path.string() +
+                                            "': mpr-render writes .png, .jpg, .jpeg, .pfm or .exr, not '" +
                                             path.extension().string() + "'");
 }
 
@@ -57,9 +93,10 @@ inline void write_image(const std::filesystem::path& path, const mpr::Image<mpr:
   return mpr::encode_png(image.view());
 }
 
-/// The extension of an animation's frames: the output's for JPEG (".jpg", ".JPEG", ...), else ".png".
+/// The extension of an animation's frames: the output's (".jpg", ".JPEG", ".pfm", ...), and ".png"
+/// for an output without one.
 [[nodiscard]] inline std::string frame_extension(const std::filesystem::path& output) {
-  return image_format(output) == ImageFormat::jpeg ? output.extension().string() : std::string(".png");
+  return image_format(output) == ImageFormat::png ? std::string(".png") : output.extension().string();
 }
 
 /// Frames left next to `output` by an earlier, longer run of the same output name: an animation

@@ -16,11 +16,12 @@
 
 namespace mpr_cli {
 
-/// Where and how one view is rendered: the tile `region` of `out`, the pixel sampling of --spp /
+/// Where and how one view is rendered: the tile `region` of `out` (linear light; the outputs
+/// encode it, output.hpp and encode_output.hpp), the pixel sampling of --spp /
 /// --filter, and (with a supersampling policy) the finite aperture of --aperture opened to
 /// `aperture_size` (null: a pinhole GLC view; ignored with mpr::PixelCentre).
 struct ViewTarget {
-  mpr::ImageView<mpr::Rgb8> out;
+  mpr::ImageView<mpr::Color> out;
   mpr::Region region;
   mpr::RenderOptions options;
   const PixelSamplingVariant* sampling = nullptr; ///< not null

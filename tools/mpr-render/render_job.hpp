@@ -30,25 +30,50 @@
 
 namespace mpr_cli {
 
-/// Renders one view with the pixel sampling of --spp / --filter: the only run-time dispatch of a
-/// render. The visit here picks the sampler; render_with_sampler (render_dispatch.hpp, compiled
-/// in mpr_tools) visits the camera and the pixel sampling. With `aperture` (and a supersampling
-/// policy: make_job requires --spp N > 1), the view's selector integrates over that finite
-/// aperture (aperture.hpp), opened to `aperture_size`.
+/// Renders one view with the pixel sampling of --spp / --filter into the linear image `out`: the
+/// only run-time dispatch of a render. The visit here picks the sampler; render_with_sampler
+/// (render_dispatch.hpp, compiled in mpr_tools) visits the camera and the pixel sampling. With
+/// `aperture` (and a supersampling policy: make_job requires --spp N > 1), the view's selector
+/// integrates over that finite aperture (aperture.hpp), opened to `aperture_size`.
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
-                 mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options,
+                 mpr::ImageView<mpr::Color> out, const mpr::Region& region, const mpr::RenderOptions& options,
                  const ApertureSpec* aperture = nullptr, double aperture_size = 0) {
   const ViewTarget target{out, region, options, &sampling, aperture, aperture_size};
   std::visit([&](const auto& smp) { render_with_sampler(camera, smp, target); }, sampler);
 }
 
-/// Renders one view through pixel centres (one ray per pixel; mpr-view, benchmarks).
+/// render_view into 8-bit sRGB pixels: the view is rendered into a linear image of `out`'s size
+/// and the pixels of `region` that lie in `out` are encoded (mpr::to_rgb8, the codes a render
+/// straight into `out` gives). mpr-view renders its bands so; the pixels of `out` outside `region`
+/// are untouched.
+template <std::floating_point T>
+void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
+                 mpr::ImageView<mpr::Rgb8> out, const mpr::Region& region, const mpr::RenderOptions& options,
+                 const ApertureSpec* aperture = nullptr, double aperture_size = 0) {
+  mpr::Image<mpr::Color> linear(out.width(), out.height());
+  render_view(camera, sampler, sampling, linear.view(), region, options, aperture, aperture_size);
+  const int x0 = std::max(region.x, 0), x1 = std::min(region.x + region.width, out.width());
+  const int y0 = std::max(region.y, 0), y1 = std::min(region.y + region.height, out.height());
+  if (x1 <= x0) return;
+  for (int y = y0; y < y1; ++y)
+    mpr::PixelTraits<mpr::Rgb8>::from_colors(&linear(x0, y), &out(x0, y), static_cast<std::size_t>(x1 - x0));
+}
+
+/// Renders one view through pixel centres (one ray per pixel; benchmarks).
 template <std::floating_point T>
 void render_view(const CameraVariant<T>& camera, const SamplerVariant<T>& sampler, mpr::ImageView<mpr::Rgb8> out,
                  const mpr::Region& region, const mpr::RenderOptions& options) {
   static const PixelSamplingVariant centre{mpr::PixelCentre{}};
   render_view(camera, sampler, centre, out, region, options);
+}
+
+/// `image` encoded as 8-bit sRGB (mpr::to_rgb8 per channel, vectorised).
+[[nodiscard]] inline mpr::Image<mpr::Rgb8> encode_rgb8(const mpr::Image<mpr::Color>& image) {
+  mpr::Image<mpr::Rgb8> out(image.width(), image.height());
+  for (int y = 0; y < image.height(); ++y)
+    mpr::PixelTraits<mpr::Rgb8>::from_colors(&image(0, y), &out(0, y), static_cast<std::size_t>(image.width()));
+  return out;
 }
 
 /// Warns about each view whose focal surface lies partly outside every camera's frame, at the
@@ -87,11 +112,13 @@ void stage_depth_maps(const Job& job, const Loaded<T>& l, std::ostream* info, Pu
   publish->note(info, "wrote " + std::to_string(l.frames->size()) + " depth maps to " + folder.string() + "\n");
 }
 
-/// Called with each finished frame (index from 0, and the frame count).
+/// Called with each finished frame (index from 0, and the frame count), 8-bit sRGB.
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
+/// Called with each finished frame (index from 0, and the frame count), linear light.
+using LinearFrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Color>& image)>;
 
 template <std::floating_point T>
-void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std::ostream* warnings,
+void run_typed(const Job& given, const LinearFrameSink& sink, std::ostream* info, std::ostream* warnings,
                Publication* publish) {
   check_ranges<T>(given);
   const Loaded<T> loaded = load<T>(given);
@@ -117,7 +144,7 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
     if (job.shard && f % job.shard->second != job.shard->first) continue; // another shard's frame
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
     const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
-    mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
+    mpr::Image<mpr::Color> image(job.cols * w, job.rows * h);
     for (std::size_t k = 0; k < job.views.size(); ++k) {
       const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
       if (info != nullptr && job.print_camera && f == 0) {
@@ -137,19 +164,27 @@ void run_typed(const Job& given, const FrameSink& sink, std::ostream* info, std:
 }
 
 // Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
-extern template void run_typed<float>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
-extern template void run_typed<double>(const Job&, const FrameSink&, std::ostream*, std::ostream*, Publication*);
+extern template void run_typed<float>(const Job&, const LinearFrameSink&, std::ostream*, std::ostream*, Publication*);
+extern template void run_typed<double>(const Job&, const LinearFrameSink&, std::ostream*, std::ostream*, Publication*);
 
-/// Runs the job: every frame goes to `sink`; --print-camera text, the depth of --focus-at and the
-/// files of --write-depth to `info`, and warnings about the views (light_field_views.hpp) to
-/// `warnings` (each when not null). With `publish`, the files of --write-depth are staged there
-/// (publish.hpp), else written at the end.
-inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr,
-                Publication* publish = nullptr) {
+/// Runs the job: every frame, in linear light, goes to `sink`; --print-camera text, the depth of
+/// --focus-at and the files of --write-depth to `info`, and warnings about the views
+/// (light_field_views.hpp) to `warnings` (each when not null). With `publish`, the files of
+/// --write-depth are staged there (publish.hpp), else written at the end.
+inline void run_linear(const Job& job, const LinearFrameSink& sink, std::ostream* info = nullptr,
+                       std::ostream* warnings = nullptr, Publication* publish = nullptr) {
   if (job.use_double)
     run_typed<double>(job, sink, info, warnings, publish);
   else
     run_typed<float>(job, sink, info, warnings, publish);
+}
+
+/// run_linear with every frame encoded as 8-bit sRGB (encode_rgb8) for `sink`.
+inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr,
+                Publication* publish = nullptr) {
+  run_linear(
+      job, [&](int index, int count, const mpr::Image<mpr::Color>& image) { sink(index, count, encode_rgb8(image)); },
+      info, warnings, publish);
 }
 
 /// All frames in memory (tests).
@@ -161,7 +196,7 @@ inline std::vector<mpr::Image<mpr::Rgb8>> render_frames(const Job& job, std::ost
 }
 
 /// The numbered path of frame `index` (0-based) of an animation: out.png -> out_0001.png,
-/// out.jpg -> out_0001.jpg (frame_extension).
+/// out.exr -> out_0001.exr (frame_extension).
 inline std::filesystem::path frame_path(const std::filesystem::path& output, int index) {
   char number[16];
   std::snprintf(number, sizeof number, "_%04d", index + 1);

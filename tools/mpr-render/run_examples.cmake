@@ -8,7 +8,7 @@
 # continuations and trailing `# comments`).
 # Each command runs in SOURCE_DIR with $MPR_DATA_DIR replaced by DATA_DIR, small: `--size 32x24`
 # appended (the last value wins), `--frames N` above 3 lowered to 3, and `--output` appended as
-# OUT/<n>.png (.jpg when the example writes JPEG); a --write-depth file goes to OUT/<n>_depth.pfm,
+# OUT/<n>.png (.jpg, .pfm or .exr when the example writes one); a --write-depth file goes to OUT/<n>_depth.pfm,
 # --save-depth-maps to the folder OUT/<n>_depth_maps (and a later --depth-maps of the same
 # folder reads it from there),
 # and a command with --focus-at keeps its size (its pixel must lie inside the image). It must exit
@@ -123,7 +123,7 @@ foreach(_cmd IN LISTS _commands)
     if(_prev STREQUAL "--focus-at")
       set(_keep_size TRUE)
     endif()
-    if(_prev STREQUAL "--output" AND _a MATCHES "\\.(jpg|jpeg)$")
+    if(_prev STREQUAL "--output" AND _a MATCHES "\\.(jpg|jpeg|pfm|exr)$")
       set(_ext ".${CMAKE_MATCH_1}")
     endif()
     if(_prev STREQUAL "--frames")

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace mpr_view {
 
@@ -96,6 +97,25 @@ inline mpr::Vec3<double> rotate(const mpr::Vec3<double>& v, const mpr::Vec3<doub
 /// The focal depth shown now (a job value at the frame's time, or the context's default).
 [[nodiscard]] inline double current_focal_depth(const ViewState& s, const ViewContext& ctx) {
   return s.job.focal_depth ? s.job.focal_depth->at(s.time()) : ctx.focal_depth;
+}
+
+/// Scenes: how far the image plane has orbited from the command line's (ViewContext's plane
+/// centre and look-at): {azimuth, elevation} in degrees, the azimuth about the job's up direction
+/// (counter-clockwise seen from above: a left drag to the left is positive), the elevation the
+/// change of the angle above the plane normal to up. {0, 0} for light fields and before any
+/// orbit, pan or dolly; a pan or dolly alone leaves both at 0.
+[[nodiscard]] inline std::pair<double, double> orbit_degrees(const ViewState& s, const ViewContext& ctx) {
+  if (ctx.light_field || !s.job.plane_centre || !s.job.look_at) return {0, 0};
+  const mpr::Vec3<double> up = s.job.up.normalized();
+  const mpr::Vec3<double> from = ctx.plane_centre - ctx.look_at, to = *s.job.plane_centre - *s.job.look_at;
+  if (!(from.norm() > 0) || !(to.norm() > 0) || !up.allFinite()) return {0, 0};
+  const mpr::Vec3<double> h0 = from - from.dot(up) * up, h1 = to - to.dot(up) * up;
+  constexpr double degrees = 180 / std::numbers::pi;
+  const double azimuth = std::atan2(up.dot(h0.cross(h1)), h0.dot(h1)) * degrees;
+  const auto elevation = [&](const mpr::Vec3<double>& a) {
+    return std::asin(std::clamp(a.normalized().dot(up), -1.0, 1.0));
+  };
+  return {azimuth, (elevation(to) - elevation(from)) * degrees};
 }
 
 /// A key press, by SDL key name ("G", "Left", "F1", "[", "Escape").

@@ -8,6 +8,7 @@
 
 #include <mpr/core/image.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -36,7 +37,9 @@ inline const std::vector<std::string>& control_lines() {
   return lines;
 }
 
-/// The HUD text: view, GLC type, focal depth, aperture and frame time.
+/// The HUD text: view, GLC type, focal depth, aperture and frame time, then (when not zero) the
+/// plane's tilt about its x and y axes ("tilt X,Y", degrees) and a scene plane's orbit from the
+/// command line's view ("orbit AZIMUTH,ELEVATION", degrees, orbit_degrees).
 [[nodiscard]] inline std::string hud_text(const ViewState& s, const ViewContext& ctx, const RenderedFrame& frame) {
   if (!frame.error.empty()) return "CANNOT RENDER: " + frame.error;
   std::string view = s.job.views.size() == 1 ? s.job.views[0] : std::to_string(s.job.views.size()) + " views";
@@ -76,6 +79,16 @@ inline const std::vector<std::string>& control_lines() {
     out += text;
   }
   if (s.job.frames > 1) out += " | frame " + std::to_string(s.frame + 1) + "/" + std::to_string(s.job.frames);
+  if (const double tx = s.job.tilt_x.at(s.time()), ty = s.job.tilt_y.at(s.time()); tx != 0 || ty != 0) {
+    std::snprintf(text, sizeof text, " | tilt %.3g,%.3g", tx, ty);
+    out += text;
+  }
+  // Below 0.005 degrees: rounding of the rotations, shown as 0.
+  const auto shown = [](double degrees) { return std::abs(degrees) < 0.005 ? 0.0 : degrees; };
+  if (const auto [azimuth, elevation] = orbit_degrees(s, ctx); shown(azimuth) != 0 || shown(elevation) != 0) {
+    std::snprintf(text, sizeof text, " | orbit %.3g,%.3g", shown(azimuth), shown(elevation));
+    out += text;
+  }
   return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // mpr-view's render thread: renders the latest requested view with mpr-render's own code path
-// (framing.hpp's make_camera, samplers.hpp's make_sampler, render_job.hpp's render_view), first
+// (framing.hpp's make_camera, samplers.hpp's make_sampler, render_job.hpp's render_view with the
+// job's --spp / --filter pixel sampling and --aperture lens), first
 // as a preview at quarter resolution (half width, half height; coarser when even that would take
 // longer than kPreviewBudgetMs; light fields sampled from frames prefiltered to the preview's
 // scale, mpr-render's prefilter.hpp), then at full resolution, in bands of rows
@@ -217,6 +218,10 @@ private:
       pool_.emplace(threads);
     }
     const mpr::RenderOptions one_thread{1}; // the pool spreads the bands
+    // --spp / --filter and --aperture as mpr-render renders them (the same pixels: each view's
+    // region is the tile mpr-render renders, shifted into the band).
+    const mpr_cli::PixelSamplingVariant sampling = mpr_cli::make_pixel_sampling(r.job.spp, r.job.filter);
+    const mpr_cli::ApertureSpec* aperture = r.job.aperture ? &*r.job.aperture : nullptr;
     const int height = frame.image.height(), bands = (height + kBandRows - 1) / kBandRows;
     std::atomic<bool> abandoned{false};
     pool_->run(bands, [&](int b) {
@@ -229,7 +234,8 @@ private:
       const mpr::ImageView<mpr::Rgb8> band = frame.image.view().subview(0, y0, frame.image.width(), rows);
       for (std::size_t k = 0; k < cameras.size(); ++k) {
         const int col = static_cast<int>(k) % r.job.cols, row = static_cast<int>(k) / r.job.cols;
-        mpr_cli::render_view(cameras[k], *sampler, band, mpr::Region(col * w, row * h - y0, w, h), one_thread);
+        mpr_cli::render_view(cameras[k], *sampler, sampling, band, mpr::Region(col * w, row * h - y0, w, h), one_thread,
+                             aperture, r.params.aperture_size);
       }
     });
     if (abandoned.load()) return std::nullopt;

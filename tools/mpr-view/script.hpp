@@ -6,6 +6,7 @@
 //   drag X0,Y0 X1,Y1 [BUTTON]  press BUTTON (left, right or middle; default left) at X0,Y0, move to X1,Y1, release
 //   wheel N                    turn the wheel N notches (negative: towards the user)
 //   click X,Y                  press and release the left button at X,Y
+//   resize WxH                 resize the window to W x H pixels (as a user dragging its border)
 //   screenshot PATH            wait until the view is rendered at full resolution, then write the
 //                              window's content (picture, HUD, overlay) as a PNG
 // Parsing is independent of SDL except for the key-name check, which takes a function.
@@ -29,12 +30,12 @@ namespace mpr_view {
 
 /// One script command; which fields are used depends on `kind`.
 struct ScriptCommand {
-  enum class Kind { wait, key, drag, wheel, click, screenshot };
+  enum class Kind { wait, key, drag, wheel, click, resize, screenshot };
   Kind kind = Kind::wait;
   int line = 0;                       ///< 1-based line in the file
   int milliseconds = 0;               ///< wait
   std::string key;                    ///< key: the SDL key name as written
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< drag (from, to), click (x0, y0); window pixels
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< drag (from, to), click (x0, y0), resize (x1 x y1); window pixels
   std::string button = "left";        ///< drag
   int notches = 0;                    ///< wheel
   std::filesystem::path path;         ///< screenshot
@@ -124,12 +125,20 @@ inline constexpr std::size_t kMaxScriptLine = 1024;
       arguments(1, 1, "click X,Y");
       point(w[1], c.x0, c.y0);
       c.kind = ScriptCommand::Kind::click;
+    } else if (verb == "resize") {
+      arguments(1, 1, "resize WxH");
+      const auto x = w[1].find('x');
+      if (x == std::string::npos || !detail::parse_int_text(std::string_view(w[1]).substr(0, x), c.x1) ||
+          !detail::parse_int_text(std::string_view(w[1]).substr(x + 1), c.y1) || c.x1 < 16 || c.y1 < 16 ||
+          c.x1 > max_window || c.y1 > max_window)
+        fail("'" + w[1] + "' is not a window size WxH (16 to " + std::to_string(max_window) + " pixels each)");
+      c.kind = ScriptCommand::Kind::resize;
     } else if (verb == "screenshot") {
       arguments(1, 1, "screenshot PATH");
       c.kind = ScriptCommand::Kind::screenshot;
       c.path = w[1];
     } else {
-      fail("unknown command '" + verb + "' (wait, key, drag, wheel, click, screenshot)");
+      fail("unknown command '" + verb + "' (wait, key, drag, wheel, click, resize, screenshot)");
     }
     commands.push_back(std::move(c));
   }

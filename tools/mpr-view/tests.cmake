@@ -56,6 +56,21 @@ mpr_view_test(save_scene SCRIPT save_scene.txt ARGS "--size|200x150|--threads|2|
               -DSAVED=found/view_0001 "-DEXPECT_REGEX=saved found/view_0001.png.*mpr-render [^']*--view G")
 mpr_view_test(save_raster SCRIPT save_raster.txt ARGS "--raster|4x3|--size|200x150|--threads|2"
               -DSAVED=mpr-view_0001 "-DEXPECT_REGEX=mpr-render --raster 4x3 --interp cylinder --radius 12.5")
+# Resizing the window renders the view again at the new size: the screenshot takes the window's
+# size, and the PNG that S saves is mpr-render's at that size, byte for byte.
+mpr_view_test(resize SCRIPT resize.txt ARGS "--view|G|--size|200x150|--threads|2"
+              "-DCHECKS=size,small.png,200x150|size,big.png,360x200" -DSAVED=mpr-view_0001
+              "-DEXPECT_REGEX=saved mpr-view_0001.png[^\n]*\n[^\n]*--size 360x200")
+# --spp and --aperture reach the viewer's renders: the picture differs from the pinhole's of one
+# sample a pixel (a baseline run without them) and is less sharp, and mpr-render reproduces it.
+mpr_view_test(spp_aperture SCRIPT spp_aperture.txt
+              ARGS "--view|G|--size|200x150|--threads|2|--spp|8|--aperture|disc:0.6|--focus|9"
+              "-DBASELINE_ARGS=--view|G|--size|200x150|--threads|2"
+              "-DCHECKS=differ,a.png,baseline/a.png,picture|sharper,baseline/a.png,a.png,picture" -DSAVED=mpr-view_0001
+              "-DEXPECT_REGEX=saved mpr-view_0001.png[^\n]*\n[^\n]*--spp 8 --filter box:0.5 --aperture disc:0.6 --focus 9")
+# The HUD shows the plane's tilt (arrow keys) and a scene plane's orbit (left drag).
+mpr_view_test(hud_tilt_orbit SCRIPT hud_tilt_orbit.txt ARGS "--size|320x240|--threads|2"
+              "-DEXPECT_REGEX=level.png: HUD 'default pinhole \\| [0-9.]+ ms'.*moved.png: HUD '[^']*\\| tilt 2,-2 \\| orbit -12,0'")
 # Esc closes the window before the script ends; so does SIGINT.
 mpr_view_test(escape SCRIPT escape.txt ARGS "--size|64x48" -DNO_FILE=never.png)
 if(UNIX)

@@ -31,6 +31,9 @@ inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, cons
   ViewerSettings v;
   if (args.has("shard"))
     throw mpr::argument_error("--shard", "splits mpr-render's frames between processes; the viewer shows them all");
+  for (const char* option : {"bit-depth", "exr-pixel"})
+    if (args.has(option))
+      throw mpr::argument_error(std::string("--") + option, "sets mpr-render's output file; the viewer saves 8-bit PNG");
   mpr_cli::Job job = mpr_cli::make_job(args, {.reads_depth_maps = true}); // click-to-focus reads them
   if (const auto s = args.get("script")) {
     if (s->empty()) throw mpr::argument_error("--script", "empty file name");

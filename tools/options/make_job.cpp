@@ -25,14 +25,31 @@ std::pair<int, int> parse_shard(const std::string& text, int frames) {
 
 namespace {
 
+/// --bit-depth 8|16 (PNG only) and --exr-pixel half|float (OpenEXR only) for the job's output.
+void read_output_encoding(Job& job, const OptionValues& args) {
+  const ImageFormat format = image_format(job.output);
+  if (const auto k = args.choice("bit-depth")) {
+    job.encoding.png_bits = *k == 0 ? 8 : 16;
+    if (format == ImageFormat::jpeg && job.encoding.png_bits == 16)
+      throw mpr::argument_error("--bit-depth", "JPEG is 8-bit; write .png for 16 bits, .pfm or .exr for linear floats");
+    if (is_linear(format))
+      throw mpr::argument_error("--bit-depth", "applies to .png; '" + job.output.string() + "' stores linear floats");
+  }
+  if (const auto k = args.choice("exr-pixel")) {
+    if (format != ImageFormat::exr)
+      throw mpr::argument_error("--exr-pixel", "applies to .exr output, not '" + job.output.string() + "'");
+    job.encoding.exr_pixel = *k == 1 ? ExrPixel::full : ExrPixel::half;
+  }
+}
+
 /// The output file, the image's size and views, and the run's settings.
 void read_output(Job& job, const OptionValues& args) {
   if (const auto v = args.get("output")) {
     if (v->empty()) throw mpr::argument_error("--output", "empty file name");
     job.output = *v;
   }
-  (void)image_format(job.output); // .png, .jpg, .jpeg or none; anything else is refused
-  if (const auto k = args.choice("bit-depth")) job.bit_depth = *k == 0 ? 8 : 16;
+  (void)image_format(job.output); // .png, .jpg, .jpeg, .pfm, .exr or none; anything else is refused
+  read_output_encoding(job, args);
   if (const auto v = args.size("size")) {
     std::tie(job.width, job.height) = *v;
     job.size_given = true;

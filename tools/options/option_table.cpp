@@ -1,11 +1,16 @@
 // The option table of mpr-render and mpr-view (option_table.hpp): every option once.
 #include "option_table.hpp"
 
+#include "mpr-render/aperture.hpp"
 #include "mpr-render/pixel_sampling.hpp"
+
+#include <mpr/policy_names.hpp>
 
 #include <array>
 #include <charconv>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 namespace mpr_cli {
 
@@ -20,6 +25,35 @@ std::string num(double v) {
 }
 std::string vec3(const mpr::Vec3<double>& v) { return num(v.x()) + "," + num(v.y()) + "," + num(v.z()); }
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+/// --filter NAME:RADIUS of `filter` (parse_filter reads it back); names from mpr::filter_names.
+std::string filter_text(const mpr::AnyFilter& filter) {
+  const auto name = std::visit(
+      [](const auto& f) -> mpr::FilterChoice {
+        using F = std::remove_cvref_t<decltype(f)>;
+        if constexpr (std::is_same_v<F, mpr::BoxFilter>) return mpr::FilterChoice::box;
+        if constexpr (std::is_same_v<F, mpr::TentFilter>) return mpr::FilterChoice::tent;
+        if constexpr (std::is_same_v<F, mpr::GaussianFilter>) return mpr::FilterChoice::gaussian;
+        if constexpr (std::is_same_v<F, mpr::MitchellFilter>) return mpr::FilterChoice::mitchell;
+        return mpr::FilterChoice::lanczos;
+      },
+      filter.variant());
+  return std::string(mpr::choice_name(mpr::filter_names, name)) + ":" + num(filter.radius());
+}
+
+/// --aperture SHAPE:SIZE of `spec` at animation time `time` (parse_aperture reads it back).
+std::string aperture_text(const ApertureSpec& spec, double time) {
+  const std::string shape = std::visit(
+      [](const auto& a) -> std::string {
+        using A = std::remove_cvref_t<decltype(a)>;
+        if constexpr (std::is_same_v<A, mpr::glc::SquareAperture>) return "square";
+        if constexpr (std::is_same_v<A, mpr::glc::GaussianAperture>) return "gaussian";
+        if constexpr (std::is_same_v<A, mpr::glc::PolygonAperture>) return "polygon" + std::to_string(a.blades());
+        return "disc";
+      },
+      spec.shape.variant());
+  return shape + ":" + num(spec.size.at(time));
+}
 
 using Saved = std::optional<std::string>;
 constexpr Saved kOmit = std::nullopt;
@@ -38,6 +72,7 @@ bool single_view(const Job& j) { return j.cols * j.rows == 1; }
 
 constexpr std::array<std::string_view, 1> kScenes{"classroom"};
 constexpr std::array<std::string_view, 2> kBitDepths{"8", "16"};
+constexpr std::array<std::string_view, 2> kExrPixels{"half", "float"};
 
 constexpr Group input = Group::input, lf = Group::light_field, image = Group::image, surface = Group::surface,
                 anim = Group::animation, run = Group::run, viewer = Group::viewer;
@@ -412,34 +447,48 @@ const std::array kOptions = {
            .kind = integer,
            .group = image,
            .lo = 1,
-           .hi = kMaxSpp},
+           .hi = kMaxSpp,
+           .save = [](const SaveContext& c) { return c.job.spp > 1 ? Saved(std::to_string(c.job.spp)) : kOmit; }},
     Option{.name = "filter",
            .value = "NAME[:RADIUS]",
            .help = "Reconstruction filter of --spp N > 1: box, tent, gaussian, mitchell or lanczos, radius in pixels "
                    "(defaults as in pbrt-v4: box 0.5, tent 2, gaussian 1.5, mitchell 2, lanczos 4).",
            .default_text = "box",
            .example = "--size 320x240 --spp 16 --filter mitchell:2",
-           .group = image},
+           .group = image,
+           .save = [](const SaveContext& c) { return c.job.spp > 1 ? Saved(filter_text(c.job.filter)) : kOmit; }},
     Option{.name = "aperture",
            .value = "SHAPE:SIZE|SHAPE:A:B|SHAPE:T=V,...",
            .help = "Finite aperture (Adams & Levoy 2007): disc, square, gaussian or polygonN (N blades), SIZE its "
                    "radius (half side, sigma) in world units, >= 0 (0: the pinhole); animatable (SHAPE:0:0.5 opens it "
                    "over --frames N). Needs --spp N > 1; focused on the image plane unless --focus.",
            .example = "--view A --spp 32 --aperture disc:0.3 --focus 9",
-           .group = image},
+           .group = image,
+           .save = [](const SaveContext& c) {
+             return c.job.aperture ? Saved(aperture_text(*c.job.aperture, c.time)) : kOmit;
+           }},
     Option{.name = "lens-distance",
            .value = "D",
            .help = "With --aperture: the lens plane's distance behind the image plane, world units.",
            .default_text = "the image plane's width",
            .example = "--view A --spp 32 --aperture disc:0.3 --lens-distance 4 --focus 9",
-           .group = image},
+           .group = image,
+           .save = [](const SaveContext& c) {
+             return c.job.aperture && c.job.aperture->distance ? Saved(num(*c.job.aperture->distance)) : kOmit;
+           }},
     Option{.name = "focus",
            .value = "D|DU,DV",
            .help = "With --aperture: focus at distance D in front of the image plane (a refocused thin lens), or two "
                    "focal lines (astigmatic: the horizontal direction sharp at DU, the vertical at DV); --print-camera "
                    "names the focus.",
            .example = "--view G --spp 32 --aperture polygon6:0.4 --focus 4,12 --print-camera",
-           .group = image},
+           .group = image,
+           .save = [](const SaveContext& c) {
+             if (!c.job.aperture || c.job.aperture->focus.empty()) return kOmit;
+             std::string focus;
+             for (const double d : c.job.aperture->focus) focus += (focus.empty() ? "" : ",") + num(d);
+             return Saved(focus);
+           }},
     Option{.name = "labels",
            .help = "Label each tile with its view, GLC type (mpr::glc::classify) and, with --aperture, its focus "
                    "(mpr::glc::classify_focus).",
@@ -648,18 +697,30 @@ const std::array kOptions = {
            .save = [](const SaveContext& c) { return c.job.no_budget ? Saved("") : kOmit; }},
     Option{.name = "bit-depth",
            .value = "8|16",
-           .help = "Bits per channel of a PNG output.",
+           .help = "Bits per channel of a .png output: 16 writes 16-bit sRGB-encoded PNG (libpng).",
            .default_text = "8",
-           .example = "--bit-depth 8",
+           .example = "--bit-depth 16 --output view16.png",
            .kind = choice,
            .group = run,
            .choices = kBitDepths,
            .in_view_help = false},
+    Option{.name = "exr-pixel",
+           .value = "half|float",
+           .help = "Sample type of an .exr output: half (16-bit floats) or float (the render's 32-bit values "
+                   "exactly).",
+           .default_text = "half",
+           .example = "--exr-pixel float --output linear.exr",
+           .kind = choice,
+           .group = run,
+           .choices = kExrPixels,
+           .in_view_help = false},
     Option{.name = "output",
-           .value = "FILE.png|FILE.jpg",
-           .help = "Output image, PNG or JPEG (quality 95) by the extension (.png, .jpg, .jpeg). With --frames N: "
-                   "FILE_0001.png ... FILE_NNNN.png (stale frames FILE_NNNN.png beyond N of an earlier run are "
-                   "removed). mpr-view: the base name of the PNGs that S saves (default mpr-view.png).",
+           .value = "FILE.png|FILE.jpg|FILE.pfm|FILE.exr",
+           .help = "Output image by the extension: .png (8-bit sRGB; 16-bit with --bit-depth 16), .jpg or .jpeg "
+                   "(JPEG, quality 95), or the linear render as floats: .pfm (RGB PFM, 32-bit) or .exr (OpenEXR, half "
+                   "floats; --exr-pixel float). With --frames N: FILE_0001.png ... FILE_NNNN.png (stale frames "
+                   "FILE_NNNN.png beyond N of an earlier run are removed; the MP4 only from .png or .jpg frames). "
+                   "mpr-view: the base name of the PNGs that S saves (default mpr-view.png).",
            .default_text = "mpr-render.png",
            .example = "--output out/cross.png",
            .group = run,

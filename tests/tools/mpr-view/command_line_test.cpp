@@ -105,3 +105,28 @@ TEST_CASE("render_command quotes what a shell would split", "[view]") {
   const std::string line = mpr_view::render_command(job, 0, 8, 6, "my views/it's.png");
   CHECK(line == "mpr-render --size 8x6 --view A --output 'my views/it'\\''s.png'");
 }
+
+TEST_CASE("render_arguments keeps --spp, --filter, --aperture, --lens-distance and --focus", "[view]") {
+  const mpr_cli::Job job = job_of({"--view", "G", "--size", "64x48", "--spp", "8", "--filter", "mitchell:1.5",
+                                   "--aperture", "polygon6:0.4", "--lens-distance", "12", "--focus", "4,12"});
+  const std::vector<std::string> args = mpr_view::render_arguments(job, 0, 64, 48, "out.png");
+  const auto value_of = [&](const std::string& option) {
+    const auto it = std::find(args.begin(), args.end(), option);
+    return it == args.end() || it + 1 == args.end() ? std::string("(absent)") : *(it + 1);
+  };
+  CHECK(value_of("--spp") == "8");
+  CHECK(value_of("--filter") == "mitchell:1.5");
+  CHECK(value_of("--aperture") == "polygon6:0.4");
+  CHECK(value_of("--lens-distance") == "12");
+  CHECK(value_of("--focus") == "4,12");
+  const mpr_cli::Job back = round_trip(job);
+  CHECK(back.spp == 8);
+  CHECK(back.filter.radius() == 1.5);
+  REQUIRE(back.aperture);
+  CHECK(back.aperture->size.at(0) == 0.4);
+  CHECK(back.aperture->focus == std::vector<double>{4, 12});
+  // One sample a pixel and no aperture: none of them.
+  const std::vector<std::string> plain = mpr_view::render_arguments(job_of({"--view", "G"}), 0, 64, 48, "out.png");
+  for (const char* option : {"--spp", "--filter", "--aperture", "--focus"})
+    CHECK(std::find(plain.begin(), plain.end(), std::string(option)) == plain.end());
+}

@@ -2,6 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <tuple>
+#include <utility>
+
 using mpr_view::Action;
 using mpr_view::Button;
 
@@ -117,4 +120,35 @@ TEST_CASE("animation frames step within the job's frames", "[view]") {
   CHECK(s.time() == 1);
   CHECK(mpr_view::on_key(s, ctx, ",") == Action::changed);
   CHECK(s.time() == 0.5);
+}
+
+TEST_CASE("orbit_degrees: azimuth about up and elevation from the command line's plane, worked by hand", "[view]") {
+  mpr_view::ViewContext ctx;
+  ctx.plane_centre = {0, 0, 10};
+  ctx.look_at = {0, 0, 0};
+  mpr_view::ViewState s;                                                     // up (0, 1, 0)
+  CHECK(mpr_view::orbit_degrees(s, ctx) == std::pair<double, double>{0, 0}); // no explicit plane yet
+  s.job.look_at = mpr::Vec3<double>(0, 0, 0);
+  // +z to +x: a quarter turn about +y, counter-clockwise seen from above (z x x = +y).
+  s.job.plane_centre = mpr::Vec3<double>(10, 0, 0);
+  auto [azimuth, elevation] = mpr_view::orbit_degrees(s, ctx);
+  CHECK(azimuth == Approx(90));
+  CHECK(elevation == Approx(0).margin(1e-12));
+  s.job.plane_centre = mpr::Vec3<double>(0, 10, 10); // raised to 45 degrees, same azimuth
+  std::tie(azimuth, elevation) = mpr_view::orbit_degrees(s, ctx);
+  CHECK(azimuth == Approx(0).margin(1e-12));
+  CHECK(elevation == Approx(45));
+  // A pan moves both points: no orbit. A left drag of 40 pixels to the right: 40 x 0.3 degrees.
+  s.job.plane_centre = mpr::Vec3<double>(3, 1, 10);
+  s.job.look_at = mpr::Vec3<double>(3, 1, 0);
+  std::tie(azimuth, elevation) = mpr_view::orbit_degrees(s, ctx);
+  CHECK(azimuth == Approx(0).margin(1e-12));
+  CHECK(elevation == Approx(0).margin(1e-12));
+  mpr_view::ViewState d;
+  CHECK(mpr_view::on_drag(d, ctx, Button::left, 40, 0, 320, 240) == Action::changed);
+  std::tie(azimuth, elevation) = mpr_view::orbit_degrees(d, ctx);
+  CHECK(azimuth == Approx(-12));
+  CHECK(elevation == Approx(0).margin(1e-9));
+  ctx.light_field = true; // light fields tilt; they never orbit
+  CHECK(mpr_view::orbit_degrees(d, ctx) == std::pair<double, double>{0, 0});
 }

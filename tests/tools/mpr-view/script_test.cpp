@@ -47,3 +47,16 @@ TEST_CASE("read_script refuses a missing file", "[view]") {
   CHECK_THROWS_WITH(mpr_view::read_script("/nonexistent/script.txt", known_key),
                     Catch::Contains("/nonexistent/script.txt") && Catch::Contains("no such file"));
 }
+
+TEST_CASE("parse_script reads resize WxH and refuses a size outside 16 .. the window limit", "[view]") {
+  using Kind = mpr_view::ScriptCommand::Kind;
+  const std::vector<mpr_view::ScriptCommand> c = parse("resize 360x200\n");
+  REQUIRE(c.size() == 1);
+  CHECK((c[0].kind == Kind::resize && c[0].x1 == 360 && c[0].y1 == 200));
+  CHECK_THROWS_WITH(parse("resize 10x200\n"),
+                    Catch::Contains("s.txt:1:") && Catch::Contains("'10x200' is not a window size WxH"));
+  CHECK_THROWS_WITH(parse("resize 360,200\n"), Catch::Contains("is not a window size WxH"));
+  CHECK_THROWS_WITH(parse("resize 360x\n"), Catch::Contains("is not a window size WxH"));
+  CHECK_THROWS_WITH(parse("resize 20000x200\n"), Catch::Contains("is not a window size WxH"));
+  CHECK_THROWS_WITH(parse("resize\n"), Catch::Contains("expected 'resize WxH'"));
+}

@@ -1,5 +1,6 @@
 // mpr-view's test helper: compares a rectangle of two PNGs (screenshots of the window).
 //   png_compare differ|same|sharper A.png B.png [picture|hud|X:Y:W:H]
+//   png_compare size A.png WxH
 // "picture" is everything above the HUD bar, "hud" the bar (its height as font.hpp's
 // hud_height). Exits 0 when the rectangles differ (differ), are identical (same), or A's has
 // more detail than B's (sharper: the sum of squared differences between neighbouring pixels),
@@ -14,6 +15,12 @@
 
 int main(int argc, char** argv) try {
   const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "size" && argc == 4) { // exit 0 when A.png is W x H pixels
+    const mpr::Image<mpr::Rgb8> a = mpr::read_rgb8(argv[2]);
+    const std::string size = std::to_string(a.width()) + "x" + std::to_string(a.height());
+    std::printf("%s: %s, expected %s\n", argv[2], size.c_str(), argv[3]);
+    return size == argv[3] ? 0 : 1;
+  }
   if (argc < 4 || argc > 5 || (mode != "differ" && mode != "same" && mode != "sharper")) {
     std::fprintf(stderr, "usage: png_compare differ|same|sharper A.png B.png [picture|hud|X:Y:W:H]\n");
     return 2;

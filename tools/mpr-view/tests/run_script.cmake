@@ -3,7 +3,9 @@
 #         [-DEXPECT_RC=0] [-DEXPECT_REGEX=<regex on stdout+stderr>] [-DNO_FILE=<name in DIR>]
 #         [-DCOMPARE=<png_compare> -DCHECKS=differ,a.png,b.png,picture|same,...]
 #         [-DREPRODUCE=<mpr-render> -DSAVED=<base name of the PNG that S saved, in DIR>]
-#         [-DSIGINT_AFTER=<seconds>] -P run_script.cmake
+#         [-DSIGINT_AFTER=<seconds>] [-DBASELINE_ARGS=a|b|c] -P run_script.cmake
+# BASELINE_ARGS runs the viewer a second time, on the same script with these arguments, in
+# DIR/baseline (its screenshots are baseline/NAME.png in CHECKS).
 # REPRODUCE runs the mpr-render command line that `S` wrote next to the saved PNG and requires
 # the same PNG. SIGINT_AFTER sends SIGINT (timeout --preserve-status) and requires a clean exit.
 file(REMOVE_RECURSE "${DIR}")
@@ -44,6 +46,16 @@ if(DEFINED EXPECT_REGEX AND NOT "${out}${err}" MATCHES "${EXPECT_REGEX}")
 endif()
 if(NO_FILE AND EXISTS "${DIR}/${NO_FILE}")
   message(FATAL_ERROR "run_script: ${NO_FILE} was written")
+endif()
+if(BASELINE_ARGS)
+  string(REPLACE "|" ";" _base_args "${BASELINE_ARGS}")
+  file(MAKE_DIRECTORY "${DIR}/baseline")
+  execute_process(COMMAND "${VIEWER}" ${_base_args} --script "${SCRIPT}" WORKING_DIRECTORY "${DIR}/baseline"
+                  RESULT_VARIABLE brc OUTPUT_VARIABLE bout ERROR_VARIABLE berr TIMEOUT 120)
+  message("baseline: ${bout}${berr}")
+  if(NOT brc EQUAL 0)
+    message(FATAL_ERROR "run_script: the baseline run exited with ${brc}")
+  endif()
 endif()
 if(CHECKS)
   string(REPLACE "|" ";" _checks "${CHECKS}")
