@@ -19,7 +19,7 @@ std::string option_help(Group group, Tools tool, bool examples) {
 
 std::string render_help() {
   std::string text = "usage: mpr-render [OPTIONS]\n\nRenders General Linear Camera views of a scene or a light field "
-                     "to PNG or JPEG.\n";
+                     "to PNG or JPEG, or the linear render as PFM or OpenEXR.\n";
   for (const Group g : {Group::input, Group::light_field, Group::image, Group::surface, Group::animation, Group::run})
     text.append("\n").append(group_title(g)).append("\n").append(option_help(g, Tools::render, true));
   return text.append("\n").append(view_help());

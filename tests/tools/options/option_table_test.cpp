@@ -41,8 +41,8 @@ TEST_CASE("values are read as their option declares", "[cli]") {
   CHECK(job_of({"--raster", "2x2", "--interp", "depth"}).interpolation == mpr_cli::Interpolation::depth);
   CHECK_THROWS_WITH(job_of({"--scene", "office"}), Catch::Contains("'office' is not a built-in scene (classroom)"));
   CHECK_THROWS_WITH(job_of({"--bit-depth", "12"}), Catch::Contains("invalid --bit-depth: '12' is not 8 or 16"));
-  CHECK(job_of({"--bit-depth", "16"}).bit_depth == 16);
-  CHECK(job_of({}).bit_depth == 8);
+  CHECK(job_of({"--bit-depth", "16"}).encoding.png_bits == 16);
+  CHECK(job_of({}).encoding.png_bits == 8);
 }
 
 TEST_CASE("the declared defaults are the Job's", "[cli]") {
