@@ -22,7 +22,7 @@ TEST_CASE("the option table declares each option once and completely", "[cli]") 
     if (o.kind == mpr_cli::ValueKind::number || o.kind == mpr_cli::ValueKind::track)
       CHECK((o.bound_text.empty() == (o.lo == -mpr_cli::kUnbounded && o.hi == mpr_cli::kUnbounded)));
   }
-  CHECK(names.size() == 61); // mpr-render's 58 and the viewer's 3
+  CHECK(names.size() == 62); // mpr-render's 59 and the viewer's 3
 }
 
 TEST_CASE("values are read as their option declares", "[cli]") {
