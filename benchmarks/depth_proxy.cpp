@@ -1,6 +1,7 @@
 // The depth-proxy render (mpr::DepthProxy, lightfield/depth_proxy.hpp): run time of one held-out
 // view, its PSNR against the captured image, and its batch path's (`sample_rays`, sixteen rays
-// to a register on AVX-512) agreement with the per-ray `sample(ray)` contract on the same rays:
+// at a time in SIMD lanes at every level from SSE4.2 up; `MPR_SIMD` lowers the level)
+// agreement with the per-ray `sample(ray)` contract on the same rays:
 // the same bits where the per-ray code has no fused multiply-add (builds without -march), else a
 // few pixels where the rounding of a fused product moves a decision at a threshold.
 //

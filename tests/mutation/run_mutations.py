@@ -78,8 +78,8 @@ SA = "include/mpr/lightfield/synthetic_aperture.hpp"
 CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
 KER = "include/mpr/lightfield/detail/kernels.hpp"
 CYW = "include/mpr/lightfield/detail/cylinder_weights.hpp"
-DWL = "include/mpr/lightfield/detail/depth_walk_lanes.hpp"
-DLN = "include/mpr/lightfield/detail/depth_lanes.hpp"
+DWL = "include/mpr/lightfield/kernels/depth_walk_hwy.inl"
+DLN = "include/mpr/lightfield/kernels/depth_lane_ops_hwy.inl"
 SA_LOOP = "for (const auto& c : table.cameras())"
 
 MUTATIONS = [
@@ -250,11 +250,11 @@ MUTATIONS = [
       ["tools"], "mpr-render views a _par.txt light field from the first camera, not the middle one"),
     # --- DepthProxy's sixteen-lane batch path (issue 12) ---
     M("depth_lanes_refine_coarser", "lightfield",
-      [(DWL, "_mm512_set1_ps(1.0f / 256)", "_mm512_set1_ps(1.0f / 128)")],
+      [(DWL, "set(1.0f / 256)", "set(1.0f / 128)")],
       ["lightfield"], "the lanes narrow the crossing to 1/128 of a step, the per-ray walk to 1/256"),
     M("depth_lanes_visibility_search_tolerance", "lightfield",
-      [("include/mpr/lightfield/detail/depth_proxy_lanes.hpp", "slots, static_cast<T>(p.visibility_tolerance),",
-        "slots, static_cast<T>(p.tolerance),")],
+      [("include/mpr/lightfield/detail/depth_proxy_lanes.hpp", "slots,\n                            static_cast<T>(p.visibility_tolerance),",
+        "slots,\n                            static_cast<T>(p.tolerance),")],
       ["lightfield"], "the batch path tests visibility with the surface search's tolerance, not the blend's"),
     M("depth_proxy_box_exit_ignored", "lightfield",
       [("include/mpr/lightfield/depth_proxy.hpp", "w == detail::DepthWalk::escaped || search.t >= stretch[1]",
@@ -307,7 +307,7 @@ MUTATIONS = [
         "std::span<const Vec3<T>* const>(points, rows - 1),\n                               std::span<const detail::TileRowOut>(out, rows - 1)")],
       ["lightfield"], "a camera added to a tilted group's rows at once skips the last row it weighs"),
     M("frame_set_images_overlap", "lightfield",
-      [("include/mpr/lightfield/frame_set.hpp", "offsets.push_back(total);", "offsets.push_back(0);")],
+      [("include/mpr/lightfield/frame_set.hpp", "      offsets[i] = total;", "      offsets[i] = 0;")],
       ["lightfield"], "every image is decoded into the same place of the shared buffer"),
     M("frame_set_cast_decodes_again", "lightfield",
       [("include/mpr/lightfield/frame_set.hpp", "out.texels_ = texels_;", "out.texels_ = decode(images_, out.offsets_);")],
@@ -315,30 +315,25 @@ MUTATIONS = [
     M("frame_prefilter_principal_point_unshifted", "lightfield",
       [("include/mpr/lightfield/frame_prefilter.hpp", "  A(0, 2) = shift;", "  A(0, 2) = T(0);")],
       ["lightfield"], "a downsampled camera keeps the principal point's scaling but not the half-block shift"),
-    M("depth_weigh_lanes_fused_taps", "lightfield",
-      [("include/mpr/lightfield/detail/depth_weigh_lanes.hpp",
-        "part[c] = t == 0 ? term : _mm512_add_ps(part[c], term);",
-        "part[c] = t == 0 ? term : _mm512_fmadd_ps(tap_weight[t], v[c], part[c]);")],
-      ["lightfield"], "the lanes fuse the bilinear taps' products into their sum, the per-ray code rounds each"),
     M("depth_weigh_lanes_threshold_always_largest", "lightfield",
-      [("include/mpr/lightfield/detail/depth_weigh_lanes.hpp", "  if (k < slots)\n", "  if (k < 0)\n")],
+      [("include/mpr/lightfield/kernels/depth_weigh_hwy.inl", "    if (k < slots) threshold", "    if (k < 0) threshold")],
       ["lightfield"], "the lanes take twice the largest penalty as the threshold even when k + 1 cameras see the point"),
     M("depth_lanes_agreement_looser", "lightfield",
-      [(DWL, "_mm512_set1_ps(tol * kDepthAgreement)", "_mm512_set1_ps(tol * kDepthAgreement * 2)")],
+      [(DWL, "set(tol * detail::kDepthAgreement)", "set(tol * detail::kDepthAgreement * 2)")],
       ["lightfield"], "the lanes stop narrowing where the depths agree within twice what the per-ray walk asks"),
     M("depth_lanes_pass_forgets_skip", "lightfield",
-      [(DWL, "skip_end = _mm512_mask_mov_ps(_mm512_mask_mov_ps(se, used, inf), record, end);",
-        "skip_end = _mm512_mask_mov_ps(se, used, inf);")],
+      [(DWL, "skip_end = hn::IfThenElse(record, end, hn::IfThenElse(used, inf, se));",
+        "skip_end = hn::IfThenElse(used, inf, se);")],
       ["lightfield"], "a lane passed on records no end of the stretch it saw free"),
     M("depth_lanes_step_into_stretch", "lightfield",
-      [(DWL, "_mm512_cmp_ps_mask(next, search.skip_begin, _CMP_GT_OQ)",
-        "0 & _mm512_cmp_ps_mask(next, search.skip_begin, _CMP_GT_OQ)")],
+      [(DWL, "hn::And(hn::Lt(s, search.skip_begin), hn::Gt(next, search.skip_begin))",
+        "hn::And(hn::Lt(s, search.skip_begin), hn::Gt(search.skip_begin, search.skip_begin))")],
       ["lightfield"], "a lane's step runs into the stretch seen free instead of stopping at its start"),
     M("depth_lanes_bracket_start_value", "lightfield",
-      [(DWL, "f0 = _mm512_mask_blend_ps(found, f0, fs);", "f0 = _mm512_mask_blend_ps(found, f0, fn);")],
+      [(DWL, "b.f0 = hn::IfThenElse(found, fs, b.f0);", "b.f0 = hn::IfThenElse(found, fn, b.f0);")],
       ["lightfield"], "a lane keeps f at the bracket's end as the value at its start"),
     M("depth_lanes_equal_cosines_by_index", "lightfield",
-      [(DLN, "(_mm512_cmp_ps_mask(cs, s.cosine[j], _CMP_EQ_OQ) & nearer)", "0")],
+      [(DLN, "hn::And(hn::Eq(cs, s.cosine[j]), nearer)", "hn::And(hn::Eq(cs, s.cosine[j]), hn::Not(hn::Or(nearer, hn::Not(nearer))))")],
       ["lightfield"], "equal cosines kept in the order of the cameras, not of their distance"),
     M("virtual_array_depth_off_centre", "scene",
       [("include/mpr/scene/rasterized_sampler.hpp", "half = (n - 1) / 2;", "half = 0;")],
@@ -378,10 +373,6 @@ def cpu_simd_levels():
 _AVX512_UP = ["avx512", "avx512vbmi"]
 LEVELS_OF_FILE = {
     "include/mpr/lightfield/detail/decode_vbmi.hpp": ["avx512vbmi"],
-    DWL: _AVX512_UP,
-    DLN: _AVX512_UP,
-    "include/mpr/lightfield/detail/depth_weigh_lanes.hpp": _AVX512_UP,
-    "include/mpr/lightfield/detail/depth_proxy_lanes.hpp": _AVX512_UP,
 }
 for _m in MUTATIONS:
     _files = {e[0] for e in _m["edits"]}
