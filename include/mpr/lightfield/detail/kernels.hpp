@@ -195,10 +195,16 @@ MPR_ALWAYS_INLINE void add_scaled_row_body(const C* MPR_RESTRICT a, const std::u
   for (std::size_t j = 0; j < m; ++j) acc[j] += scale * channel_value(a[j], lut);
 }
 
-/// `add_scaled_row_body` compiled for `level`.
+/// `add_scaled_row_body` compiled for `level`; for 8-bit codes at `avx2` and `avx512` (without
+/// VBMI) the Highway kernel (`kernels::sum_code_rows_hwy` of one row: the decode in registers).
 template <class C>
 inline void add_scaled_row(const C* a, const std::uint16_t* lut, float scale, float* acc, std::size_t m,
                            SimdLevel level = dispatch_level()) noexcept {
+#if MPR_HAVE_HWY
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    if (level == SimdLevel::avx2 || level == SimdLevel::avx512)
+      return kernels::sum_code_rows_hwy(&a, 1, lut, scale, acc, m, level);
+#endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { add_scaled_row_body(a, lut, scale, acc, m); });
 }
 

@@ -82,13 +82,18 @@ MPR_TARGET_AVX512_VBMI inline void add_code_rows_vbmi(const std::uint8_t* const*
 }
 #endif
 
-/// `add_code_rows_portable`, or the VBMI kernel where `level` and the CPU allow. Reads
+/// The VBMI kernel where `level` and the CPU allow; at `avx2` and `avx512` the Highway kernel
+/// (`kernels::sum_code_rows_hwy`: the cameras' decoded codes summed in registers); else (and
+/// without Highway) `add_code_rows_portable`. Reads
 /// rows[c][0, m); the VBMI kernel reads each row in 64-byte loads (masked at its end) and asks
 /// for lines past it (a prefetch, which never faults).
 inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut, float scale,
                           float* acc, std::size_t m, SimdLevel level = dispatch_level()) noexcept {
 #if defined(MPR_SIMD_X86)
   if (level >= SimdLevel::avx512vbmi) return add_code_rows_vbmi(rows, k, lut, scale, acc, m);
+#endif
+#if MPR_HAVE_HWY // avx2 and avx512 without VBMI: the Highway kernel (kernels/lerp_row_hwy.hpp)
+  if (level >= SimdLevel::avx2) return kernels::sum_code_rows_hwy(rows, k, lut, scale, acc, m, level);
 #endif
   add_code_rows_portable(rows, k, lut, scale, acc, m, level);
 }

@@ -123,6 +123,16 @@ void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, st
       }
     }
 #endif
+#if MPR_HAVE_HWY // below AVX-512: the Highway row, blended in the same pass
+    if constexpr (std::is_same_v<C, std::uint8_t>) {
+      if (level < SimdLevel::avx512) {
+        kernels::lerp_blend_row_hwy(row, t.lut, t.ax, t.scale, h, t.m, next_ahead(r + 1), hp, 1 - t.ay, t.ay, acc,
+                                    level);
+        hp = h;
+        continue;
+      }
+    }
+#endif
     lerp_row(row, t.lut, t.ax, t.scale, h, t.m, next_ahead(r + 1), level);
     blend_rows(hp, h, 1 - t.ay, t.ay, nullptr, acc, t.m / 3, level);
     hp = h;
