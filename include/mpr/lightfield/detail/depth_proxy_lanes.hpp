@@ -31,6 +31,11 @@
 
 namespace mpr::detail {
 
+/// The sixteen-lane steps of `DepthProxy` (defined where the lanes exist: x86 with Highway;
+/// elsewhere declared only, and `DepthProxy` answers per ray).
+template <class Proxy, class Px>
+struct DepthProxyLanes;
+
 #if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
 
 /// Whether the lanes run at `level` (0: the per-ray path), and at which Highway target.
