@@ -6,9 +6,13 @@
 // `sample_rays`, cameras in the outer loop) and, for comparison, through the per-pixel
 // `sample(ray)` contract only.
 //
-// usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [--no-per-pixel] [DATA_DIR]
+// usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [--no-per-pixel] [--levels] [DATA_DIR]
 //   --only: run only the workloads whose label contains SUBSTRING (e.g. --only=Chess)
 //   --no-per-pixel: skip the per-pixel runs and the batch == per-pixel check (for profiling)
+//   --levels: add the Chess synthetic-aperture rows (z = 1000 and 820, 1 thread) at every SIMD
+//     level the CPU runs, labelled "@level": each level runs in a child process of this program
+//     with MPR_SIMD set (a process chooses its level once), the levels in turn, twice (portable
+//     up to the best, then back down), so that a load that changes during the run shows
 #include "bench_common.hpp"
 
 #include <mpr/lightfield.hpp>
@@ -75,8 +79,10 @@ double thread_cpu_ms(int repeats, Fn&& fn) {
   return ms[ms.size() / 2];
 }
 
-std::string g_only;      // --only=: label filter
-bool g_per_pixel = true; // --no-per-pixel clears it
+std::string g_only;        // --only=: label filter
+bool g_per_pixel = true;   // --no-per-pixel clears it
+bool g_levels = false;     // --levels
+bool g_level_rows = false; // --level-rows: the child of --levels (only its rows, labelled with the level)
 
 struct Result {
   double batch_ms, per_pixel_ms, cpu_ms;
@@ -174,6 +180,43 @@ double peer_code_space_refocus(const mpr::CameraFrameSet<T>& lf, const mpr::Pinh
   return mpr_bench::time_repeated(repeats, run).median * 1e3;
 }
 
+// --levels: the Chess synthetic-aperture rows at each SIMD level the CPU runs, each level in a
+// child process (`program` with MPR_SIMD set and --level-rows), portable up to the best level
+// and back down; the children's table rows are printed as they come.
+void print_level_rows(const char* program, const std::string& data, int repeats) {
+  if (std::string(program).find('\'') != std::string::npos || data.find('\'') != std::string::npos) {
+    std::printf("\n(--levels: skipped, a path holds a quote)\n");
+    return;
+  }
+  std::vector<mpr::detail::SimdLevel> levels;
+  for (const mpr::detail::SimdLevel level : mpr::detail::kSimdLevels)
+    if (level <= mpr::detail::cpu_simd_level()) levels.push_back(level);
+  std::vector<mpr::detail::SimdLevel> order = levels;
+  order.insert(order.end(), levels.rbegin(), levels.rend());
+  std::printf(
+      "\nChess synthetic aperture at each SIMD level (1 thread; child processes with MPR_SIMD, in the order "
+      "run; load average %s)\n\n| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | "
+      "Mrays/s |\n|---|---|---|---|---|---|\n",
+      mpr_bench::load_average().c_str());
+  std::fflush(stdout);
+  for (const mpr::detail::SimdLevel level : order) {
+    const std::string command =
+        std::string("MPR_SIMD=") + mpr::detail::simd_level_name(level) + " '" + program +
+        "' --level-rows --only='Chess synthetic aperture z=' --no-per-pixel --repeats=" + std::to_string(repeats) +
+        " '" + data + "'";
+    FILE* child = popen(command.c_str(), "r");
+    if (child == nullptr) {
+      std::printf("(--levels: could not run %s)\n", command.c_str());
+      return;
+    }
+    char line[512];
+    while (std::fgets(line, sizeof line, child) != nullptr)
+      if (std::string(line).rfind("| Chess synthetic aperture z=", 0) == 0) std::fputs(line, stdout);
+    pclose(child);
+    std::fflush(stdout);
+  }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -188,6 +231,10 @@ int main(int argc, char** argv) {
       g_per_pixel = false;
     else if (a.rfind("--repeats=", 0) == 0)
       repeats_option = std::atoi(a.c_str() + 10);
+    else if (a == "--levels")
+      g_levels = true;
+    else if (a == "--level-rows")
+      g_level_rows = true;
     else if (a != "--quick")
       data = a;
   }
@@ -282,6 +329,16 @@ int main(int argc, char** argv) {
   std::printf("| workload | threads | batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s |\n"
               "|---|---|---|---|---|---|\n");
   const mpr::CameraFrameSampler<mpr::SyntheticAperture, T> chess_full(lf);
+  if (g_level_rows) { // the child of --levels: its level's rows only
+    for (const T z : {T(1000), T(820)}) {
+      const mpr::PlanarSurface<T> p = centre.image_plane(z);
+      const std::string label =
+          "Chess synthetic aperture z=" + std::to_string(static_cast<int>(z)) + " @" + mpr::detail::simd_level_name();
+      measure(label.c_str(), p, mpr::pinhole_glc(centre, p), chess_full, centre.width(), centre.height(), 1, repeats,
+              false);
+    }
+    return 0;
+  }
   const mpr::CameraFrameSampler<mpr::NearestCamera, T> chess_nearest(lf);
   const mpr::CameraFrameSampler<mpr::CylinderAperture, T> chess_cylinder(lf, mpr::CylinderAperture{10.0});
   // The peer, side by side: the same refocus in 8-bit code space, one thread.
@@ -383,5 +440,6 @@ int main(int argc, char** argv) {
       "\n(prefiltered: the frames box-filtered to half their scale once, in %.0f ms on all threads; the rows sample "
       "them, a different filter from bilinear sampling of the full frames)\n",
       prefilter_ms);
+  if (g_levels) print_level_rows(argv[0], data, repeats);
   return 0;
 }
