@@ -12,7 +12,8 @@
 //   --levels: add the Chess synthetic-aperture rows (z = 1000 and 820, 1 thread) at every SIMD
 //     level the CPU runs, labelled "@level": each level runs in a child process of this program
 //     with MPR_SIMD set (a process chooses its level once), the levels in turn, twice (portable
-//     up to the best, then back down), so that a load that changes during the run shows
+//     up to the best, then back down), so that a load that changes during the run shows as two
+//     figures of a level that differ (--level-rows: what such a child runs)
 #include "bench_common.hpp"
 
 #include <mpr/lightfield.hpp>
