@@ -73,6 +73,10 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
       ++chunks;
       CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt PNG: chunk") && Catch::Contains("claims"));
       CHECK_THROWS_WITH(mpr::read_image_info(path), Catch::Contains("corrupt PNG: chunk"));
+    } else if (path.filename().string().rfind("stb-pnm-integer", 0) == 0) {
+      // A header integer of 10 or more digits: stb_image 2.27 would overflow an int reading it.
+      CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("corrupt PNM: its"));
+      CHECK_THROWS_WITH(mpr::read_image_info(path), Catch::Contains("digits (at most 9)"));
     } else if (path.filename() == "bmp-zero-height.bmp") {
       CHECK_THROWS_WITH(mpr::read_rgb8(path), Catch::Contains("empty image ("));
     } else {
@@ -85,6 +89,30 @@ TEST_CASE("inputs that fuzzing found crashing stb_image are refused (tests/fuzz/
   }
   CHECK(jpegs >= 2);
   CHECK(chunks == 2);
+}
+
+TEST_CASE("PNM headers: integers of more than 9 digits are refused before stb_image parses them", "[io]") {
+  const auto write = [](const char* name, const std::string& text) {
+    const std::filesystem::path path = temp_path(name);
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  };
+  // Hand-made P6 files of 2x1 pixels, maximum 255: the header's three integers, then 6 bytes.
+  const std::string pixels(6, '\x80');
+  const mpr::Image<mpr::Rgb8> ok = mpr::read_rgb8(write("ok.ppm", "P6\n# a comment\n2 1\n255\n" + pixels));
+  CHECK(ok.width() == 2);
+  CHECK(ok.height() == 1);
+  CHECK(ok(1, 0).g == 0x80);
+  // 9 digits (with leading zeros) are read as stb_image reads them; 10 are refused, naming the field.
+  CHECK(mpr::read_image_info(write("nine.ppm", "P6 000000002 1 255\n" + pixels)).width == 2);
+  CHECK_THROWS_WITH(mpr::read_rgb8(write("width.ppm", "P6 2147483648 1 255\n" + pixels)),
+                    Catch::Contains("width.ppm") && Catch::Contains("corrupt PNM: its width has 10 digits"));
+  CHECK_THROWS_WITH(mpr::read_image_info(write("height.pgm", "P5\n#\n2\n#x\r0000000001\n255\n" + pixels)),
+                    Catch::Contains("corrupt PNM: its height has 10 digits"));
+  CHECK_THROWS_WITH(mpr::read_rgb8(write("max.ppm", "P6 2 1 99999999999\n" + pixels)),
+                    Catch::Contains("corrupt PNM: its maximum value has 11 digits"));
+  // Text PNMs (P3) are not stb_image's: refused by its own check, not by this one.
+  CHECK_THROWS_WITH(mpr::read_rgb8(write("text.ppm", "P3 9999999999 1 255\n")), !Catch::Contains("corrupt PNM"));
 }
 
 TEST_CASE("JPEG writing: magic bytes, close round trip, strided views, errors", "[io]") {

@@ -176,6 +176,30 @@ inline void check_png_chunks(const std::filesystem::path& path, std::span<const 
   }
 }
 
+/// Refuses a binary PNM (P5 or P6, the kinds stb_image reads) whose width, height or maximum
+/// value has more than 9 digits: stb_image 2.27 accumulates the digits in an `int` without a
+/// bound, a signed overflow (found by fuzzing, see docs/reliability.md). Walks the header as
+/// stb_image does (white space, `#` comments to the end of the line); anything else is left to
+/// stb_image's own checks. `b` may be the head of the file (a token cut by its end is not judged).
+inline void check_pnm_header(const std::filesystem::path& path, std::span<const unsigned char> b) {
+  if (b.size() < 2 || b[0] != 'P' || (b[1] != '5' && b[1] != '6')) return;
+  const auto space = [](unsigned char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
+  std::size_t i = 2;
+  for (const char* field : {"width", "height", "maximum value"}) {
+    for (;;) { // stb__pnm_skip_whitespace: spaces, then any comments and the spaces after them
+      while (i < b.size() && space(b[i])) ++i;
+      if (i >= b.size() || b[i] != '#') break;
+      while (i < b.size() && b[i] != '\n' && b[i] != '\r') ++i;
+    }
+    std::size_t digits = 0;
+    while (i < b.size() && b[i] >= '0' && b[i] <= '9') ++i, ++digits;
+    if (digits > 9)
+      throw io_error(path.string(), std::string("corrupt PNM: its ") + field + " has " + std::to_string(digits) +
+                                        " digits (at most 9)");
+    if (digits == 0 || i >= b.size()) return; // not a number, or the head ends: stb_image decides
+  }
+}
+
 /// Throws `io_error` naming `path` when the image is empty or `width` x `height` is above
 /// `limits.max_image_pixels`.
 inline void check_image_pixels(const std::filesystem::path& path, int width, int height, const LoadLimits& limits) {
@@ -207,6 +231,7 @@ inline void check_image_file_size(const std::filesystem::path& path, std::uint64
   ImageFileHead h = read_image_head(path, limits);
   check_jpeg_tables(path, h.head); // stb_image reads the tables before the frame header
   check_png_chunks(path, h.head, h.size);
+  check_pnm_header(path, h.head);
   int channels = 0;
   if (stbi_info_from_memory(h.head.data(), static_cast<int>(h.head.size()), &width, &height, &channels) == 0) {
     if (h.head.size() < h.size)
@@ -267,6 +292,7 @@ inline void check_set_budget(std::span<const std::filesystem::path> paths, std::
       detail::read_image_rest(path, detail::check_image_head(path, limits, width, height));
   detail::check_jpeg_tables(path, bytes);
   detail::check_png_chunks(path, bytes, bytes.size());
+  detail::check_pnm_header(path, bytes);
   const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0;
   const std::unique_ptr<unsigned char, detail::StbFree> data(
