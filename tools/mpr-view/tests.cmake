@@ -86,6 +86,9 @@ mpr_view_test(bad_script_command SCRIPT bad_command.txt -DDRIVER=no_such_driver 
               "-DEXPECT_REGEX=^mpr-view: [^\n]*bad_command.txt:2: unknown command 'kye'")
 mpr_view_test(bad_script_key SCRIPT bad_key.txt -DDRIVER=no_such_driver -DEXPECT_RC=1
               "-DEXPECT_REGEX=^mpr-view: [^\n]*bad_key.txt:1: 'NoSuchKey' is not an SDL key name")
+# --benchmark-frames belongs to --benchmark: alone it is refused, naming both options.
+mpr_view_test(benchmark_frames_alone ARGS "--benchmark-frames|3|--size|64x48" -DDRIVER=no_such_driver -DEXPECT_RC=1
+              "-DEXPECT_REGEX=^mpr-view: invalid --benchmark-frames: needs --benchmark[^\n]*\n$")
 # The benchmark mode runs (numbers belong in docs/mpr-view.md, not here).
 mpr_view_test(benchmark_smoke ARGS "--benchmark|--benchmark-frames|2|--size|64x48|--threads|2"
               "-DEXPECT_REGEX=full resolution: +median [0-9.]+ ms = [0-9.]+ frames/s.*input event -> first frame")
