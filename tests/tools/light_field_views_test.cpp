@@ -99,6 +99,11 @@ TEST_CASE("light-field views: defaults per use and the warnings", "[tools][lf_vi
     const mpr_cli::Job refocus = job_of({"--stanford", dir.string(), "--size", "40x30"});
     const mpr_cli::Loaded<float> l = mpr_cli::load<float>(refocus);
     CHECK(mpr_cli::with_array_defaults(refocus, l).interpolation == mpr_cli::Interpolation::synthetic);
+    // One default radius: the synthetic aperture's job carries the spacing too (mpr-view's
+    // cylinder key starts from it), the nearest camera's too.
+    CHECK(mpr_cli::with_array_defaults(refocus, l).radius.at(0) == Approx(5).epsilon(1e-5));
+    CHECK(mpr_cli::with_array_defaults(job_of({"--stanford", dir.string(), "--interp", "nearest"}), l).radius.at(0) ==
+          Approx(5).epsilon(1e-5));
     const mpr_cli::Job g = job_of({"--stanford", dir.string(), "--view", "G"});
     const mpr_cli::Job resolved = mpr_cli::with_array_defaults(g, l);
     CHECK(resolved.interpolation == mpr_cli::Interpolation::cylinder);
@@ -150,6 +155,9 @@ TEST_CASE("light-field views: rasterized classroom array, nine different letters
   const mpr_cli::Job resolved = mpr_cli::with_array_defaults(job, l);
   CHECK(resolved.interpolation == mpr_cli::Interpolation::cylinder);
   CHECK(resolved.radius.at(0) == Approx(2).epsilon(1e-5)); // the 8 m plane over 4 columns
+  const mpr_cli::Job refocus = job_of({"--raster", "4x3", "--size", "32x24"});
+  CHECK(mpr_cli::with_array_defaults(refocus, l).interpolation == mpr_cli::Interpolation::synthetic);
+  CHECK(mpr_cli::with_array_defaults(refocus, l).radius.at(0) == Approx(2).epsilon(1e-5));
   std::ostringstream info, warnings;
   const Image sheet = render(job, info, warnings);
   for (int a = 0; a < 9; ++a)

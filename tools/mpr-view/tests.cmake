@@ -54,8 +54,10 @@ mpr_view_test(help_overlay SCRIPT help.txt ARGS "--size|320x240|--threads|2"
 # S saves the picture and the mpr-render command line that renders the same PNG.
 mpr_view_test(save_scene SCRIPT save_scene.txt ARGS "--size|200x150|--threads|2|--output|found/view.png"
               -DSAVED=found/view_0001 "-DEXPECT_REGEX=saved found/view_0001.png.*mpr-render [^']*--view G")
+# The cylinder key starts from mpr-render's default radius, the camera spacing (the 8 m plane
+# over 4 columns: 2), and ']' widens it by 1.25.
 mpr_view_test(save_raster SCRIPT save_raster.txt ARGS "--raster|4x3|--size|200x150|--threads|2"
-              -DSAVED=mpr-view_0001 "-DEXPECT_REGEX=mpr-render --raster 4x3 --interp cylinder --radius 12.5")
+              -DSAVED=mpr-view_0001 "-DEXPECT_REGEX=mpr-render --raster 4x3 --interp cylinder --radius 2.5 ")
 # Resizing the window renders the view again at the new size: the screenshot takes the window's
 # size, and the PNG that S saves is mpr-render's at that size, byte for byte.
 mpr_view_test(resize SCRIPT resize.txt ARGS "--view|G|--size|200x150|--threads|2"
