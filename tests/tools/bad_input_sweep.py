@@ -629,10 +629,7 @@ def view_cases():
 
 # Open findings: cases that fail today, each with the reason. They are run and reported as
 # "known" (not counted as failures); one that passes is reported, so the entry can go.
-KNOWN = {
-    "view:benchmark_frames_without_benchmark":
-        "mpr-view takes --benchmark-frames without --benchmark and opens its window (the option is ignored)",
-}
+KNOWN = {}
 
 # ---------------------------------------------------------------------------------------------
 # Running and checking

@@ -12,9 +12,15 @@
    * --interp nearest: the reference (middle) camera's colour, and with --camera 0 the first's.
 2. --lens-distance's default is the image plane's width: --plane-size 8,6 with no
    --lens-distance gives the same bytes as --lens-distance 8, and other bytes than 8.5.
+3. An 8-bit output renders each view in bands of rows of linear pixels (at most 16 MiB of them):
+   a PNG of 1200x1500 pixels (bands of 16 MiB / (12 x 1200) = 1165 rows) with --spp 2 and a
+   Mitchell filter reaching across the band border holds the codes of the same render written
+   as PFM (the linear image of the whole frame), each within 1 of the sRGB formula here: every
+   pixel of the rows around the border, every tenth row elsewhere.
 Prints "cli pixels: ok" when every check holds; else names the check and exits 1.
 """
 
+import array
 import filecmp
 import os
 import struct
@@ -68,6 +74,30 @@ def read_png(path):
                 line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
         rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
         prev = line
+    return w, h, rows
+
+
+def read_pfm(path):
+    """(width, height, rows of (r, g, b) floats, top row first) of an RGB PFM."""
+    data = open(path, "rb").read()
+    header, p = [], 0
+    while len(header) < 4:  # "PF", width, height, scale (whitespace-separated)
+        while data[p:p + 1].isspace():
+            p += 1
+        q = p
+        while not data[q:q + 1].isspace():
+            q += 1
+        header.append(data[p:q].decode())
+        p = q
+    p += 1
+    if header[0] != "PF":
+        raise ValueError(path + " is not an RGB PFM")
+    w, h, scale = int(header[1]), int(header[2]), float(header[3])
+    values = array.array("f")
+    values.frombytes(data[p:p + 12 * w * h])
+    if (scale < 0) != (sys.byteorder == "little"):
+        values.byteswap()
+    rows = [values[(h - 1 - y) * 3 * w:(h - y) * 3 * w] for y in range(h)]  # stored bottom row first
     return w, h, rows
 
 
@@ -127,6 +157,18 @@ def main():
         failures.append("--lens-distance: the default differs from the plane's width (8)")
     if filecmp.cmp(default, render("lens_8.5.png", *lens, "--lens-distance", "8.5"), shallow=False):
         failures.append("--lens-distance: 8.5 gives the default's bytes (the option is ignored)")
+
+    banded = ["--view", "G", "--size", "1200x1500", "--spp", "2", "--filter", "mitchell:2"]
+    w, h, codes = read_png(render("banded.png", *banded))
+    pw, ph, linear = read_pfm(render("banded.pfm", *banded))
+    if (w, h) != (1200, 1500) or (pw, ph) != (1200, 1500):
+        failures.append("banded: %dx%d PNG, %dx%d PFM, expected 1200x1500" % (w, h, pw, ph))
+    else:
+        rows = [y for y in range(h) if 1100 <= y < 1230 or y % 10 == 0]
+        off = [(x, y) for y in rows for x in range(w)
+               if any(abs(codes[y][x][k] - to_code(min(max(linear[y][3 * x + k], 0.0), 1.0))) > 1 for k in range(3))]
+        if off:
+            failures.append("banded: %d pixels of the 8-bit PNG differ from the PFM's codes, e.g. %s" % (len(off), off[:3]))
 
     for f in failures:
         print("cli pixels: FAIL " + f)

@@ -34,6 +34,20 @@ namespace mpr_cli {
 #endif
 }
 
+/// The bytes of the file `path` (an 8-bit PNG or a JPEG) for the 8-bit sRGB image `image` (the
+/// codes of a linear render, render_job.hpp's FrameSinks::encoded). Throws argument_error("--output")
+/// for a format that is not 8-bit sRGB, io_error naming `path` when encoding fails.
+[[nodiscard]] inline std::vector<unsigned char> encode_output(const std::filesystem::path& path,
+                                                              const mpr::Image<mpr::Rgb8>& image,
+                                                              const OutputEncoding& encoding = {}) {
+  const ImageFormat format = image_format(path);
+  if (is_linear(format) || (format == ImageFormat::png && encoding.png_bits != 8))
+    throw mpr::argument_error("--output", "'" + path.string() + "' stores more than 8-bit sRGB codes");
+  std::vector<unsigned char> bytes = encode_image(path, image);
+  if (bytes.empty()) throw mpr::io_error(path.string(), "cannot encode the image");
+  return bytes;
+}
+
 /// The bytes of the file `path` for the linear image `image`: the format from the extension of
 /// `path` (image_format), 16-bit PNG when `encoding.png_bits` is 16, half or float OpenEXR by
 /// `encoding.exr_pixel`. Throws argument_error("--output") for an extension mpr-render does not
@@ -60,9 +74,7 @@ namespace mpr_cli {
   mpr::Image<mpr::Rgb8> encoded(image.width(), image.height());
   for (int y = 0; y < image.height(); ++y)
     mpr::PixelTraits<mpr::Rgb8>::from_colors(&image(0, y), &encoded(0, y), static_cast<std::size_t>(image.width()));
-  std::vector<unsigned char> bytes = encode_image(path, encoded);
-  if (bytes.empty()) throw mpr::io_error(path.string(), "cannot encode the image");
-  return bytes;
+  return encode_output(path, encoded, encoding);
 }
 
 } // namespace mpr_cli

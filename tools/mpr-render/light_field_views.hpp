@@ -42,11 +42,23 @@ mpr::ArrayCoverage view_coverage(const CameraVariant<T>& camera, const mpr::Arra
   return std::visit([&](const auto& cam) { return mpr::array_coverage(cam.surface, cam.selector, array); }, camera);
 }
 
+/// The spacing of the array's cameras, world units: a light field's median nearest-neighbour
+/// distance, or the --raster grid's cell width on the first frame's image plane (0 for a scene).
+template <std::floating_point T>
+double camera_spacing(const Job& job, const Loaded<T>& l) {
+  if (l.footprint) return static_cast<double>(l.footprint->spacing);
+  if (!job.raster) return 0;
+  const auto [w, h] = view_size(job, l);
+  const FrameParams p = frame_params(job, l.default_focal_depth, 0);
+  return static_cast<double>(base_plane(job, l, p, w, h).width_vector().norm()) / job.raster->first;
+}
+
 /// The job with the array defaults filled in: without --interp, the reference view (refocusing)
 /// gets the synthetic aperture and any other view a cylinder aperture (the nearest camera on a
 /// ring or unstructured set); without --radius, the cylinder's radius is the camera spacing (a
-/// light field's median nearest-neighbour distance, or the --raster grid's cell width), so a ray
-/// blends the few cameras around its crossing.
+/// light field's median nearest-neighbour distance, or the --raster grid's cell width; twice that
+/// for the depth proxy), so a ray blends the few cameras around its crossing. The radius is set
+/// under every interpolation (one default radius: mpr-view's cylinder key starts from it).
 template <std::floating_point T>
 Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   const bool array = l.frames != nullptr || job.raster.has_value();
@@ -56,16 +68,10 @@ Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   // cameras): blending neighbours at one focal plane ghosts, the nearest camera shows seams instead.
   if (!job.interpolation_given && !job.radius_given && detail::any_other_view(job))
     out.interpolation = l.footprint && !l.footprint->planar ? Interpolation::nearest : Interpolation::cylinder;
-  if ((out.interpolation == Interpolation::cylinder || out.interpolation == Interpolation::depth) &&
-      !job.radius_given) {
-    double spacing = 0;
-    if (l.footprint) {
-      spacing = static_cast<double>(l.footprint->spacing);
-    } else if (job.raster) {
-      const auto [w, h] = view_size(job, l);
-      const FrameParams p = frame_params(job, l.default_focal_depth, 0);
-      spacing = static_cast<double>(base_plane(job, l, p, w, h).width_vector().norm()) / job.raster->first;
-    }
+  // Every interpolation gets the spacing radius, so that one switched to the cylinder later (the
+  // viewer's keys) starts from the same default radius as --interp cylinder.
+  if (!job.radius_given) {
+    double spacing = camera_spacing(job, l);
     // The depth proxy weighs cameras by angle itself: it considers the two rings around the ray.
     if (out.interpolation == Interpolation::depth) spacing *= 2;
     if (spacing > 0 && std::isfinite(spacing)) out.radius = Track(spacing);
@@ -99,6 +105,28 @@ void warn_job(std::ostream& warn, const Job& job, const Loaded<T>& l) {
   if (l.footprint && l.footprint->one_dimensional() && detail::any_other_view(job))
     warn << "mpr-render: warning: the cameras lie on a " << (l.footprint->planar ? "line" : "ring")
          << ": every view's rays pass through it, so views differ only along it\n";
+}
+
+/// --raster under views other than the reference view, with the nearest camera or the cylinder
+/// aperture: warns when neighbouring cameras are more than 2 degrees apart seen from the focal
+/// plane `focal_depth` in front of the image plane (the array's: the median scene depth unless
+/// --focal-depth), naming --interp depth, which takes each ray's depth from the rasterizer.
+template <std::floating_point T>
+void warn_raster(std::ostream& warn, const Job& job, const Loaded<T>& l, double focal_depth) {
+  if (!job.raster || job.all_in_focus || !detail::any_other_view(job) ||
+      (job.interpolation != Interpolation::cylinder && job.interpolation != Interpolation::nearest))
+    return;
+  const double spacing = camera_spacing(job, l);
+  const double angle = 2 * std::atan(0.5 * spacing / focal_depth) * 180 / std::numbers::pi;
+  if (!(focal_depth > 0) || !(angle > 2)) return;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "mpr-render: warning: --raster %dx%d: neighbouring cameras are %.1f degrees apart seen from the focal "
+                "plane (depth %.3g): what lies off that plane is %s; --interp depth uses the rasterizer's depth "
+                "instead\n",
+                job.raster->first, job.raster->second, angle, focal_depth,
+                job.interpolation == Interpolation::nearest ? "cut where the camera changes" : "doubled");
+  warn << line;
 }
 
 /// Warnings about one view (frame 0): rays that cross the camera plane off the array, and a

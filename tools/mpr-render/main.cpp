@@ -109,13 +109,15 @@ int main(int argc, char** argv) try {
   int done = 0, first = -1, last = -1;
   mpr_cli::run_linear(
       job,
-      [&](int index, int, const mpr::Image<mpr::Color>& image) {
-        const std::filesystem::path path = animation ? mpr_cli::frame_path(job.output, index) : job.output;
-        files.stage(path, mpr_cli::encode_output(path, image, job.encoding));
-        if (first < 0) first = index;
-        last = index;
-        if (animation) progress.frame(index, ++done, run_frames);
-      },
+      mpr_cli::frame_sinks(job.output, job.encoding,
+                           [&](int index, int, const auto& image) { // 8-bit outputs: sRGB codes, else linear
+                             const std::filesystem::path path =
+                                 animation ? mpr_cli::frame_path(job.output, index) : job.output;
+                             files.stage(path, mpr_cli::encode_output(path, image, job.encoding));
+                             if (first < 0) first = index;
+                             last = index;
+                             if (animation) progress.frame(index, ++done, run_frames);
+                           }),
       &std::cout, &std::cerr, &files);
   files.commit();
   if (!animation) {

@@ -26,6 +26,8 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mpr_cli {
@@ -114,8 +116,78 @@ void stage_depth_maps(const Job& job, const Loaded<T>& l, std::ostream* info, Pu
 
 /// Called with each finished frame (index from 0, and the frame count), 8-bit sRGB.
 using FrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Rgb8>& image)>;
-/// Called with each finished frame (index from 0, and the frame count), linear light.
-using LinearFrameSink = std::function<void(int index, int count, const mpr::Image<mpr::Color>& image)>;
+
+/// The most bytes of linear pixels (12 a pixel) run_typed holds for a frame that goes out as
+/// 8-bit sRGB: each view (tile) of such a frame is rendered in bands of rows of at most this size,
+/// each encoded as it is done (16 MiB: a view 4096 pixels wide in bands of 341 rows).
+inline constexpr std::size_t kLinearBandBytes = std::size_t{16} << 20;
+
+/// Where run_typed sends each finished frame (index from 0, and the frame count): `linear`, the
+/// frame in linear light; or, when only `srgb8` is set, the frame as 8-bit sRGB (mpr::to_rgb8),
+/// rendered band by band (kLinearBandBytes) so that no linear image of the whole frame is held.
+/// Both give the same 8-bit codes. A callable taking the linear image converts to `linear`.
+struct FrameSinks {
+  std::function<void(int index, int count, const mpr::Image<mpr::Color>& image)> linear;
+  FrameSink srgb8;
+
+  template <class F>
+  requires std::is_invocable_v < const F&, int, int, const mpr::Image<mpr::Color>
+  & > FrameSinks(F linear_sink) : linear(std::move(linear_sink)) {} // NOLINT(google-explicit-constructor)
+  /// The sinks of a frame that goes out as 8-bit sRGB.
+  [[nodiscard]] static FrameSinks encoded(FrameSink sink) {
+    FrameSinks s;
+    s.srgb8 = std::move(sink);
+    return s;
+  }
+
+private:
+  FrameSinks() = default;
+};
+/// The sink parameter of run_typed (the name its explicit instantiations use).
+using LinearFrameSink = FrameSinks;
+
+/// Renders the views of frame parameters `p` into `image` (linear light, or 8-bit sRGB codes
+/// through bands of linear pixels: render_view's Rgb8 overload), with their tile labels;
+/// --print-camera and the view warnings on the first frame.
+template <std::floating_point T, class Pixel>
+void render_frame_views(const Job& job, const Loaded<T>& l, const FrameParams& p, int f, int w, int h,
+                        const SamplerVariant<T>& sampler, const PixelSamplingVariant& sampling,
+                        const mpr::RenderOptions& options, mpr::Image<Pixel>& image, std::ostream* info,
+                        std::ostream* warnings) {
+  // Rows of one tile per band (render_view's Rgb8 overload holds the band's linear pixels).
+  const int band = static_cast<int>(std::clamp<std::size_t>(
+      kLinearBandBytes / (sizeof(mpr::Color) * static_cast<std::size_t>(w)), 1, static_cast<std::size_t>(h)));
+  const ApertureSpec* aperture = job.aperture ? &*job.aperture : nullptr;
+  for (std::size_t k = 0; k < job.views.size(); ++k) {
+    const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
+    if (info != nullptr && job.print_camera && f == 0) {
+      print_camera(*info, job.views[k], camera, l.footprint);
+      if (job.aperture) print_focus(*info, *job.aperture, plane_of(camera));
+    }
+    if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
+    const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
+    const mpr::Region tile(col * w, row * h, w, h);
+    if constexpr (std::is_same_v<Pixel, mpr::Color>) {
+      render_view(camera, sampler, sampling, image.view(), tile, options, aperture, p.aperture_size);
+    } else {
+      for (int y0 = tile.y; y0 < tile.y + h; y0 += band) { // the band's rows; the tile's region relative to them
+        const int rows = std::min(band, tile.y + h - y0);
+        render_view(camera, sampler, sampling, image.view().subview(tile.x, y0, w, rows),
+                    mpr::Region(0, tile.y - y0, w, h), options, aperture, p.aperture_size);
+      }
+    }
+    if (job.labels) draw_tile_label(image.view(), tile, tile_label(job.views[k], camera, aperture));
+  }
+}
+
+/// The focal depth of a --raster sampler (the array's), else that of the frame parameters.
+template <class S>
+[[nodiscard]] double raster_focal_depth(const S& sampler, const FrameParams& p) {
+  if constexpr (requires { sampler.focal_depth(); })
+    return static_cast<double>(sampler.focal_depth());
+  else
+    return p.focal_depth;
+}
 
 template <std::floating_point T>
 void run_typed(const Job& given, const LinearFrameSink& sink, std::ostream* info, std::ostream* warnings,
@@ -140,25 +212,24 @@ void run_typed(const Job& given, const LinearFrameSink& sink, std::ostream* info
     warn_unseen_views(*warnings, job, l, count, w, h);
   const mpr::RenderOptions options{job.threads};
   const PixelSamplingVariant sampling = make_pixel_sampling(job.spp, job.filter);
+  bool raster_warned = false;
   for (int f = 0; f < count; ++f) {
     if (job.shard && f % job.shard->second != job.shard->first) continue; // another shard's frame
     const FrameParams p = frame_params(job, l.default_focal_depth, frame_time(f, count));
     const SamplerVariant<T> sampler = make_sampler(job, l, p, w, h);
-    mpr::Image<mpr::Color> image(job.cols * w, job.rows * h);
-    for (std::size_t k = 0; k < job.views.size(); ++k) {
-      const CameraVariant<T> camera = make_camera(job, l, p, k, w, h);
-      if (info != nullptr && job.print_camera && f == 0) {
-        print_camera(*info, job.views[k], camera, l.footprint);
-        if (job.aperture) print_focus(*info, *job.aperture, plane_of(camera));
-      }
-      if (warnings != nullptr && f == 0) warn_view(*warnings, job, l, job.views[k], camera);
-      const int col = static_cast<int>(k) % job.cols, row = static_cast<int>(k) / job.cols;
-      const mpr::Region tile(col * w, row * h, w, h);
-      const ApertureSpec* aperture = job.aperture ? &*job.aperture : nullptr;
-      render_view(camera, sampler, sampling, image.view(), tile, options, aperture, p.aperture_size);
-      if (job.labels) draw_tile_label(image.view(), tile, tile_label(job.views[k], camera, aperture));
+    if (warnings != nullptr && !raster_warned && job.raster) { // the array's focal depth, once it is rasterized
+      warn_raster(*warnings, job, l, std::visit([&](const auto& s) { return raster_focal_depth(s, p); }, sampler));
+      raster_warned = true;
     }
-    sink(f, count, image);
+    if (sink.linear) {
+      mpr::Image<mpr::Color> image(job.cols * w, job.rows * h);
+      render_frame_views(job, l, p, f, w, h, sampler, sampling, options, image, info, warnings);
+      sink.linear(f, count, image);
+    } else {
+      mpr::Image<mpr::Rgb8> image(job.cols * w, job.rows * h);
+      render_frame_views(job, l, p, f, w, h, sampler, sampling, options, image, info, warnings);
+      sink.srgb8(f, count, image);
+    }
   }
   write_view_depth(job, loaded, info, publish); // --write-depth (a single image)
 }
@@ -179,12 +250,24 @@ inline void run_linear(const Job& job, const LinearFrameSink& sink, std::ostream
     run_typed<float>(job, sink, info, warnings, publish);
 }
 
-/// run_linear with every frame encoded as 8-bit sRGB (encode_rgb8) for `sink`.
+/// run_linear with every frame as 8-bit sRGB for `sink` (FrameSinks::encoded: rendered in bands,
+/// the codes encode_rgb8 gives).
 inline void run(const Job& job, const FrameSink& sink, std::ostream* info = nullptr, std::ostream* warnings = nullptr,
                 Publication* publish = nullptr) {
-  run_linear(
-      job, [&](int index, int count, const mpr::Image<mpr::Color>& image) { sink(index, count, encode_rgb8(image)); },
-      info, warnings, publish);
+  run_linear(job, FrameSinks::encoded(sink), info, warnings, publish);
+}
+
+/// The sinks for frames written to `path` with `encoding`: `on_frame(index, count, image)` gets
+/// 8-bit sRGB codes for an 8-bit PNG or a JPEG (no linear image of the whole frame is held), the
+/// linear image for the other formats.
+template <class F>
+[[nodiscard]] FrameSinks frame_sinks(const std::filesystem::path& path, const OutputEncoding& encoding, F on_frame) {
+  const ImageFormat format = image_format(path);
+  if (is_linear(format) || (format == ImageFormat::png && encoding.png_bits != 8))
+    return FrameSinks(
+        [on_frame](int index, int count, const mpr::Image<mpr::Color>& image) { on_frame(index, count, image); });
+  return FrameSinks::encoded(
+      [on_frame](int index, int count, const mpr::Image<mpr::Rgb8>& image) { on_frame(index, count, image); });
 }
 
 /// All frames in memory (tests).

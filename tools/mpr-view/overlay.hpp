@@ -4,6 +4,7 @@
 
 #include "controls.hpp"
 #include "font.hpp"
+#include "mpr-render/job.hpp"
 #include "render_thread.hpp"
 
 #include <mpr/core/image.hpp>
@@ -50,20 +51,11 @@ inline const std::vector<std::string>& control_lines() {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.4g", s.job.focal_depth ? current_focal_depth(s, ctx) : frame.focal_depth);
     focus = buf;
-    switch (s.job.interpolation) {
-    case mpr_cli::Interpolation::nearest:
-      aperture = "nearest";
-      break;
-    case mpr_cli::Interpolation::synthetic:
-      aperture = "synthetic";
-      break;
-    case mpr_cli::Interpolation::cylinder:
+    if (s.job.interpolation == mpr_cli::Interpolation::cylinder) {
       std::snprintf(buf, sizeof buf, "r %.3g", s.job.radius.at(s.time()));
       aperture = buf;
-      break;
-    case mpr_cli::Interpolation::depth:
-      aperture = "depth";
-      break;
+    } else {
+      aperture = mpr_cli::interpolation_name(s.job.interpolation); // mpr::interpolation_names
     }
   }
   const std::string preview = frame.full ? "" : " (1/" + std::to_string(frame.scale * frame.scale) + ")";

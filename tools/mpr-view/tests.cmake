@@ -54,8 +54,10 @@ mpr_view_test(help_overlay SCRIPT help.txt ARGS "--size|320x240|--threads|2"
 # S saves the picture and the mpr-render command line that renders the same PNG.
 mpr_view_test(save_scene SCRIPT save_scene.txt ARGS "--size|200x150|--threads|2|--output|found/view.png"
               -DSAVED=found/view_0001 "-DEXPECT_REGEX=saved found/view_0001.png.*mpr-render [^']*--view G")
+# The cylinder key starts from mpr-render's default radius, the camera spacing (the 8 m plane
+# over 4 columns: 2), and ']' widens it by 1.25.
 mpr_view_test(save_raster SCRIPT save_raster.txt ARGS "--raster|4x3|--size|200x150|--threads|2"
-              -DSAVED=mpr-view_0001 "-DEXPECT_REGEX=mpr-render --raster 4x3 --interp cylinder --radius 12.5")
+              -DSAVED=mpr-view_0001 "-DEXPECT_REGEX=mpr-render --raster 4x3 --interp cylinder --radius 2.5 ")
 # Resizing the window renders the view again at the new size: the screenshot takes the window's
 # size, and the PNG that S saves is mpr-render's at that size, byte for byte.
 mpr_view_test(resize SCRIPT resize.txt ARGS "--view|G|--size|200x150|--threads|2"
@@ -86,6 +88,9 @@ mpr_view_test(bad_script_command SCRIPT bad_command.txt -DDRIVER=no_such_driver 
               "-DEXPECT_REGEX=^mpr-view: [^\n]*bad_command.txt:2: unknown command 'kye'")
 mpr_view_test(bad_script_key SCRIPT bad_key.txt -DDRIVER=no_such_driver -DEXPECT_RC=1
               "-DEXPECT_REGEX=^mpr-view: [^\n]*bad_key.txt:1: 'NoSuchKey' is not an SDL key name")
+# --benchmark-frames belongs to --benchmark: alone it is refused, naming both options.
+mpr_view_test(benchmark_frames_alone ARGS "--benchmark-frames|3|--size|64x48" -DDRIVER=no_such_driver -DEXPECT_RC=1
+              "-DEXPECT_REGEX=^mpr-view: invalid --benchmark-frames: needs --benchmark[^\n]*\n$")
 # The benchmark mode runs (numbers belong in docs/mpr-view.md, not here).
 mpr_view_test(benchmark_smoke ARGS "--benchmark|--benchmark-frames|2|--size|64x48|--threads|2"
               "-DEXPECT_REGEX=full resolution: +median [0-9.]+ ms = [0-9.]+ frames/s.*input event -> first frame")

@@ -33,7 +33,8 @@ inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, cons
     throw mpr::argument_error("--shard", "splits mpr-render's frames between processes; the viewer shows them all");
   for (const char* option : {"bit-depth", "exr-pixel"})
     if (args.has(option))
-      throw mpr::argument_error(std::string("--") + option, "sets mpr-render's output file; the viewer saves 8-bit PNG");
+      throw mpr::argument_error(std::string("--") + option,
+                                "sets mpr-render's output file; the viewer saves 8-bit PNG");
   mpr_cli::Job job = mpr_cli::make_job(args, {.reads_depth_maps = true}); // click-to-focus reads them
   if (const auto s = args.get("script")) {
     if (s->empty()) throw mpr::argument_error("--script", "empty file name");
@@ -41,7 +42,11 @@ inline std::pair<mpr_cli::Job, ViewerSettings> parse_command_line(int argc, cons
   }
   v.benchmark = args.has("benchmark");
   if (v.benchmark && v.script) throw mpr::argument_error("--benchmark", "give --benchmark or --script, not both");
-  if (const auto n = args.integer("benchmark-frames")) v.benchmark_frames = *n;
+  if (const auto n = args.integer("benchmark-frames")) {
+    if (!v.benchmark)
+      throw mpr::argument_error("--benchmark-frames", "needs --benchmark (it sets the benchmark's frames)");
+    v.benchmark_frames = *n;
+  }
   v.output_given = args.has("output");
   if (!v.output_given) job.output = "mpr-view.png";
   return {job, v};
