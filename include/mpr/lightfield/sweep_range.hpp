@@ -16,7 +16,8 @@
 ///   cross-correlation of 7 x 7 grey patches, about two steps per reduced pixel); a match whose
 ///   best score reaches `min_score` and stands out from every position more than 3 steps away
 ///   (1 - best <= 0.5 (1 - second)) with both partners, whose depths agree within two search
-///   steps and 2% in inverse depth, gives a depth (the longer baseline's). The range spans the `quantile` and 1 -
+///   steps and 2% in inverse depth, gives a depth (the longer baseline's; with fewer than 64
+///   such, the nearest partner's matches alone give them). The range spans the `quantile` and 1 -
 ///   `quantile` depths, widened in inverse depth by `margin` of its span plus 2% of the nearest
 ///   depth's on each side (never beyond twice the farthest depth), inside the common frustum.
 ///
@@ -184,7 +185,7 @@ template <std::floating_point T, class Px>
     const std::size_t r = want == 1 ? n / 2 : (i * (n - 1) + (want - 1) / 2) / (want - 1);
     if (refs.empty() || refs.back() != r) refs.push_back(r);
   }
-  std::vector<double> depths;
+  std::vector<double> depths, loose; // matches both partners agree on; the nearest partner's
   for (const std::size_t r : refs) {
     const PinholeCamera<T>& ref = frames.camera(r);
     // Partners: the nearest camera and the one nearest to three times its distance.
@@ -291,7 +292,9 @@ template <std::floating_point T, class Px>
           if (top < config.min_score || 1 - top > 0.5 * (1 - second) || !(w > 0)) break;
           found.emplace_back(w, (hi - lo) / count);
         }
-        if (found.size() != with.size() || found.empty()) continue;
+        if (found.empty()) continue;
+        loose.push_back(1 / found.front().first);
+        if (found.size() != with.size()) continue;
         // Two partners must agree within two steps of the coarser search and 2%.
         if (found.size() == 2 && std::abs(found[0].first - found[1].first) >
                                      2 * std::max(found[0].second, found[1].second) + 0.02 * found[1].first)
@@ -301,6 +304,9 @@ template <std::floating_point T, class Px>
   }
   if (!(out.frustum_near < out.frustum_far))
     throw argument_error("frames", "no two cameras see anything together: give the depth range");
+  // Too few agreed matches (a ring, whose farther partner sees the object from far aside): the
+  // nearest partner's alone.
+  if (static_cast<int>(depths.size()) < std::max(config.min_matches, 64)) depths.swap(loose);
   if (static_cast<int>(depths.size()) >= config.min_matches) {
     std::sort(depths.begin(), depths.end());
     const std::size_t m = depths.size();
