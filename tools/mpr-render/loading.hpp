@@ -11,6 +11,7 @@
 #include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/scene_depth.hpp>
 #include <mpr/scene.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
 #include <mpr/scene/obj_loader.hpp>
@@ -106,12 +107,14 @@ Loaded<T> load(const Job& job) {
       std::vector<mpr::Image<float>> maps = mpr::read_depth_maps(*job.depth_maps, set, limits);
       set = std::move(set).with_depth(std::move(maps));
     } else if (job.depth_estimate) {
-      mpr::PlaneSweepConfig sweep = *job.depth_estimate;
-      sweep.threads = job.threads;
+      mpr::SceneDepthConfig config;
+      config.sweep = *job.depth_estimate;
+      config.sweep.threads = job.threads;
+      config.sweep.progress = job.depth_progress;
       const auto start = std::chrono::steady_clock::now();
-      std::vector<mpr::Image<float>> maps;
+      mpr::SceneDepth found;
       try {
-        maps = mpr::estimate_depth_maps(set, sweep);
+        found = mpr::estimate_scene_depth(set, config);
       } catch (const mpr::argument_error& e) {
         // The sweep's working memory (PlaneSweepConfig::memory_limit, 2 GiB): name the option.
         if (e.parameter() != "memory_limit") throw;
@@ -119,14 +122,27 @@ Loaded<T> load(const Job& job) {
         why.erase(0, why.find(": ", why.find("memory_limit")) + 2);
         throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
       }
-      char note[256];
+      const mpr::PlaneSweepConfig& sweep = config.sweep;
+      const char* source = found.range.source == mpr::SweepRangeSource::given     ? "given"
+                           : found.range.source == mpr::SweepRangeSource::matches ? "from sparse matches"
+                                                                                  : "from the cameras' common frustum";
+      char note[384];
       std::snprintf(note, sizeof note,
-                    "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g; neighbours %d, best "
-                    "%d, truncation %g, spatial %g, range %g)",
+                    "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g, %s; neighbours %d, "
+                    "best %d, truncation %g, spatial %g, range %g)",
                     set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation, sweep.spatial,
-                    sweep.range);
+                    sweep.planes, found.range.near, found.range.far, source, sweep.neighbours, sweep.best,
+                    sweep.truncation, sweep.spatial, sweep.range);
       l.notes.emplace_back(note);
+      if (found.backdrop) {
+        const mpr::Backdrop& b = *found.backdrop;
+        std::snprintf(note, sizeof note,
+                      "an object on an empty backdrop: rgb(%d, %d, %d) within %d codes on %zu of %zu views' borders "
+                      "(%.0f%% of the images); depth kept inside the visual hull of its silhouettes",
+                      b.colour.r, b.colour.g, b.colour.b, b.tolerance, b.views, b.total, 100 * b.image_share);
+        l.notes.emplace_back(note);
+      }
+      std::vector<mpr::Image<float>> maps = std::move(found.maps);
       set = std::move(set).with_depth(std::move(maps));
     }
     return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));

@@ -57,6 +57,21 @@ void loading_progress(std::size_t done, std::size_t count) {
   std::fflush(stderr);
 }
 
+/// Depth estimation on a terminal: the stage and its count, updated in place, then the stage's
+/// line with its time.
+void depth_progress_terminal(const mpr::DepthProgress& p) {
+  if (p.done == p.total)
+    std::fprintf(stderr, "\rdepth: %s: %zu done in %.2f s%*s\n", p.stage, p.total, p.seconds, 20, "");
+  else
+    std::fprintf(stderr, "\rdepth: %s %zu/%zu (%.1f s)", p.stage, p.done, p.total, p.seconds);
+  std::fflush(stderr);
+}
+
+/// Depth estimation elsewhere (a log): one line per stage with its time.
+void depth_progress_lines(const mpr::DepthProgress& p) {
+  if (p.done == p.total) std::fprintf(stderr, "depth: %s: %zu done in %.2f s\n", p.stage, p.total, p.seconds);
+}
+
 /// The frames of this run (all, or those of --shard K/N).
 int frames_of_run(const mpr_cli::Job& job) {
   if (!job.shard) return job.frames;
@@ -96,6 +111,7 @@ int main(int argc, char** argv) try {
     }
   mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
   if (isatty(STDERR_FILENO)) job.load_progress = loading_progress;
+  job.depth_progress = isatty(STDERR_FILENO) ? depth_progress_terminal : depth_progress_lines;
   mpr_cli::check_output_folder(job.output, "--output");
   if (job.write_depth) mpr_cli::check_output_folder(*job.write_depth, "--write-depth");
   // Before the plane sweep, not after it: a folder that cannot be made costs no estimate.
