@@ -166,6 +166,153 @@ template <class Px>
   return nb > 1e-9 ? dot / std::sqrt(norm_a * nb) : -1.0;
 }
 
+/// The partners of reference camera `r` (see the file comment) and the distance to the nearest;
+/// empty when every other camera stands at (nearly) the same place.
+template <std::floating_point T, class Px>
+[[nodiscard]] std::vector<std::size_t> range_partners(const CameraFrameSet<T, Px>& frames, std::size_t r,
+                                                      double& nearest) {
+  const PinholeCamera<T>& ref = frames.camera(r);
+  std::vector<std::pair<double, std::size_t>> by_distance;
+  for (std::size_t j = 0; j < frames.size(); ++j)
+    if (j != r) by_distance.emplace_back(static_cast<double>((frames.camera(j).centre() - ref.centre()).norm()), j);
+  std::sort(by_distance.begin(), by_distance.end());
+  // A camera at (nearly) the same place has no baseline: skip those within 1% of the median.
+  const double tiny = 0.01 * by_distance[by_distance.size() / 2].first;
+  const auto first =
+      std::find_if(by_distance.begin(), by_distance.end(), [&](const auto& e) { return e.first > tiny; });
+  if (first == by_distance.end()) return {};
+  std::vector<std::size_t> partners{first->second};
+  nearest = first->first;
+  std::size_t far_one = first->second;
+  double gap = std::numeric_limits<double>::infinity();
+  for (const auto& [d, j] : by_distance)
+    if (d >= 2 * nearest && std::abs(d - 3 * nearest) < gap) {
+      gap = std::abs(d - 3 * nearest);
+      far_one = j;
+    }
+  if (far_one != partners.front()) partners.push_back(far_one);
+  return partners;
+}
+
+/// Widens `out.frustum_near` .. `out.frustum_far` by the common frustum of reference camera `r`
+/// and each of `partners` over a 17 x 17 grid of pixels spanning the reference image, inverse
+/// depths at most `w_max`.
+template <std::floating_point T, class Px>
+void widen_common_frustum(const CameraFrameSet<T, Px>& frames, std::size_t r, const std::vector<std::size_t>& partners,
+                          double w_max, SweepRange& out) {
+  const PinholeCamera<T>& ref = frames.camera(r);
+  for (const std::size_t j : partners) {
+    const DepthHomography h = depth_homography(ref, frames.camera(j));
+    for (int gy = 0; gy <= 16; ++gy)
+      for (int gx = 0; gx <= 16; ++gx) {
+        const Vec3<double> p((ref.width() - 1) * gx / 16.0, (ref.height() - 1) * gy / 16.0, 1);
+        double lo = 0, hi = w_max;
+        visible_inverse_depths(h, p, frames.camera(j).width(), frames.camera(j).height(), 0, lo, hi);
+        if (!(lo <= hi) || !(hi > 0)) continue;
+        out.frustum_near = std::min(out.frustum_near, 1 / hi);
+        out.frustum_far = std::max(out.frustum_far, lo > 0 ? 1 / lo : std::numeric_limits<double>::infinity());
+      }
+  }
+}
+
+/// A partner's reduced grey image and the homography from the reference camera to it.
+struct RangePartner {
+  Image<float> grey;
+  DepthHomography h;
+  int width, height;
+};
+
+/// The match of the mean-free 7 x 7 patch `a` (norm `norm_a`) of full-resolution reference pixel
+/// `p` along its epipolar segment in partner `o` (images reduced by `scale`), inverse depths in
+/// (0, `w_max`]: false when none stands out (see the file comment); else its inverse depth `w`
+/// and the inverse depth of one search step `step`.
+inline bool match_along_segment(const RangePartner& o, const float* a, double norm_a, const Vec3<double>& p, int scale,
+                                double w_max, double min_score, double& w, double& step) {
+  double lo = 0, hi = w_max;
+  visible_inverse_depths(o.h, p, o.width, o.height, 4.0 * scale, lo, hi);
+  if (!(lo < hi)) return false;
+  const auto seen = [&](double v) {
+    const Vec3<double> q = o.h.A * v + o.h.M * p;
+    return Vec2<double>((q.x() / q.z() - 0.5 * (scale - 1)) / scale, (q.y() / q.z() - 0.5 * (scale - 1)) / scale);
+  };
+  const double length = (seen(hi) - seen(lo)).norm();
+  const int count = std::clamp(static_cast<int>(std::ceil(2 * length)), 2, 768);
+  std::vector<double> score(static_cast<std::size_t>(count) + 1);
+  int best = 0;
+  for (int k = 0; k <= count; ++k) {
+    const Vec2<double> q = seen(lo + (hi - lo) * k / count);
+    score[static_cast<std::size_t>(k)] = patch_zncc(a, norm_a, o.grey, q.x(), q.y());
+    if (score[static_cast<std::size_t>(k)] > score[static_cast<std::size_t>(best)]) best = k;
+  }
+  double second = -1;
+  for (int k = 0; k <= count; ++k)
+    if (std::abs(k - best) > 3) second = std::max(second, score[static_cast<std::size_t>(k)]);
+  const double top = score[static_cast<std::size_t>(best)];
+  w = lo + (hi - lo) * best / count;
+  step = (hi - lo) / count;
+  return top >= min_score && 1 - top <= 0.5 * (1 - second) && w > 0;
+}
+
+/// The sparse matches of reference camera `r` with `partners` (see the file comment): the depths
+/// both partners agree on appended to `depths`, the nearest partner's to `loose`.
+template <std::floating_point T, class Px>
+void sparse_matches(const CameraFrameSet<T, Px>& frames, std::size_t r, const std::vector<std::size_t>& partners,
+                    double w_max, const SweepRangeConfig& config, std::vector<double>& depths,
+                    std::vector<double>& loose) {
+  const PinholeCamera<T>& ref = frames.camera(r);
+  int scale = 1;
+  while (ref.width() / scale > config.coarse_width) scale *= 2;
+  const Image<float> g = reduced_grey(frames.image(r), scale);
+  const auto full = [&](double c) { return scale * c + 0.5 * (scale - 1); }; // reduced -> full pixel
+  std::vector<RangePartner> with;
+  for (const std::size_t j : partners) {
+    const PinholeCamera<T>& other = frames.camera(j);
+    if (other.width() / scale < 16 || other.height() / scale < 16) continue;
+    with.push_back({reduced_grey(frames.image(j), scale), depth_homography(ref, other), other.width(), other.height()});
+  }
+  for (int cy = 4; cy + 8 <= g.height() - 4; cy += 8)
+    for (int cx = 4; cx + 8 <= g.width() - 4; cx += 8) {
+      // The cell's most textured pixel.
+      int bx = cx, by = cy;
+      float strongest = -1;
+      for (int y = cy; y < cy + 8; ++y)
+        for (int x = cx; x < cx + 8; ++x) {
+          const float s = std::abs(g(x + 1, y) - g(x - 1, y)) + std::abs(g(x, y + 1) - g(x, y - 1));
+          if (s > strongest) {
+            strongest = s;
+            bx = x;
+            by = y;
+          }
+        }
+      float a[49];
+      double mean = 0, norm_a = 0;
+      for (int k = 0, y = by - 3; y <= by + 3; ++y)
+        for (int x = bx - 3; x <= bx + 3; ++x, ++k) mean += a[k] = g(x, y);
+      mean /= 49;
+      for (float& v : a) {
+        v = static_cast<float>(v - mean);
+        norm_a += static_cast<double>(v) * v;
+      }
+      if (norm_a < 49 * 4.0 * 4.0) continue; // flat: less than 4 grey levels of contrast
+      const Vec3<double> p(full(bx), full(by), 1);
+      // Each partner's match: its inverse depth and the inverse depth of one search step.
+      std::vector<std::pair<double, double>> found;
+      for (const RangePartner& o : with) {
+        double w = 0, step = 0;
+        if (!match_along_segment(o, a, norm_a, p, scale, w_max, config.min_score, w, step)) break;
+        found.emplace_back(w, step);
+      }
+      if (found.empty()) continue;
+      loose.push_back(1 / found.front().first);
+      if (found.size() != with.size()) continue;
+      // Two partners must agree within two steps of the coarser search and 2%.
+      if (found.size() == 2 && std::abs(found[0].first - found[1].first) >
+                                   2 * std::max(found[0].second, found[1].second) + 0.02 * found[1].first)
+        continue;
+      depths.push_back(1 / found.back().first); // the longer baseline's, the finer
+    }
+}
+
 } // namespace detail
 
 /// The depth range to sweep for `frames` (see the file comment). Throws `argument_error`
@@ -187,120 +334,12 @@ template <std::floating_point T, class Px>
   }
   std::vector<double> depths, loose; // matches both partners agree on; the nearest partner's
   for (const std::size_t r : refs) {
-    const PinholeCamera<T>& ref = frames.camera(r);
-    // Partners: the nearest camera and the one nearest to three times its distance.
-    std::vector<std::pair<double, std::size_t>> by_distance;
-    for (std::size_t j = 0; j < n; ++j)
-      if (j != r) by_distance.emplace_back(static_cast<double>((frames.camera(j).centre() - ref.centre()).norm()), j);
-    std::sort(by_distance.begin(), by_distance.end());
-    // A camera at (nearly) the same place has no baseline: skip those within 1% of the median.
-    const double tiny = 0.01 * by_distance[by_distance.size() / 2].first;
-    const auto first =
-        std::find_if(by_distance.begin(), by_distance.end(), [&](const auto& e) { return e.first > tiny; });
-    if (first == by_distance.end()) continue;
-    std::vector<std::size_t> partners{first->second};
-    const double nearest = first->first;
-    std::size_t far_one = first->second;
-    double gap = std::numeric_limits<double>::infinity();
-    for (const auto& [d, j] : by_distance)
-      if (d >= 2 * nearest && std::abs(d - 3 * nearest) < gap) {
-        gap = std::abs(d - 3 * nearest);
-        far_one = j;
-      }
-    if (far_one != partners.front()) partners.push_back(far_one);
+    double nearest = 0;
+    const std::vector<std::size_t> partners = detail::range_partners(frames, r, nearest);
+    if (partners.empty()) continue;
     const double w_max = nearest > 0 ? 2 / nearest : 1e30; // nothing nearer than half the baseline
-    // The common frustum over a 17 x 17 grid of pixels spanning the image.
-    for (const std::size_t j : partners) {
-      const detail::DepthHomography h = detail::depth_homography(ref, frames.camera(j));
-      for (int gy = 0; gy <= 16; ++gy)
-        for (int gx = 0; gx <= 16; ++gx) {
-          const Vec3<double> p((ref.width() - 1) * gx / 16.0, (ref.height() - 1) * gy / 16.0, 1);
-          double lo = 0, hi = w_max;
-          detail::visible_inverse_depths(h, p, frames.camera(j).width(), frames.camera(j).height(), 0, lo, hi);
-          if (!(lo <= hi) || !(hi > 0)) continue;
-          out.frustum_near = std::min(out.frustum_near, 1 / hi);
-          out.frustum_far = std::max(out.frustum_far, lo > 0 ? 1 / lo : std::numeric_limits<double>::infinity());
-        }
-    }
-    // Sparse matches on the reduced images.
-    int scale = 1;
-    while (ref.width() / scale > config.coarse_width) scale *= 2;
-    const Image<float> g = detail::reduced_grey(frames.image(r), scale);
-    const auto full = [&](double c) { return scale * c + 0.5 * (scale - 1); }; // reduced -> full pixel
-    struct Partner {
-      Image<float> grey;
-      detail::DepthHomography h;
-      int width, height;
-    };
-    std::vector<Partner> with;
-    for (const std::size_t j : partners) {
-      const PinholeCamera<T>& other = frames.camera(j);
-      if (other.width() / scale < 16 || other.height() / scale < 16) continue;
-      with.push_back({detail::reduced_grey(frames.image(j), scale), detail::depth_homography(ref, other), other.width(),
-                      other.height()});
-    }
-    for (int cy = 4; cy + 8 <= g.height() - 4; cy += 8)
-      for (int cx = 4; cx + 8 <= g.width() - 4; cx += 8) {
-        // The cell's most textured pixel.
-        int bx = cx, by = cy;
-        float strongest = -1;
-        for (int y = cy; y < cy + 8; ++y)
-          for (int x = cx; x < cx + 8; ++x) {
-            const float s = std::abs(g(x + 1, y) - g(x - 1, y)) + std::abs(g(x, y + 1) - g(x, y - 1));
-            if (s > strongest) {
-              strongest = s;
-              bx = x;
-              by = y;
-            }
-          }
-        float a[49];
-        double mean = 0, norm_a = 0;
-        for (int k = 0, y = by - 3; y <= by + 3; ++y)
-          for (int x = bx - 3; x <= bx + 3; ++x, ++k) mean += a[k] = g(x, y);
-        mean /= 49;
-        for (float& v : a) {
-          v = static_cast<float>(v - mean);
-          norm_a += static_cast<double>(v) * v;
-        }
-        if (norm_a < 49 * 4.0 * 4.0) continue; // flat: less than 4 grey levels of contrast
-        const Vec3<double> p(full(bx), full(by), 1);
-        // Each partner's match: its inverse depth and the inverse depth of one search step.
-        std::vector<std::pair<double, double>> found;
-        for (const Partner& o : with) {
-          double lo = 0, hi = w_max;
-          detail::visible_inverse_depths(o.h, p, o.width, o.height, 4.0 * scale, lo, hi);
-          if (!(lo < hi)) break;
-          const auto seen = [&](double w) {
-            const Vec3<double> q = o.h.A * w + o.h.M * p;
-            return Vec2<double>((q.x() / q.z() - 0.5 * (scale - 1)) / scale,
-                                (q.y() / q.z() - 0.5 * (scale - 1)) / scale);
-          };
-          const double length = (seen(hi) - seen(lo)).norm();
-          const int count = std::clamp(static_cast<int>(std::ceil(2 * length)), 2, 768);
-          std::vector<double> score(static_cast<std::size_t>(count) + 1);
-          int best = 0;
-          for (int k = 0; k <= count; ++k) {
-            const Vec2<double> q = seen(lo + (hi - lo) * k / count);
-            score[static_cast<std::size_t>(k)] = detail::patch_zncc(a, norm_a, o.grey, q.x(), q.y());
-            if (score[static_cast<std::size_t>(k)] > score[static_cast<std::size_t>(best)]) best = k;
-          }
-          double second = -1;
-          for (int k = 0; k <= count; ++k)
-            if (std::abs(k - best) > 3) second = std::max(second, score[static_cast<std::size_t>(k)]);
-          const double top = score[static_cast<std::size_t>(best)];
-          const double w = lo + (hi - lo) * best / count;
-          if (top < config.min_score || 1 - top > 0.5 * (1 - second) || !(w > 0)) break;
-          found.emplace_back(w, (hi - lo) / count);
-        }
-        if (found.empty()) continue;
-        loose.push_back(1 / found.front().first);
-        if (found.size() != with.size()) continue;
-        // Two partners must agree within two steps of the coarser search and 2%.
-        if (found.size() == 2 && std::abs(found[0].first - found[1].first) >
-                                     2 * std::max(found[0].second, found[1].second) + 0.02 * found[1].first)
-          continue;
-        depths.push_back(1 / found.back().first); // the longer baseline's, the finer
-      }
+    detail::widen_common_frustum(frames, r, partners, w_max, out);
+    detail::sparse_matches(frames, r, partners, w_max, config, depths, loose);
   }
   if (!(out.frustum_near < out.frustum_far))
     throw argument_error("frames", "no two cameras see anything together: give the depth range");
