@@ -274,8 +274,9 @@ TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, nami
   std::ostringstream info;
   (void)mpr_cli::render_frames(job, &info);
   INFO(info.str());
-  CHECK_THAT(info.str(), Catch::Contains("48 planes from 1 to 4; neighbours 2, best 1, truncation 0.2, spatial 0, "
-                                         "range 0.5"));
+  CHECK_THAT(info.str(),
+             Catch::Contains("48 planes from 1 to 4, as given; neighbours 2, best 1, truncation 0.2, spatial 0, "
+                             "range 0.5"));
   // The settings reach the sweep: the saved maps are the library's estimate with them (a pixel
   // may differ where the two runs shared a camera's rows among threads differently), and
   // differ from the defaults' (no aggregation, one cost kept).

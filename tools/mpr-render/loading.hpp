@@ -123,9 +123,10 @@ Loaded<T> load(const Job& job) {
         throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
       }
       const mpr::PlaneSweepConfig& sweep = config.sweep;
-      const char* source = found.range.source == mpr::SweepRangeSource::given     ? "given"
-                           : found.range.source == mpr::SweepRangeSource::matches ? "from sparse matches"
-                                                                                  : "from the cameras' common frustum";
+      const char* source = found.range.source == mpr::SweepRangeSource::given ? "as given"
+                           : found.range.source == mpr::SweepRangeSource::matches
+                               ? "found from sparse matches"
+                               : "found from the cameras' common frustum";
       char note[384];
       std::snprintf(note, sizeof note,
                     "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g, %s; neighbours %d, "

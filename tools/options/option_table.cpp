@@ -193,7 +193,8 @@ const std::array kOptions = {
                    "or depth proxy (the surface from per-camera depth maps, the cameras that see it blended by angle; "
                    "--raster keeps the rasterizer's depth, light fields need --depth-maps; --radius: the cameras "
                    "considered, default twice the spacing).",
-           .default_text = "synthetic",
+           .default_text = "synthetic for a planar array's reference view, cylinder for its other views, nearest for "
+                           "every view of a ring or unstructured set",
            .example = "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3",
            .kind = choice,
            .group = lf,
@@ -221,12 +222,13 @@ const std::array kOptions = {
                             : kOmit;
                }},
     Option{.name = "depth-maps",
-           .value = "FOLDER|estimate:NEAR:FAR[:PLANES]",
+           .value = "FOLDER|estimate[:NEAR:FAR[:PLANES]]",
            .help = "Light fields: one PFM depth map per camera (depth along its optical axis, +inf where nothing was "
                    "seen), named after its image (cam.png -> cam.pfm), or estimated from the images by a plane sweep "
-                   "over depths NEAR to FAR along the cameras' axes (PLANES planes, default 64; "
-                   "mpr::estimate_depth_maps, docs/lightfield.md); read by --interp depth, --all-in-focus, --focus-at "
-                   "and --write-depth.",
+                   "over depths NEAR to FAR along the cameras' axes (PLANES planes, default 64; without NEAR:FAR the "
+                   "range the calibration and the images give, and an object on an empty backdrop kept inside its "
+                   "visual hull; mpr::estimate_scene_depth, docs/depth.md); read by --interp depth, --all-in-focus, "
+                   "--focus-at and --write-depth.",
            .example = "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
                       "estimate:0.44:0.72",
            .group = lf,
@@ -464,18 +466,20 @@ const std::array kOptions = {
                    "over --frames N). Needs --spp N > 1; focused on the image plane unless --focus.",
            .example = "--view A --spp 32 --aperture disc:0.3 --focus 9",
            .group = image,
-           .save = [](const SaveContext& c) {
-             return c.job.aperture ? Saved(aperture_text(*c.job.aperture, c.time)) : kOmit;
-           }},
+           .save =
+               [](const SaveContext& c) {
+                 return c.job.aperture ? Saved(aperture_text(*c.job.aperture, c.time)) : kOmit;
+               }},
     Option{.name = "lens-distance",
            .value = "D",
            .help = "With --aperture: the lens plane's distance behind the image plane, world units.",
            .default_text = "the image plane's width",
            .example = "--view A --spp 32 --aperture disc:0.3 --lens-distance 4 --focus 9",
            .group = image,
-           .save = [](const SaveContext& c) {
-             return c.job.aperture && c.job.aperture->distance ? Saved(num(*c.job.aperture->distance)) : kOmit;
-           }},
+           .save =
+               [](const SaveContext& c) {
+                 return c.job.aperture && c.job.aperture->distance ? Saved(num(*c.job.aperture->distance)) : kOmit;
+               }},
     Option{.name = "focus",
            .value = "D|DU,DV",
            .help = "With --aperture: focus at distance D in front of the image plane (a refocused thin lens), or two "
@@ -483,12 +487,13 @@ const std::array kOptions = {
                    "names the focus.",
            .example = "--view G --spp 32 --aperture polygon6:0.4 --focus 4,12 --print-camera",
            .group = image,
-           .save = [](const SaveContext& c) {
-             if (!c.job.aperture || c.job.aperture->focus.empty()) return kOmit;
-             std::string focus;
-             for (const double d : c.job.aperture->focus) focus += (focus.empty() ? "" : ",") + num(d);
-             return Saved(focus);
-           }},
+           .save =
+               [](const SaveContext& c) {
+                 if (!c.job.aperture || c.job.aperture->focus.empty()) return kOmit;
+                 std::string focus;
+                 for (const double d : c.job.aperture->focus) focus += (focus.empty() ? "" : ",") + num(d);
+                 return Saved(focus);
+               }},
     Option{.name = "labels",
            .help = "Label each tile with its view, GLC type (mpr::glc::classify) and, with --aperture, its focus "
                    "(mpr::glc::classify_focus).",
