@@ -12,15 +12,23 @@
 // estimated depth of the held-out camera's nearest remaining view is written as a colour-mapped
 // preview (loo_<set>_<view>_depth_map.png).
 //
+// A second geometry-aware row ("depth_proxy_defaults") uses no per-set setting at all:
+// mpr::estimate_scene_depth with its defaults (the sweep range from the calibration and the
+// images, an empty backdrop noticed and its silhouettes' visual hull applied) and a DepthProxy
+// whose radius is mpr::depth_proxy_radius (twice the camera spacing), the rest at its defaults;
+// what it found is printed per held-out view.
+//
 // The set-ups (held-out views, focal planes, cylinder radii) are in
 // benchmarks/leave_one_out_setup.hpp, shared with benchmarks/error_vs_time.cpp.
 //
-// usage: leave_one_out [DATA_DIR] [OUTPUT_FOLDER]   (writes loo_<set>_<view>_<policy>.png)
+// usage: leave_one_out [DATA_DIR] [OUTPUT_FOLDER] [SETS]   (writes loo_<set>_<view>_<policy>.png;
+//        SETS: a comma-separated choice of chess, temple, dino; default all three)
 #include "../benchmarks/leave_one_out_setup.hpp"
 #include "lightfield_common.hpp"
 
 #include <mpr/io/depth_maps.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/scene_depth.hpp>
 #include <mpr/lightfield/visual_hull.hpp>
 
 #include <algorithm>
@@ -141,23 +149,51 @@ void run_set(const mpr_loo::LooSetup<T>& setup, const mpr::CameraFrameSet<T, Px>
     rows.push_back(evaluate(set, view, "depth_proxy",
                             mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(with_depth, setup.depth_proxy), held, depth,
                             all.image(k), out));
+    // The same with the library's defaults only.
+    mpr::SceneDepth found;
+    const double auto_s = seconds([&] { found = mpr::estimate_scene_depth(*others); });
+    mpr::DepthProxy proxy;
+    proxy.radius = mpr::depth_proxy_radius(*others);
+    std::printf("%s %s: defaults only: depth in %.2f s, range %g..%g (%s), backdrop %s, proxy radius %g\n", set.c_str(),
+                view.c_str(), auto_s, found.range.near, found.range.far,
+                found.range.source == mpr::SweepRangeSource::matches ? "sparse matches" : "common frustum",
+                found.backdrop
+                    ? ("rgb(" + std::to_string(found.backdrop->colour.r) + "," +
+                       std::to_string(found.backdrop->colour.g) + "," + std::to_string(found.backdrop->colour.b) +
+                       ") within " + std::to_string(found.backdrop->tolerance))
+                          .c_str()
+                    : "none",
+                proxy.radius);
+    mpr::write_depth_preview(out / ("loo_" + set + "_" + view + "_depth_map_defaults.png"), found.maps[nearest].view());
+    const auto with_found = std::make_shared<const mpr::CameraFrameSet<T, Px>>(
+        mpr::CameraFrameSet<T, Px>(*others).with_depth(std::move(found.maps)));
+    rows.push_back(evaluate(set, view, "depth_proxy_defaults",
+                            mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(with_found, proxy), held, depth,
+                            all.image(k), out));
   }
 }
 
 } // namespace
 
 int main(int argc, char** argv) try {
-  (void)positional_args(argc, argv);
+  const std::vector<std::string> args = positional_args(
+      argc, argv, {"SETS"}, "  SETS           chess, temple and/or dino, comma-separated (default: all)\n");
   const std::filesystem::path data = data_dir(argc > 1 ? argv[1] : nullptr);
   const std::filesystem::path out = output_dir(argc, argv);
+  const std::string sets = args.size() > 2 ? "," + args[2] + "," : ",chess,temple,dino,";
+  const auto runs = [&](const char* name) { return sets.find("," + std::string(name) + ",") != std::string::npos; };
   std::vector<Row> rows;
-  {
+  if (runs("chess")) {
     const auto chess = load_chess(data);
     run_set<mpr::Rgb8>(mpr_loo::chess_setup<T>(), *chess, out, rows);
   }
-  {
+  if (runs("temple")) {
     const auto temple = mpr::read_par_file<T>(mpr_loo::temple_par_file<T>(data));
     run_set<mpr::Rgb8>(mpr_loo::temple_setup<T>(), temple, out, rows);
+  }
+  if (runs("dino")) {
+    const auto dino = mpr::read_par_file<T>(mpr_loo::dino_par_file<T>(data));
+    run_set<mpr::Rgb8>(mpr_loo::dino_setup<T>(), dino, out, rows);
   }
   std::printf("\n| data set | held-out view | policy | PSNR (dB) | SSIM | render (ms) |\n|---|---|---|---|---|---|\n");
   for (const Row& r : rows)

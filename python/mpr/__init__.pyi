@@ -96,7 +96,7 @@ def render_views(frames: FrameSet, views: Sequence[View], width: int, height: in
                  out: Optional[npt.NDArray[Union[np.uint8, np.float32]]] = None, aperture: str = "none",
                  aperture_size: float = 0.0, lens_distance: float = 0.0,
                  focus: float = 0.0) -> npt.NDArray[Union[np.uint8, np.float32]]: ...
-def estimate_depth(frames: FrameSet, camera: int, near: float, far: float, planes: int = 64,
+def estimate_depth(frames: FrameSet, camera: int, near: float = 0.0, far: float = 0.0, planes: int = 64,
                    selection: str = "axes", neighbours: int = 16, best: int = 8, truncation: float = 0.3,
                    spatial: float = 12.0, range: float = 0.2, threads: int = 0) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
 

@@ -80,15 +80,16 @@ void bind_depth(py::module_& m) {
         }
         return py::make_tuple(to_array(e.depth), to_array(e.confidence));
       },
-      py::arg("frames"), py::arg("camera"), py::arg("near"), py::arg("far"), py::arg("planes") = kSweep.planes,
-      py::arg("selection") = "axes", py::arg("neighbours") = kSweep.neighbours, py::arg("best") = kSweep.best,
-      py::arg("truncation") = kSweep.truncation, py::arg("spatial") = kSweep.spatial, py::arg("range") = kSweep.range,
-      py::arg("threads") = 0,
+      py::arg("frames"), py::arg("camera"), py::arg("near") = kSweep.near, py::arg("far") = kSweep.far,
+      py::arg("planes") = kSweep.planes, py::arg("selection") = "axes", py::arg("neighbours") = kSweep.neighbours,
+      py::arg("best") = kSweep.best, py::arg("truncation") = kSweep.truncation, py::arg("spatial") = kSweep.spatial,
+      py::arg("range") = kSweep.range, py::arg("threads") = 0,
       "Plane-sweep depth of camera `camera` (mpr::estimate_depth, defaults as mpr::PlaneSweepConfig): against up to "
       "`neighbours` cameras, those along the camera's image row and column (`selection='axes'`, falling back to the "
       "nearest where the array has no such axes) or the nearest (`'nearest'`), the `best` costs of each plane "
       "kept; returns (depth, confidence), two H x W float32 arrays; depth along the camera's optical axis in world "
-      "units within [near, far], confidence in [0, 1]. The GIL is released while sweeping.");
+      "units within [near, far], confidence in [0, 1]. near = far = 0 (the default): the range from the calibration "
+      "and the images (mpr::sweep_range). The GIL is released while sweeping.");
   m.def(
       "read_hci",
       [](const std::filesystem::path& folder) {

@@ -219,13 +219,15 @@ TEST_CASE("plane sweep settings are checked, naming the field", "[depth_estimati
       CHECK(e.parameter() == parameter);
     }
   };
-  CHECK_NOTHROW(mpr::validate(mpr::PlaneSweepConfig{}));
+  CHECK_NOTHROW(mpr::validate(mpr::PlaneSweepConfig{})); // near = far = 0: from the calibration
   mpr::PlaneSweepConfig c;
-  c.near = 0;
-  refuse(c, "near");
-  c.near = 1e-310; // 1 / near overflows: every plane would be at depth 0
+  c.far = 100;
+  refuse(c, "near"); // near 0 with a far given
+  c.near = 1e-310;   // 1 / near overflows: every plane would be at depth 0
   refuse(c, "near");
   c = {};
+  c.near = 1;
+  refuse(c, "far"); // far 0 with a near given
   c.far = c.near;
   refuse(c, "far");
   c.far = 1e40; // beyond float: the maps would hold +inf, "nothing seen"

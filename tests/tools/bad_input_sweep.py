@@ -499,7 +499,7 @@ def render_cases():
     add("depth_maps_absent_folder", "--depth-maps", "fx/no_such_maps", *lf)
     add("depth_maps_file", "--depth-maps", "fx/plain_file", *lf)
     add("depth_maps_fifo", "--depth-maps", "fx/fifo", *lf)
-    for v in ["estimate", "estimate:", "estimate:1", "estimate:3:1", "estimate:0:1", "estimate:-1:2", "estimate:1:2:0",
+    for v in ["estimate:", "estimate:1", "estimate:3:1", "estimate:0:1", "estimate:-1:2", "estimate:1:2:0",
               "estimate:1:2:1", "estimate:1:2:x", "estimate:nan:2", "estimate:1:inf", "estimate:1:2:100000000",
               "estimate:1:2:4:5", "estimate:1e-39:2", "guess:1:2"]:
         add("depth_maps=" + v, "--depth-maps", v, *lf)

@@ -240,7 +240,12 @@ TEST_CASE("mpr-render --depth-maps estimate: the depth of a textured plane estim
 
   // Bad forms name --depth-maps (or --save-depth-maps) and say what is expected.
   const std::string par = (dir / "tiny_par.txt").string();
-  for (const char* bad : {"estimate", "estimate:1", "estimate:3:1", "estimate:0:2", "estimate:1:2:1", "estimate:1:x",
+  // `estimate` alone takes the range from the calibration (mpr::sweep_range): near = far = 0.
+  const mpr_cli::Job plain = job_of({"--par", par, "--depth-maps", "estimate", "--all-in-focus"});
+  REQUIRE(plain.depth_estimate.has_value());
+  CHECK(plain.depth_estimate->near == 0);
+  CHECK(plain.depth_estimate->far == 0);
+  for (const char* bad : {"estimate:", "estimate:1", "estimate:3:1", "estimate:0:2", "estimate:1:2:1", "estimate:1:x",
                           "estimate:1:2:64:9"}) {
     INFO(bad);
     CHECK_THROWS_WITH(job_of({"--par", par, "--depth-maps", bad, "--all-in-focus"}), Catch::Contains("--depth-maps"));
@@ -269,8 +274,9 @@ TEST_CASE("mpr-render --sweep sets the plane sweep of estimated depth maps, nami
   std::ostringstream info;
   (void)mpr_cli::render_frames(job, &info);
   INFO(info.str());
-  CHECK_THAT(info.str(), Catch::Contains("48 planes from 1 to 4; neighbours 2, best 1, truncation 0.2, spatial 0, "
-                                         "range 0.5"));
+  CHECK_THAT(info.str(),
+             Catch::Contains("48 planes from 1 to 4, as given; neighbours 2, best 1, truncation 0.2, spatial 0, "
+                             "range 0.5"));
   // The settings reach the sweep: the saved maps are the library's estimate with them (a pixel
   // may differ where the two runs shared a camera's rows among threads differently), and
   // differ from the defaults' (no aggregation, one cost kept).

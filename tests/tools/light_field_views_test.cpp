@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -65,6 +66,28 @@ std::filesystem::path stanford_folder() {
       mpr::write_png(dir / name, img);
     }
   return dir;
+}
+
+/// Eight 40 x 30 cameras on a ring of radius 1 in the plane y = 0, each looking at the origin
+/// (focal 40 pixels), camera i's image the flat colour (30 i, 255 - 30 i, 90): ring_par.txt.
+std::filesystem::path ring_folder() {
+  const std::filesystem::path dir = mpr_tools_test::temp_folder("ring");
+  std::ofstream par(dir / "ring_par.txt");
+  par << "8\n";
+  for (int i = 0; i < 8; ++i) {
+    const double a = 2 * 3.141592653589793 * i / 8;
+    const double c[3] = {std::cos(a), 0, std::sin(a)};
+    const double z[3] = {-c[0], 0, -c[2]}, y[3] = {0, 1, 0};
+    const double x[3] = {y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]};
+    const std::string name = "ring" + std::to_string(i) + ".png";
+    const auto code = static_cast<std::uint8_t>(30 * i);
+    mpr::write_png(dir / name, Image(40, 30, mpr::Rgb8{code, static_cast<std::uint8_t>(255 - code), 90}));
+    par << name << " 40 0 19.5 0 40 14.5 0 0 1 ";
+    for (const double* row : {x, y, z}) par << row[0] << ' ' << row[1] << ' ' << row[2] << ' ';
+    for (const double* row : {x, y, z}) par << -(row[0] * c[0] + row[1] * c[1] + row[2] * c[2]) << ' ';
+    par << '\n';
+  }
+  return dir / "ring_par.txt";
 }
 
 const std::string nine = "A,B,C,D,E,F,G,H,I";
@@ -222,5 +245,36 @@ TEST_CASE("light-field views: Stanford Chess, nine letters inside the array", "[
       CHECK(percent >= 3);
       CHECK(std::abs(100 * share - percent) <= 2); // the black pixels, as announced
     }
+  }
+}
+
+TEST_CASE("light-field views: a ring's reference view shows a camera; the synthetic aperture there warns of ghosts",
+          "[tools][lf_views]") {
+  const std::string par = ring_folder().string();
+  const auto is_camera_colour = [](mpr::Rgb8 p) {
+    for (int i = 0; i < 8; ++i)
+      if (p == mpr::Rgb8{static_cast<std::uint8_t>(30 * i), static_cast<std::uint8_t>(255 - 30 * i), 90}) return true;
+    return false;
+  };
+  {
+    // No --interp: the nearest camera, so the reference view is one camera's own colour (the
+    // synthetic aperture would average all eight into a colour no camera has), no warning.
+    const mpr_cli::Job plain = job_of({"--par", par, "--size", "40x30"});
+    const mpr_cli::Loaded<float> l = mpr_cli::load<float>(plain);
+    CHECK(mpr_cli::with_array_defaults(plain, l).interpolation == mpr_cli::Interpolation::nearest);
+    std::ostringstream info, warnings;
+    const Image image = render(plain, info, warnings);
+    CHECK(is_camera_colour(image(20, 15)));
+    CHECK(warnings.str().find("ghosts") == std::string::npos);
+  }
+  {
+    // --interp synthetic asked for: a blend no camera shows, and one line naming the fix.
+    std::ostringstream info, warnings;
+    const Image image = render(job_of({"--par", par, "--size", "40x30", "--interp", "synthetic"}), info, warnings);
+    CHECK_FALSE(is_camera_colour(image(20, 15)));
+    const std::string w = warnings.str();
+    INFO(w);
+    CHECK(w.find("renders ghosts; use --interp nearest, or --interp depth with --depth-maps estimate\n") !=
+          std::string::npos);
   }
 }

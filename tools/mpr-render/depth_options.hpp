@@ -15,15 +15,18 @@
 
 namespace mpr_cli {
 
-/// `--depth-maps estimate:NEAR:FAR[:PLANES]`: the plane sweep of `mpr::estimate_depth_maps` over
-/// depths NEAR to FAR along each camera's axis (world units), PLANES planes (default 64), the
-/// other settings at their defaults. Throws argument_error naming --depth-maps.
+/// `--depth-maps estimate[:NEAR:FAR[:PLANES]]`: the plane sweep of `mpr::estimate_scene_depth` over
+/// depths NEAR to FAR along each camera's axis (world units; without them, the range the
+/// calibration and the images give, `mpr::sweep_range`), PLANES planes (default 64), the other
+/// settings at their defaults. Throws argument_error naming --depth-maps.
 [[nodiscard]] inline mpr::PlaneSweepConfig parse_depth_estimate(const std::string& text) {
   const std::vector<std::string> f = split(text, ':');
+  if (f[0] == "estimate" && f.size() == 1) return {}; // near = far = 0: from the calibration
   if (f[0] != "estimate" || f.size() < 3 || f.size() > 4)
     throw mpr::argument_error("--depth-maps", "'" + text +
-                                                  "': give a FOLDER of PFMs or estimate:NEAR:FAR[:PLANES] (the depth "
-                                                  "range to sweep along the cameras' axes, e.g. estimate:600:1400)");
+                                                  "': give a FOLDER of PFMs, estimate (the depth range from the "
+                                                  "calibration) or estimate:NEAR:FAR[:PLANES] (the depth range to "
+                                                  "sweep along the cameras' axes, e.g. estimate:600:1400)");
   mpr::PlaneSweepConfig c;
   c.near = parse_number(f[1], "--depth-maps");
   c.far = parse_number(f[2], "--depth-maps");

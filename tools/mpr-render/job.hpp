@@ -100,6 +100,7 @@ struct Job {
   /// Light fields: called after each image is loaded with (loaded, total); not set from the
   /// command line (main.cpp draws a progress line on a terminal with it).
   std::function<void(std::size_t loaded, std::size_t total)> load_progress;
+  std::function<void(const mpr::DepthProgress&)> depth_progress; ///< --depth-maps estimate's stages
   double zoom = 1; ///< light fields: the view's focal-plane rectangle scaled by 1 / zoom
   /// Light fields: frames box-filtered to 1/N of their scale before rendering (prefilter.hpp);
   /// nullopt: `auto`, N from the output pixels' footprint on the frames.

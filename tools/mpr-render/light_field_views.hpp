@@ -54,11 +54,14 @@ double camera_spacing(const Job& job, const Loaded<T>& l) {
 }
 
 /// The job with the array defaults filled in: without --interp, the reference view (refocusing)
-/// gets the synthetic aperture and any other view a cylinder aperture (the nearest camera on a
-/// ring or unstructured set); without --radius, the cylinder's radius is the camera spacing (a
-/// light field's median nearest-neighbour distance, or the --raster grid's cell width; twice that
-/// for the depth proxy), so a ray blends the few cameras around its crossing. The radius is set
-/// under every interpolation (one default radius: mpr-view's cylinder key starts from it).
+/// of a planar array gets the synthetic aperture and any other view a cylinder aperture; every
+/// view of a ring or unstructured set gets the nearest camera (its reference view is the
+/// reference camera's image, where the synthetic aperture would average cameras that see the
+/// object from angles far apart into ghosts); without --radius, the cylinder's radius is the
+/// camera spacing (a light field's median nearest-neighbour distance, or the --raster grid's cell
+/// width; twice that for the depth proxy), so a ray blends the few cameras around its crossing.
+/// The radius is set under every interpolation (one default radius: mpr-view's cylinder key
+/// starts from it).
 template <std::floating_point T>
 Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   const bool array = l.frames != nullptr || job.raster.has_value();
@@ -66,8 +69,9 @@ Job with_array_defaults(const Job& job, const Loaded<T>& l) {
   Job out = job;
   // A ring or unstructured set is sparse in angle (Middlebury's sparse rings: 22.5 degrees between
   // cameras): blending neighbours at one focal plane ghosts, the nearest camera shows seams instead.
-  if (!job.interpolation_given && !job.radius_given && detail::any_other_view(job))
-    out.interpolation = l.footprint && !l.footprint->planar ? Interpolation::nearest : Interpolation::cylinder;
+  const bool ring = l.footprint && !l.footprint->planar;
+  if (!job.interpolation_given && !job.radius_given && (ring || detail::any_other_view(job)))
+    out.interpolation = ring ? Interpolation::nearest : Interpolation::cylinder;
   // Every interpolation gets the spacing radius, so that one switched to the cylinder later (the
   // viewer's keys) starts from the same default radius as --interp cylinder.
   if (!job.radius_given) {
@@ -87,6 +91,10 @@ void warn_job(std::ostream& warn, const Job& job, const Loaded<T>& l) {
   if (job.interpolation == Interpolation::synthetic && detail::any_other_view(job))
     warn << "mpr-render: warning: --interp synthetic averages every camera at the focal-plane point and ignores "
             "the ray, so all views on one focal plane render alike; use --interp nearest or cylinder\n";
+  if (l.footprint && !l.footprint->planar && job.interpolation == Interpolation::synthetic)
+    warn << "mpr-render: warning: the cameras stand on a ring or around the scene: --interp synthetic averages "
+            "cameras that see it from angles far apart, so it renders ghosts; use --interp nearest, or --interp depth "
+            "with --depth-maps estimate\n";
   if (l.footprint && detail::any_other_view(job)) {
     // Neighbouring cameras as seen from the focal plane: beyond a couple of degrees, whatever lies
     // off that plane lands in different places in neighbouring cameras.

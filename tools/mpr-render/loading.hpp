@@ -11,6 +11,7 @@
 #include <mpr/lightfield/array_view.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/scene_depth.hpp>
 #include <mpr/scene.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
 #include <mpr/scene/obj_loader.hpp>
@@ -77,6 +78,52 @@ inline std::filesystem::path colmap_images(const Job& job) {
                                           "../../images/): give --colmap-images FOLDER");
 }
 
+/// --depth-maps estimate[:NEAR:FAR[:PLANES]]: the depth maps of `set` (mpr::estimate_scene_depth
+/// with the job's sweep, threads and progress), and lines saying what was estimated and found
+/// appended to `notes`. Throws argument_error naming --depth-maps when the sweep's working memory
+/// exceeds its limit, else as estimate_scene_depth.
+template <std::floating_point T>
+std::vector<mpr::Image<float>> estimated_depth_maps(const Job& job, const mpr::CameraFrameSet<T>& set,
+                                                    std::vector<std::string>& notes) {
+  mpr::SceneDepthConfig config;
+  config.sweep = *job.depth_estimate;
+  config.sweep.threads = job.threads;
+  config.sweep.progress = job.depth_progress;
+  const auto start = std::chrono::steady_clock::now();
+  mpr::SceneDepth found;
+  try {
+    found = mpr::estimate_scene_depth(set, config);
+  } catch (const mpr::argument_error& e) {
+    // The sweep's working memory (PlaneSweepConfig::memory_limit, 2 GiB): name the option.
+    if (e.parameter() != "memory_limit") throw;
+    std::string why = e.what();
+    why.erase(0, why.find(": ", why.find("memory_limit")) + 2);
+    throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
+  }
+  const mpr::PlaneSweepConfig& sweep = config.sweep;
+  const char* source = found.range.source == mpr::SweepRangeSource::given ? "as given"
+                       : found.range.source == mpr::SweepRangeSource::matches
+                           ? "found from sparse matches"
+                           : "found from the cameras' common frustum";
+  char note[384];
+  std::snprintf(note, sizeof note,
+                "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g, %s; neighbours %d, "
+                "best %d, truncation %g, spatial %g, range %g)",
+                set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                sweep.planes, found.range.near, found.range.far, source, sweep.neighbours, sweep.best, sweep.truncation,
+                sweep.spatial, sweep.range);
+  notes.emplace_back(note);
+  if (found.backdrop) {
+    const mpr::Backdrop& b = *found.backdrop;
+    std::snprintf(note, sizeof note,
+                  "an object on an empty backdrop: rgb(%d, %d, %d) within %d codes on %zu of %zu views' borders "
+                  "(%.0f%% of the images); depth kept inside the visual hull of its silhouettes",
+                  b.colour.r, b.colour.g, b.colour.b, b.tolerance, b.views, b.total, 100 * b.image_share);
+    notes.emplace_back(note);
+  }
+  return std::move(found.maps);
+}
+
 } // namespace detail
 
 /// --save-depth-maps FOLDER: writes the estimated depth maps of `l` (after the preflight check, so
@@ -106,27 +153,7 @@ Loaded<T> load(const Job& job) {
       std::vector<mpr::Image<float>> maps = mpr::read_depth_maps(*job.depth_maps, set, limits);
       set = std::move(set).with_depth(std::move(maps));
     } else if (job.depth_estimate) {
-      mpr::PlaneSweepConfig sweep = *job.depth_estimate;
-      sweep.threads = job.threads;
-      const auto start = std::chrono::steady_clock::now();
-      std::vector<mpr::Image<float>> maps;
-      try {
-        maps = mpr::estimate_depth_maps(set, sweep);
-      } catch (const mpr::argument_error& e) {
-        // The sweep's working memory (PlaneSweepConfig::memory_limit, 2 GiB): name the option.
-        if (e.parameter() != "memory_limit") throw;
-        std::string why = e.what();
-        why.erase(0, why.find(": ", why.find("memory_limit")) + 2);
-        throw mpr::argument_error("--depth-maps", "estimate: " + why + "; give depth maps as files instead");
-      }
-      char note[256];
-      std::snprintf(note, sizeof note,
-                    "estimated the depth maps of %zu cameras in %.2f s (%d planes from %g to %g; neighbours %d, best "
-                    "%d, truncation %g, spatial %g, range %g)",
-                    set.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    sweep.planes, sweep.near, sweep.far, sweep.neighbours, sweep.best, sweep.truncation, sweep.spatial,
-                    sweep.range);
-      l.notes.emplace_back(note);
+      std::vector<mpr::Image<float>> maps = detail::estimated_depth_maps(job, set, l.notes);
       set = std::move(set).with_depth(std::move(maps));
     }
     return std::make_shared<const mpr::CameraFrameSet<T>>(std::move(set));

@@ -57,6 +57,26 @@ void loading_progress(std::size_t done, std::size_t count) {
   std::fflush(stderr);
 }
 
+/// The progress of a depth estimation (--depth-maps estimate): on a terminal a bar for each stage
+/// on stderr, replaced in place, as Progress draws an animation's, ending in the stage's line;
+/// otherwise (a batch job's log) one line a stage when it ends, with its time, in the same form
+/// as an animation's frame lines but on stdout, beside the estimate's summary line, so that a
+/// run that fails after the estimate (a full disk) still ends in exactly one line on stderr.
+void depth_progress_terminal(const mpr::DepthProgress& p) {
+  constexpr std::size_t width = 40;
+  const std::size_t filled = p.total > 0 ? p.done * width / p.total : width;
+  std::fprintf(stderr, "\rdepth %-8s [%s%s] %zu/%zu, %.1f s", p.stage, std::string(filled, '#').c_str(),
+               std::string(width - filled, ' ').c_str(), p.done, p.total, p.seconds);
+  if (p.done == p.total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+void depth_progress_lines(const mpr::DepthProgress& p) {
+  if (p.done != p.total) return;
+  std::printf("depth stage %s done (%zu/%zu), %.1f s\n", p.stage, p.done, p.total, p.seconds);
+  std::fflush(stdout);
+}
+
 /// The frames of this run (all, or those of --shard K/N).
 int frames_of_run(const mpr_cli::Job& job) {
   if (!job.shard) return job.frames;
@@ -96,10 +116,11 @@ int main(int argc, char** argv) try {
     }
   mpr_cli::Job job = mpr_cli::parse_job(argc, argv);
   if (isatty(STDERR_FILENO)) job.load_progress = loading_progress;
+  job.depth_progress = isatty(STDERR_FILENO) ? depth_progress_terminal : depth_progress_lines;
   mpr_cli::check_output_folder(job.output, "--output");
   if (job.write_depth) mpr_cli::check_output_folder(*job.write_depth, "--write-depth");
-  // Before the plane sweep, not after it: a folder that cannot be made costs no estimate.
-  if (job.save_depth_maps) mpr_cli::check_output_folder(*job.save_depth_maps / "x", "--save-depth-maps");
+  // Before the plane sweep, not after it: a folder that cannot be made or written costs no estimate.
+  if (job.save_depth_maps) mpr_cli::probe_output_folder(*job.save_depth_maps, "--save-depth-maps");
   const bool animation = job.frames >= 1;
   const int run_frames = frames_of_run(job);
   const Progress progress(job.frames);

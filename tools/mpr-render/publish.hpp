@@ -8,6 +8,10 @@
 #include <mpr/core/error.hpp>
 #include <mpr/io/file_write.hpp>
 
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <ostream>
 #include <span>
@@ -32,6 +36,33 @@ inline void check_output_folder(const std::filesystem::path& path, const std::st
   if (!above.empty() && !std::filesystem::is_directory(above, ec))
     throw mpr::argument_error(option, "'" + above.string() + "': no such folder (only the last folder of '" +
                                           path.string() + "' is created)");
+}
+
+/// The folder `folder` takes files now: checked as check_output_folder(folder / "x", option),
+/// then made when missing and a probe file created in it exclusively, both removed again. A
+/// preflight for output written after long work (--save-depth-maps after the plane sweep): a
+/// folder that refuses files fails the run at once. Throws as check_output_folder, or io_error
+/// naming the folder.
+inline void probe_output_folder(const std::filesystem::path& folder, const std::string& option) {
+  check_output_folder(folder / "x", option);
+  std::error_code ec;
+  bool made = false;
+  if (!std::filesystem::is_directory(folder, ec)) {
+    if (!std::filesystem::create_directory(folder, ec))
+      throw mpr::io_error(folder.string(), "cannot create the folder: " + (ec ? ec.message() : "refused"));
+    made = true;
+  }
+  const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+  const std::filesystem::path probe = folder / (".mpr-probe-" + std::to_string(stamp));
+  std::FILE* file = std::fopen(probe.c_str(), "wbx"); // x: never an existing file
+  const int failure = file == nullptr ? errno : 0;
+  if (file != nullptr) {
+    std::fclose(file);
+    std::filesystem::remove(probe, ec);
+  }
+  if (made) std::filesystem::remove(folder, ec);
+  if (failure != 0)
+    throw mpr::io_error(folder.string(), std::string("cannot write into the folder: ") + std::strerror(failure));
 }
 
 /// Creates the folder of `path` when check_output_folder(path, option) allows it (only the last

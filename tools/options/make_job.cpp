@@ -202,13 +202,13 @@ void read_depth_maps(Job& job, const OptionValues& args) {
   if (const auto v = args.get("sweep")) {
     if (!job.depth_estimate)
       throw mpr::argument_error("--sweep", "sets the plane sweep of estimated depth maps: needs --depth-maps "
-                                           "estimate:NEAR:FAR");
+                                           "estimate[:NEAR:FAR]");
     parse_sweep(*v, *job.depth_estimate);
     job.sweep_arg = *v;
   }
   if (const auto v = args.get("save-depth-maps")) {
     if (!job.depth_estimate)
-      throw mpr::argument_error("--save-depth-maps", "saves estimated maps: needs --depth-maps estimate:NEAR:FAR");
+      throw mpr::argument_error("--save-depth-maps", "saves estimated maps: needs --depth-maps estimate[:NEAR:FAR]");
     job.save_depth_maps = *v;
     // The Stanford reader refuses a folder holding out_*.pfm files beside the images.
     std::error_code ec;
@@ -235,7 +235,7 @@ void read_depth_outputs(Job& job, const OptionValues& args, const JobContext& co
                                               "ray-cast scene is sharp at every depth)");
     if (light_field && !job.has_depth_maps())
       throw mpr::argument_error(
-          "--focus-at", "needs --depth-maps FOLDER or estimate:NEAR:FAR (the depth under the pixel comes from the "
+          "--focus-at", "needs --depth-maps FOLDER or estimate[:NEAR:FAR] (the depth under the pixel comes from the "
                         "cameras' depth maps)");
   }
   if (const auto v = args.get("write-depth")) {
@@ -246,8 +246,9 @@ void read_depth_outputs(Job& job, const OptionValues& args, const JobContext& co
       throw mpr::argument_error("--write-depth", "writes the depth of one image, not of an animation (--frames)");
     if (light_field && !job.has_depth_maps())
       throw mpr::argument_error(
-          "--write-depth", "needs --depth-maps FOLDER or estimate:NEAR:FAR for a light field (its depth comes from the "
-                           "cameras' depth maps)");
+          "--write-depth",
+          "needs --depth-maps FOLDER or estimate[:NEAR:FAR] for a light field (its depth comes from the "
+          "cameras' depth maps)");
     if (depth_preview_path(*job.write_depth) == job.output)
       throw mpr::argument_error("--write-depth", "its preview " + depth_preview_path(*job.write_depth).string() +
                                                      " would overwrite --output");
@@ -264,8 +265,9 @@ void read_depth_outputs(Job& job, const OptionValues& args, const JobContext& co
     job.proxy_arg = *v;
   }
   if (job.interpolation == Interpolation::depth && light_field && !job.has_depth_maps())
-    throw mpr::argument_error(job.all_in_focus ? "--all-in-focus" : "--interp depth",
-                              "needs --depth-maps FOLDER (one PFM per camera) or estimate:NEAR:FAR for a light field");
+    throw mpr::argument_error(
+        job.all_in_focus ? "--all-in-focus" : "--interp depth",
+        "needs --depth-maps FOLDER (one PFM per camera) or estimate[:NEAR:FAR] for a light field");
 }
 
 /// The interpolation's radius, the focal plane and the light field's geometry.

@@ -129,7 +129,8 @@ constexpr std::array kOptions = {
                    "or depth proxy (the surface from per-camera depth maps, the cameras that see it blended by angle; "
                    "--raster keeps the rasterizer's depth, light fields need --depth-maps; --radius: the cameras "
                    "considered, default twice the spacing).",
-           .default_text = "synthetic",
+           .default_text = "synthetic for a planar array's reference view, cylinder for its other views, nearest for "
+                           "every view of a ring or unstructured set",
            .example = "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --interp cylinder --radius 0.3",
            .kind = choice,
            .group = lf,
@@ -157,12 +158,13 @@ constexpr std::array kOptions = {
                             : kOmit;
                }},
     Option{.name = "depth-maps",
-           .value = "FOLDER|estimate:NEAR:FAR[:PLANES]",
+           .value = "FOLDER|estimate[:NEAR:FAR[:PLANES]]",
            .help = "Light fields: one PFM depth map per camera (depth along its optical axis, +inf where nothing was "
                    "seen), named after its image (cam.png -> cam.pfm), or estimated from the images by a plane sweep "
-                   "over depths NEAR to FAR along the cameras' axes (PLANES planes, default 64; "
-                   "mpr::estimate_depth_maps, docs/lightfield.md); read by --interp depth, --all-in-focus, --focus-at "
-                   "and --write-depth.",
+                   "over depths NEAR to FAR along the cameras' axes (PLANES planes, default 64; without NEAR:FAR the "
+                   "range the calibration and the images give, and an object on an empty backdrop kept inside its "
+                   "visual hull; mpr::estimate_scene_depth, docs/depth.md); read by --interp depth, --all-in-focus, "
+                   "--focus-at and --write-depth.",
            .example = "--par $MPR_DATA_DIR/middlebury/templeSparseRing/templeSR_par.txt --all-in-focus --depth-maps "
                       "estimate:0.44:0.72",
            .group = lf,

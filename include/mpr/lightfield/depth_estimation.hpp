@@ -21,12 +21,15 @@
 #include <mpr/lightfield/detail/sweep_row.hpp>
 #include <mpr/lightfield/detail/sweep_workspace.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/sweep_range.hpp>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -54,11 +57,24 @@ enum class NeighbourSelection {
 /// (`NeighbourSelection::axes`), degrees.
 inline constexpr double kSweepAxisDegrees = 10.0;
 
+/// Where a depth estimation stands, for `PlaneSweepConfig::progress`.
+struct DepthProgress {
+  /// "range" (the sweep range from the calibration, `sweep_range`), "sweep" (the cameras' plane
+  /// sweeps), or a later stage of a caller (`estimate_scene_depth`: "backdrop", "hull").
+  const char* stage = "";
+  /// Units of the stage done (cameras of "sweep") and in all; done == total ends the stage.
+  std::size_t done = 0;
+  std::size_t total = 0;
+  /// Seconds since the stage began.
+  double seconds = 0;
+};
+
 /// Settings of `estimate_depth`. Depths are along the camera's optical axis, world units.
 struct PlaneSweepConfig {
-  /// Depth range swept, 0 < near < far, finite.
-  double near = 1;
-  double far = 100;
+  /// Depth range swept, 0 < near < far, finite; near = far = 0 (the default): from the
+  /// calibration and the images, `sweep_range` (sweep_range.hpp).
+  double near = 0;
+  double far = 0;
   /// Planes between near and far, uniform in inverse depth, 2..1024.
   int planes = 64;
   /// How the neighbours are picked (see `NeighbourSelection`).
@@ -85,6 +101,10 @@ struct PlaneSweepConfig {
   /// `estimate_depth_maps` runs no more workers at once than fit (at least one), and a camera
   /// that alone needs more is refused. Default 2 GiB.
   double memory_limit = 2.0 * (1 << 30);
+  /// Called as the estimation proceeds (`estimate_depth_maps`: once the range is found, after
+  /// each camera's sweep), one call at a time, from the caller's thread or a worker; empty: not
+  /// called. Must not throw.
+  std::function<void(const DepthProgress&)> progress;
 };
 
 /// A camera's estimated depth and, per pixel, a confidence in [0, 1]: 1 - (the best plane's
@@ -97,8 +117,12 @@ struct DepthEstimate {
 /// Checks `config`; throws `argument_error` naming the field ("near", "far", "planes",
 /// "neighbours", "best", "truncation", "spatial", "range", "memory_limit").
 inline void validate(const PlaneSweepConfig& c) {
-  if (!(c.near >= 1e-30 && c.near <= 1e30)) throw argument_error("near", "must lie in [1e-30, 1e30]");
-  if (!(c.far > c.near && c.far <= 1e30)) throw argument_error("far", "must lie beyond near, at most 1e30");
+  if (c.near == 0 && c.far == 0) {
+    // The range comes from the calibration (`with_sweep_range`).
+  } else if (!(c.near >= 1e-30 && c.near <= 1e30))
+    throw argument_error("near", "must lie in [1e-30, 1e30]");
+  else if (!(c.far > c.near && c.far <= 1e30))
+    throw argument_error("far", "must lie beyond near, at most 1e30");
   if (c.planes < 2 || c.planes > 1024) throw argument_error("planes", "must be in 2..1024");
   if (c.neighbours < 1 || c.neighbours > 32) throw argument_error("neighbours", "must be in 1..32");
   if (c.best < 1 || c.best > c.neighbours) throw argument_error("best", "must be in 1..neighbours");
@@ -330,6 +354,20 @@ template <std::floating_point T, class Px>
 
 } // namespace detail
 
+/// `config` with its depth range: as given, or for near = far = 0 `sweep_range(frames)`'s
+/// (reported to `config.progress` as the stage "range"). Throws as `sweep_range`.
+template <std::floating_point T, class Px>
+[[nodiscard]] PlaneSweepConfig with_sweep_range(const CameraFrameSet<T, Px>& frames, PlaneSweepConfig config) {
+  if (config.near != 0 || config.far != 0) return config;
+  const auto start = std::chrono::steady_clock::now();
+  const SweepRange range = sweep_range(frames);
+  config.near = range.near;
+  config.far = range.far;
+  if (config.progress)
+    config.progress({"range", 1, 1, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  return config;
+}
+
 /// The working memory, in bytes, of sweeping camera `camera` of `frames` with `config`: its
 /// buffers and its neighbours' images as planar floats (`detail::SweepWorkspace`) plus the
 /// returned depth and confidence maps. Bounded by `config.memory_limit`. Throws as
@@ -351,13 +389,14 @@ template <std::floating_point T, class Px>
 /// the MiB needed; `plane_sweep_bytes`).
 template <std::floating_point T, class Px>
 [[nodiscard]] DepthEstimate estimate_depth(const CameraFrameSet<T, Px>& frames, std::size_t camera,
-                                           const PlaneSweepConfig& config) {
-  validate(config);
+                                           const PlaneSweepConfig& given) {
+  validate(given);
   if (camera >= frames.size()) throw argument_error("camera", "index out of range");
   if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
-  const std::vector<std::size_t> order = detail::sweep_neighbours(frames, camera, config);
-  detail::check_sweep_memory(frames, camera, detail::sweep_bytes(frames, camera, order, config.best),
-                             config.memory_limit);
+  const std::vector<std::size_t> order = detail::sweep_neighbours(frames, camera, given);
+  detail::check_sweep_memory(frames, camera, detail::sweep_bytes(frames, camera, order, given.best),
+                             given.memory_limit);
+  const PlaneSweepConfig config = with_sweep_range(frames, given);
   detail::SweepWorkspace workspace;
   return detail::plane_sweep(frames, camera, order, config, config.threads, workspace);
 }
@@ -369,19 +408,22 @@ template <std::floating_point T, class Px>
 /// each camera's rows are shared too. Throws as `estimate_depth`, before any work.
 template <std::floating_point T, class Px>
 [[nodiscard]] std::vector<Image<float>> estimate_depth_maps(const CameraFrameSet<T, Px>& frames,
-                                                            const PlaneSweepConfig& config) {
-  validate(config);
+                                                            const PlaneSweepConfig& given) {
+  validate(given);
   if (frames.size() < 2) throw argument_error("frames", "a plane sweep needs at least two cameras");
   std::vector<std::vector<std::size_t>> neighbours;
-  for (std::size_t i = 0; i < frames.size(); ++i) neighbours.push_back(detail::sweep_neighbours(frames, i, config));
+  for (std::size_t i = 0; i < frames.size(); ++i) neighbours.push_back(detail::sweep_neighbours(frames, i, given));
   const int cameras = static_cast<int>(frames.size());
   // The most working memory any camera's sweep takes: as many workers as fit the limit.
   double most = 0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const double bytes = detail::sweep_bytes(frames, i, neighbours[i], config.best);
-    detail::check_sweep_memory(frames, i, bytes, config.memory_limit);
+    const double bytes = detail::sweep_bytes(frames, i, neighbours[i], given.best);
+    detail::check_sweep_memory(frames, i, bytes, given.memory_limit);
     most = std::max(most, bytes);
   }
+  const PlaneSweepConfig config = with_sweep_range(frames, given);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t finished = 0;
   const int fit = static_cast<int>(std::min(config.memory_limit / most, static_cast<double>(cameras)));
   const int total = detail::resolve_thread_count(config.threads, std::numeric_limits<int>::max());
   const int workers = std::max(1, std::min({total, cameras, fit})), inner = std::max(1, total / workers);
@@ -395,6 +437,11 @@ template <std::floating_point T, class Px>
       for (int i = next.fetch_add(1); i < cameras; i = next.fetch_add(1)) {
         const auto k = static_cast<std::size_t>(i);
         maps[k] = detail::plane_sweep(frames, k, neighbours[k], config, inner, workspace).depth;
+        if (config.progress) {
+          const std::lock_guard<std::mutex> lock(guard);
+          config.progress({"sweep", ++finished, frames.size(),
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+        }
       }
     } catch (...) {
       const std::lock_guard<std::mutex> lock(guard);
