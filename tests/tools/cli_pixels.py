@@ -28,6 +28,9 @@ import subprocess
 import sys
 import zlib
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "compare-renders"))
+import png_diff  # noqa: E402  (the one PNG decoder of the tests and tools)
+
 
 def flat_png(w, h, rgb):
     def chunk(kind, data):
@@ -39,42 +42,13 @@ def flat_png(w, h, rgb):
 
 
 def read_png(path):
-    """(width, height, rows of (r, g, b)) of an 8-bit RGB or RGBA PNG, every filter type."""
-    data = open(path, "rb").read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError(path + " is not a PNG")
-    p, idat, w, h, bpp = 8, b"", 0, 0, 3
-    while p < len(data):
-        (n,) = struct.unpack(">I", data[p:p + 4])
-        kind, body = data[p + 4:p + 8], data[p + 8:p + 8 + n]
-        p += 12 + n
-        if kind == b"IHDR":
-            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
-            if depth != 8 or colour not in (2, 6):
-                raise ValueError(path + ": not 8-bit RGB(A)")
-            bpp = 3 if colour == 2 else 4
-        elif kind == b"IDAT":
-            idat += body
-    raw, stride, rows, prev, q = zlib.decompress(idat), w * bpp, [], bytearray(w * bpp), 0
-    for _ in range(h):
-        f, line = raw[q], bytearray(raw[q + 1:q + 1 + stride])
-        q += 1 + stride
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
-        prev = line
-    return w, h, rows
+    """(width, height, rows of (r, g, b)) of an 8-bit RGB or RGBA PNG (png_diff.decode's pixels)."""
+    w, h, channels, pixels = png_diff.decode(path)
+    if channels not in (3, 4):
+        raise ValueError(path + ": not 8-bit RGB(A)")
+    stride = w * channels
+    return w, h, [[tuple(pixels[y * stride + x * channels:y * stride + x * channels + 3]) for x in range(w)]
+                  for y in range(h)]
 
 
 def read_pfm(path):
