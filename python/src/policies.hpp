@@ -1,21 +1,16 @@
 #pragma once
-// The run-time choices of a render from Python and the policy types they select. The names are
-// mpr's one table of them (include/mpr/policy_names.hpp, which mpr-render and mpr-view parse
-// too); each choice is one std::variant alternative, resolved by one std::visit per render
+// The run-time choices of a render from Python. The names are mpr's one table of them
+// (include/mpr/policy_names.hpp, which mpr-render and mpr-view parse too), and the policy types
+// they select, the functions that build them and the visit that resolves them are the library's
+// (include/mpr/policy_dispatch.hpp), which mpr-render and mpr-view render through too
 // (render_tiles.hpp).
 
 #include "bindings.hpp"
 
 #include <mpr/core/region.hpp>
 #include <mpr/glc/aperture.hpp>
-#include <mpr/glc/finite_aperture.hpp>
-#include <mpr/lightfield/cylinder_aperture.hpp>
-#include <mpr/lightfield/depth_proxy.hpp>
-#include <mpr/lightfield/frame_sampler.hpp>
-#include <mpr/lightfield/nearest_camera.hpp>
-#include <mpr/lightfield/synthetic_aperture.hpp>
+#include <mpr/policy_dispatch.hpp>
 #include <mpr/policy_names.hpp>
-#include <mpr/sampling.hpp>
 
 #include <memory>
 #include <optional>
@@ -28,41 +23,6 @@ namespace mpr_py {
 /// The interpolations a light-field render can use (names: `mpr::interpolation_names`).
 using Interpolation = mpr::InterpolationChoice;
 
-template <class Px>
-using SamplerVariant = std::variant<
-    mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>, mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>,
-    mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>, mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>>;
-
-template <class Px>
-[[nodiscard]] SamplerVariant<Px> make_sampler(std::shared_ptr<const mpr::CameraFrameSet<T, Px>> frames,
-                                              Interpolation interpolation, double radius) {
-  switch (interpolation) {
-  case Interpolation::nearest:
-    return mpr::CameraFrameSampler<mpr::NearestCamera, T, Px>(std::move(frames));
-  case Interpolation::synthetic:
-    return mpr::CameraFrameSampler<mpr::SyntheticAperture, T, Px>(std::move(frames));
-  case Interpolation::depth: {
-    mpr::DepthProxy proxy;
-    proxy.radius = radius;
-    return mpr::CameraFrameSampler<mpr::DepthProxy, T, Px>(std::move(frames), proxy);
-  }
-  case Interpolation::cylinder:
-    break;
-  }
-  return mpr::CameraFrameSampler<mpr::CylinderAperture, T, Px>(std::move(frames), mpr::CylinderAperture{radius});
-}
-
-/// The pixel sampling of a render: the pixel centre, or `spp` Owen-scrambled Sobol samples
-/// combined by a filter.
-using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>>;
-
-/// `spp` samples per pixel weighted by `filter` of radius `radius` pixels (0: its default): the
-/// pixel centre for one sample.
-[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, mpr::FilterChoice filter, double radius) {
-  if (spp == 1) return mpr::PixelCentre{};
-  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), mpr::make_filter(filter, radius));
-}
-
 /// The filter named `filter` (`mpr::filter_names`) after checking `spp` ([1, 4096]) and `radius`
 /// ([0, 64] pixels, 0: the filter's default); ValueError naming the argument.
 [[nodiscard]] inline mpr::FilterChoice checked_filter(int spp, const std::string& filter, double radius) {
@@ -71,11 +31,6 @@ using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr
   if (!(radius >= 0 && radius <= 64))
     throw mpr::argument_error("filter_radius", "must lie in [0, 64] pixels (0: default)");
   return choice;
-}
-
-/// `make_pixel_sampling` of a filter name, checked (`checked_filter`).
-[[nodiscard]] inline PixelSamplingVariant make_pixel_sampling(int spp, const std::string& filter, double radius) {
-  return make_pixel_sampling(spp, checked_filter(spp, filter, radius), radius);
 }
 
 /// One render job: the choices above plus the output.

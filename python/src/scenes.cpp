@@ -1,9 +1,11 @@
 // Scenes from Python: the classroom demo scene and OBJ files (with tinyobjloader), ray cast into
-// numpy arrays with the same views and pixel sampling as light-field renders.
+// numpy arrays with the same views and pixel sampling as light-field renders (mpr::render_chosen,
+// the dispatch mpr-render renders through).
 
 #include "policies.hpp"
 
 #include <mpr/core/renderer.hpp>
+#include <mpr/policy_dispatch.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/scene_sampler.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
@@ -33,17 +35,14 @@ py::array render_scene(const Scene& scene, const View& view, int width, int heig
                        double filter_radius, int threads) {
   if (width < 1 || height < 1 || width > (1 << 15) || height > (1 << 15))
     throw mpr::argument_error("width/height", "each must lie in [1, 32768] pixels");
-  const PixelSamplingVariant sampling = make_pixel_sampling(spp, filter, filter_radius);
+  const mpr::FilterChoice choice = checked_filter(spp, filter, filter_radius); // before any allocation
+  const mpr::PixelSamplingVariant sampling = mpr::make_pixel_sampling(spp, mpr::make_filter(choice, filter_radius));
   py::array_t<Channel> out({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
   const mpr::ImageView<OutPx> image(reinterpret_cast<OutPx*>(out.mutable_data()), width, height);
   {
     py::gil_scoped_release release;
-    std::visit(
-        [&](const auto& pixels) {
-          mpr::Renderer(view.plane, view.selector, *scene.sampler, pixels)
-              .render(image, mpr::Region(0, 0, width, height), mpr::RenderOptions{threads});
-        },
-        sampling);
+    mpr::render_chosen(view.plane, view.selector, view.plane, *scene.sampler, sampling, nullptr, image,
+                       mpr::Region(0, 0, width, height), mpr::RenderOptions{threads});
   }
   return out;
 }

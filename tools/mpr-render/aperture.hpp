@@ -9,6 +9,7 @@
 #include "cli_args.hpp"
 
 #include <mpr/glc.hpp>
+#include <mpr/policy_dispatch.hpp>
 #include <mpr/policy_names.hpp>
 
 #include <algorithm>
@@ -88,21 +89,35 @@ mpr::glc::Mat2<T> focus_matrix(const ApertureSpec& spec, T h) {
   }
 }
 
+/// The finite aperture of `spec` opened to `size` (the frame's value of spec.size) on `plane`,
+/// as the library's render dispatch takes it (mpr::render_chosen).
+template <std::floating_point T>
+[[nodiscard]] mpr::LensChoice<T> lens_choice(const ApertureSpec& spec, double size,
+                                             const mpr::PlanarSurface<T>& plane) {
+  const T h = static_cast<T>(lens_distance(spec, plane.width_vector().norm()));
+  return {spec.shape, static_cast<T>(size), h, focus_matrix<T>(spec, h)};
+}
+
+/// Rethrows `e`, an error of mpr::glc::FiniteAperture, naming the option that set the value: a
+/// view whose rays run (nearly) parallel to the image plane ("focus") names --focus (--aperture
+/// when no --focus was given). Call it only from a handler of `e`.
+[[noreturn]] inline void rethrow_aperture_error(const ApertureSpec& spec, const mpr::argument_error& e) {
+  if (e.parameter() != "focus") throw;
+  throw mpr::argument_error(spec.focus.empty() ? "--aperture" : "--focus",
+                            "the view's rays run parallel to the image plane, so they cross no focal plane "
+                            "(the lens and focal planes are parallel to the image plane)");
+}
+
 /// `selector` with the finite aperture of `spec`, opened to `size` (the frame's value of
-/// spec.size), on `plane`. A view whose rays run (nearly) parallel to the image plane, and so
-/// to its lens and focal planes, is refused naming --focus (--aperture when no --focus was given).
+/// spec.size), on `plane`; errors as `rethrow_aperture_error`.
 template <std::floating_point T, class Selector>
 mpr::glc::FiniteAperture<Selector, mpr::glc::AnyAperture>
 with_aperture(const ApertureSpec& spec, double size, const mpr::PlanarSurface<T>& plane, const Selector& selector) {
-  const T h = static_cast<T>(lens_distance(spec, plane.width_vector().norm()));
-  const mpr::glc::Mat2<T> f = focus_matrix<T>(spec, h);
+  const mpr::LensChoice<T> lens = lens_choice<T>(spec, size, plane);
   try {
-    return {plane, selector, spec.shape, static_cast<T>(size), h, f};
+    return {plane, selector, lens.shape, lens.size, lens.distance, lens.focus};
   } catch (const mpr::argument_error& e) {
-    if (e.parameter() != "focus") throw;
-    throw mpr::argument_error(spec.focus.empty() ? "--aperture" : "--focus",
-                              "the view's rays run parallel to the image plane, so they cross no focal plane "
-                              "(the lens and focal planes are parallel to the image plane)");
+    rethrow_aperture_error(spec, e);
   }
 }
 

@@ -1,10 +1,11 @@
 #pragma once
 // mpr-render's pixel sampling: --spp N and --filter NAME[:RADIUS] parsed into the renderer's
-// fourth policy, one std::variant alternative per policy type: the pixel centre (the default,
+// fourth policy (mpr::PixelSamplingVariant, one alternative per policy type): the pixel centre (the default,
 // --spp 1) or N scrambled Sobol samples per pixel combined by the chosen filter.
 
 #include "cli_args.hpp"
 
+#include <mpr/policy_dispatch.hpp>
 #include <mpr/policy_names.hpp>
 #include <mpr/sampling.hpp>
 
@@ -18,8 +19,10 @@ inline constexpr int kMaxSpp = 4096;
 /// Largest --filter radius accepted, pixels.
 inline constexpr double kMaxFilterRadius = 64;
 
-/// The pixel sampling of a render: the pixel centre, or supersampling with a filter.
-using PixelSamplingVariant = std::variant<mpr::PixelCentre, mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>>;
+/// The pixel sampling of a render and its choice (--spp, --filter): the library's, which the
+/// Python module uses too (include/mpr/policy_dispatch.hpp).
+using mpr::make_pixel_sampling;
+using mpr::PixelSamplingVariant;
 
 /// --spp: an integer in [1, kMaxSpp].
 inline int parse_spp(const std::string& text) { return parse_int(text, "--spp", 1, kMaxSpp); }
@@ -38,12 +41,6 @@ inline mpr::AnyFilter parse_filter(const std::string& text) {
       throw mpr::argument_error("--filter", "radius " + parts[1] + " must lie in (0, 64] pixels");
   }
   return mpr::make_filter(filter, radius);
-}
-
-/// The pixel sampling of `spp` samples per pixel with `filter`: the pixel centre for 1 sample.
-inline PixelSamplingVariant make_pixel_sampling(int spp, const mpr::AnyFilter& filter) {
-  if (spp <= 1) return mpr::PixelCentre{};
-  return mpr::Supersample<mpr::OwenSobol, mpr::AnyFilter>(mpr::OwenSobol(spp), filter);
 }
 
 } // namespace mpr_cli

@@ -1,14 +1,17 @@
 #pragma once
 // mpr-render's sampler factories: ray-cast scene, rasterized virtual array (--raster) or light
-// field, with the chosen interpolation, as one std::variant of fully typed samplers.
+// field, with the chosen interpolation, as one std::variant of fully typed samplers. The
+// light-field alternatives are the library's mpr::FrameSamplerVariant (policy_dispatch.hpp).
 
 #include "job.hpp"
 #include "loading.hpp"
 
 #include <mpr/lightfield.hpp>
+#include <mpr/policy_dispatch.hpp>
 #include <mpr/scene.hpp>
 #include <mpr/scene/rasterized_sampler.hpp>
 
+#include <utility>
 #include <variant>
 
 namespace mpr_cli {
@@ -62,17 +65,9 @@ SamplerVariant<T> make_sampler(const Job& job, const Loaded<T>& l, const FramePa
                                int height = 1) {
   if (job.raster) return make_raster_sampler(job, l, p, base_plane(job, l, p, width, height));
   if (l.scene_sampler) return *l.scene_sampler;
-  switch (job.interpolation) {
-  case Interpolation::nearest:
-    return mpr::CameraFrameSampler<mpr::NearestCamera, T>(l.frames);
-  case Interpolation::synthetic:
-    return mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(l.frames);
-  case Interpolation::depth:
-    return mpr::CameraFrameSampler<mpr::DepthProxy, T>(l.frames, job.depth_proxy(p.radius));
-  case Interpolation::cylinder:
-    break;
-  }
-  return mpr::CameraFrameSampler<mpr::CylinderAperture, T>(l.frames, mpr::CylinderAperture{p.radius});
+  // The light-field samplers: the library's choice (the Python module's too), widened to this variant.
+  return std::visit([](auto&& s) -> SamplerVariant<T> { return std::move(s); },
+                    mpr::make_frame_sampler(l.frames, job.interpolation, p.radius, job.depth_proxy(p.radius)));
 }
 
 // Compiled once, in mpr_tools (tools/dispatch/run_float.cpp, run_double.cpp).
