@@ -5,7 +5,7 @@
 
 #include "policies.hpp"
 
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 
 #include <type_traits>
 

@@ -3,7 +3,7 @@
 
 #include "policies.hpp"
 
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/scene_sampler.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER
