@@ -19,7 +19,10 @@
 // centres), 4 and 16 scrambled Sobol samples per pixel, box filter, ms per view (and, with one
 // thread, the rendering thread's CPU ms).
 //
-// usage: scene_raycast [--quick] [--antialias]   (--antialias: part 3 only)
+// Embree runs at the instruction set of mpr's kernels: `isa=avx2` when `MPR_SIMD` lowers mpr to
+// avx2 and `isa=sse4.2` at portable (printed on the Embree build line); otherwise its best.
+//
+// usage: scene_raycast [--quick] [--antialias | --same-rays]   (part 3 only | part 2 only)
 #include "bench_common.hpp"
 
 #include <mpr/glc.hpp>
@@ -147,7 +150,7 @@ std::vector<mpr::Ray<T>> block_rays(const Setup& setup, const mpr::GlcSelector<T
 /// An Embree scene of the same triangles (one triangle geometry), build quality HIGH.
 class EmbreeScene {
 public:
-  explicit EmbreeScene(const mpr::scene::Scene<T>& s) : device_(rtcNewDevice(nullptr)) {
+  explicit EmbreeScene(const mpr::scene::Scene<T>& s) : device_(rtcNewDevice(device_config())) {
     scene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -166,6 +169,17 @@ public:
     rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
     rtcCommitScene(scene_);
+  }
+  /// The Embree device configuration matching mpr's SIMD level (nullptr: Embree's best).
+  [[nodiscard]] static const char* device_config() noexcept {
+    switch (mpr::detail::simd_level()) {
+    case mpr::detail::SimdLevel::portable:
+      return "isa=sse4.2";
+    case mpr::detail::SimdLevel::avx2:
+      return "isa=avx2";
+    default:
+      return nullptr;
+    }
   }
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -242,7 +256,9 @@ void same_rays(const char* scene_name, const mpr::scene::Scene<T>& scene, const 
 #if MPR_BENCH_EMBREE
   const mpr_bench::Timing ebuild = mpr_bench::time_repeated(repeats, [&] { EmbreeScene e(scene); });
   const EmbreeScene embree(scene);
-  std::printf(", Embree %s build (HIGH) %.1f ms", RTC_VERSION_STRING, ebuild.median * 1e3);
+  const char* isa = EmbreeScene::device_config();
+  std::printf(", Embree %s (%s) build (HIGH) %.1f ms", RTC_VERSION_STRING, isa ? isa : "best isa", ebuild.median * 1e3);
+  std::printf("; mpr SIMD level %s", mpr::detail::simd_level_name());
 #endif
   std::printf("\nsame rays, %dx%d in 4x4 blocks, median of %d runs (min-max), Mrays/s\n\n", size, size, repeats);
   std::printf("| scene | view | method | threads | Mrays/s | Mrays per CPU-second |\n|---|---|---|---|---|---|\n");
@@ -354,8 +370,11 @@ void antialiased(const std::shared_ptr<const mpr::scene::Scene<T>>& scene, int w
 
 int main(int argc, char** argv) {
   const bool quick = mpr_bench::quick_mode(argc, argv);
-  bool antialias_only = false;
-  for (int i = 1; i < argc; ++i) antialias_only = antialias_only || std::string(argv[i]) == "--antialias";
+  bool antialias_only = false, same_rays_only = false;
+  for (int i = 1; i < argc; ++i) {
+    antialias_only = antialias_only || std::string(argv[i]) == "--antialias";
+    same_rays_only = same_rays_only || std::string(argv[i]) == "--same-rays";
+  }
   const int size = quick ? 64 : 1000;
   const int repeats = quick ? 1 : 9;
   std::printf("%s\n", mpr_bench::machine_description().c_str());
@@ -364,6 +383,11 @@ int main(int argc, char** argv) {
     std::printf("\nanti-aliased view, shaded colour, box filter, median of %d runs (min-max in brackets)\n\n", repeats);
     std::printf("| view | spp | threads | Mrays/s | ms/view | thread CPU ms |\n|---|---|---|---|---|---|\n");
     antialiased(scene, quick ? 64 : 640, quick ? 48 : 480, repeats);
+    return 0;
+  }
+  if (same_rays_only) {
+    same_rays("classroom", *scene, classroom_setup(), size, quick ? 1 : 5);
+    same_rays("terrain", terrain(quick ? 64 : 512), terrain_setup(), size, quick ? 1 : 5);
     return 0;
   }
   const mpr_bench::Timing build = mpr_bench::time_repeated(quick ? 1 : 9, [&] { mpr::scene::Bvh<T> bvh(*scene); });

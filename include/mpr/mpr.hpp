@@ -13,7 +13,7 @@
 #include <mpr/core/ray.hpp>
 #include <mpr/core/ray_grid.hpp>
 #include <mpr/core/region.hpp>
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/glc.hpp>
 #include <mpr/io/image_io.hpp>

@@ -11,7 +11,7 @@
 
 #include <mpr/core/image.hpp>
 #include <mpr/core/region.hpp>
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/glc/aperture.hpp>
 #include <mpr/glc/finite_aperture.hpp>
 #include <mpr/lightfield/cylinder_aperture.hpp>

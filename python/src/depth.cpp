@@ -2,7 +2,7 @@
 
 #include "bindings.hpp"
 
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/io/hci_light_field.hpp>
 #include <mpr/lightfield/array_disparity.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>

@@ -7,8 +7,8 @@
 
 #include "policies.hpp"
 
-#include <mpr/core/renderer.hpp>
 #include <mpr/policy_dispatch.hpp>
+#include <mpr/render/renderer.hpp>
 
 #include <optional>
 #include <variant>

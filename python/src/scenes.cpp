@@ -4,8 +4,8 @@
 
 #include "policies.hpp"
 
-#include <mpr/core/renderer.hpp>
 #include <mpr/policy_dispatch.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/scene_sampler.hpp>
 #ifdef MPR_HAVE_TINYOBJLOADER

@@ -1,7 +1,7 @@
 #include "glc_test_util.hpp"
 
 #include <mpr/core/image.hpp>
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/glc/gallery.hpp>
 #include <mpr/glc/rectify.hpp>
 #include <mpr/scene/checkerboard_plane.hpp>

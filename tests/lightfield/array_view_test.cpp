@@ -4,7 +4,7 @@
 // makes the nine views differ; array_coverage against crossings counted by hand.
 #include "frame_test_scenes.hpp"
 
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/glc.hpp>
 #include <mpr/lightfield/array_view.hpp>
 

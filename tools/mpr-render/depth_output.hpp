@@ -9,7 +9,7 @@
 #include "loading.hpp"
 #include "publish.hpp"
 
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 #include <mpr/io/depth_maps.hpp>
 #include <mpr/io/pfm.hpp>
 #include <mpr/lightfield/view_depth.hpp>

@@ -12,7 +12,7 @@
 #include "pixel_sampling.hpp"
 
 #include <mpr/core/image.hpp>
-#include <mpr/core/renderer.hpp>
+#include <mpr/render/renderer.hpp>
 
 namespace mpr_cli {
 

@@ -12,7 +12,7 @@
 ///   every 8-bit value.
 
 #include <Eigen/Core>
-#include <mpr/core/detail/kernels.hpp>
+#include <mpr/core/kernels/srgb_encode.hpp>
 #include <mpr/core/simd.hpp>
 
 #include <array>
@@ -109,7 +109,7 @@ inline const SrgbTables srgb_tables{};
 }
 
 /// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), compiled for `level` (default:
-/// the widest this CPU runs); with AVX-512, 16 channels at a time (core/detail/kernels.hpp).
+/// the widest this CPU runs); with AVX-512, 16 channels at a time (core/kernels/srgb_encode.hpp).
 /// The same codes at every level.
 inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m,
                                 detail::SimdLevel level = detail::dispatch_level()) noexcept {

@@ -124,7 +124,7 @@
 #endif
 #endif
 
-// The BVH packet walk's AVX2 kernels (bvh/detail/packet_kernels.hpp) need the x86 target
+// The BVH packet walk's AVX2 kernels (bvh/kernels/packet_avx2.hpp) need the x86 target
 // attributes and the SSE leaf kernels.
 #if defined(MPR_SIMD_X86) && MPR_BVH_SSE
 #define MPR_BVH_PACKET_AVX2 1
@@ -132,7 +132,7 @@
 #define MPR_BVH_PACKET_AVX2 0
 #endif
 
-// Its AVX-512 kernels (bvh/detail/packet_kernels_avx512.hpp) likewise; they call the no-FMA
+// Its AVX-512 kernels (bvh/kernels/packet_avx512.hpp) likewise; they call the no-FMA
 // SSE leaf kernels for their scalar steps.
 #if defined(MPR_SIMD_X86) && MPR_BVH_SSE
 #define MPR_BVH_PACKET_AVX512 1

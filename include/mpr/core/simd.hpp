@@ -115,7 +115,7 @@ inline constexpr std::array<SimdLevel, 4> kSimdLevels{SimdLevel::portable, SimdL
 
 /// The level a body is being compiled for, as a type: `run_at` hands it to bodies that take one,
 /// so that a kernel can add a hand-written step for one level (`if constexpr`) to its plain
-/// loop; the x86 steps live in each module's detail/kernels.hpp.
+/// loop; the x86 steps live in each module's kernels/ folder.
 template <SimdLevel L>
 using SimdTag = std::integral_constant<SimdLevel, L>;
 

@@ -6,7 +6,7 @@
 #include <mpr/core/region.hpp>
 #include <mpr/glc/gallery.hpp>
 #include <mpr/scene/bvh/bvh.hpp>
-#include <mpr/scene/bvh/detail/packet_kernels.hpp>
+#include <mpr/scene/bvh/kernels/packet_closest_hits.hpp>
 #include <mpr/scene/bvh/packet.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/surface/planar_surface.hpp>

@@ -3,7 +3,7 @@
 /// `mpr::scene::Bvh`: a bounding volume hierarchy over a scene's triangles, built with the binned
 /// surface area heuristic (bvh/build.hpp), answering closest-hit ray queries with the watertight
 /// ray/triangle test (bvh/watertight.hpp) by walking a 4-wide collapse of the binary tree
-/// (bvh/traverse.hpp) with SSE box and triangle-edge tests on x86-64 (bvh/detail/kernels.hpp),
+/// (bvh/traverse.hpp) with SSE box and triangle-edge tests on x86-64 (bvh/kernels/walk_kernels.hpp),
 /// bit-identical to the portable kernels; coherent rays also walk it 16 at a time as packets
 /// (bvh/packet.hpp), with the same hits. Every header of the walk is compiled without
 /// multiply-add contraction (`MPR_EXACT_FP_BEGIN`, core/config.hpp), so the hits do not depend on
@@ -13,8 +13,8 @@
 #include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/build.hpp>
-#include <mpr/scene/bvh/detail/kernels.hpp>
-#include <mpr/scene/bvh/detail/packet_kernels.hpp>
+#include <mpr/scene/bvh/kernels/walk_kernels.hpp>
+#include <mpr/scene/bvh/kernels/packet_closest_hits.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/traverse.hpp>
 #include <mpr/scene/scene.hpp>

@@ -15,10 +15,11 @@
 /// same side of each box, i.e. the same direction signs: packets whose rays differ in sign (or
 /// whose slab constants are not finite) are not formed, and their rays walk one by one.
 ///
-/// The kernels here are portable (any scalar type); bvh/detail/packet_kernels.hpp has the x86
+/// The kernels here are portable (any scalar type); bvh/kernels/ has the x86
 /// ones and the entry point that picks them.
 
 #include <mpr/core/config.hpp>
+#include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/ray.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/slab.hpp>
@@ -212,10 +213,23 @@ void packet_leaf_per_ray(const BvhTree<T>& tree, std::uint32_t first, RayPacket<
   }
 }
 
+/// Starts loading child `ref` of a wide node (its `WideNode`, or the first two blocks of its
+/// leaf) into L1, so that the walk need not wait for it when it gets there.
+template <std::floating_point T>
+MPR_ALWAYS_INLINE void prefetch_child(const BvhTree<T>& tree, std::uint32_t ref) noexcept {
+  if (ref & kLeafRef) {
+    const TriBlock<T>* b = tree.blocks.data() + (ref & ~kLeafRef);
+    for (std::size_t at = 0; at < 2 * sizeof(TriBlock<T>); at += 64) mpr::detail::prefetch_l1(b, at);
+  } else {
+    const WideNode<T>* w = tree.wide.data() + ref;
+    for (std::size_t at = 0; at < sizeof(WideNode<T>); at += 64) mpr::detail::prefetch_l1(w, at);
+  }
+}
+
 /// The packet walk: depth first through the 4-wide tree with the rays of `p.active`, children
 /// in order of their least entry parameter, each child with the rays that enter it; leaves with
 /// `PacketKernels::leaf` when it has one, else `intersect_leaf` per ray (`LeafKernels`,
-/// bvh/detail/kernels.hpp). `hits[r]` holds ray r's
+/// bvh/kernels/walk_kernels.hpp). `hits[r]` holds ray r's
 /// closest hit so far (in: t_max and no triangle) and gets its closest hit.
 template <class PacketKernels, class LeafKernels, std::floating_point T>
 MPR_ALWAYS_INLINE void packet_walk(const BvhTree<T>& tree, RayPacket<T>& p, Hit<T>* hits) noexcept {
@@ -252,6 +266,7 @@ MPR_ALWAYS_INLINE void packet_walk(const BvhTree<T>& tree, RayPacket<T>& p, Hit<
         const int lane = std::countr_zero(beam);
         const std::uint32_t m = PacketKernels::rays(node, lane, p, rays, least[n]);
         if (m == 0) continue;
+        prefetch_child(tree, node.child[lane]);
         ref[n] = node.child[lane];
         sub[n++] = m;
       }

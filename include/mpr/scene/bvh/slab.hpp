@@ -3,7 +3,7 @@
 /// The ray/box test of the BVH walk: slabs (Kay & Kajiya 1986) against the four child boxes of
 /// a `WideNode`, with the exit parameter widened so that rounding never culls a box the ray
 /// crosses (Ize, "Robust BVH ray traversal", JCGT 2(2), 2013). This is the portable reference;
-/// bvh/detail/kernels.hpp has its x86 twin.
+/// bvh/kernels/box4_sse.hpp has its x86 twin.
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>

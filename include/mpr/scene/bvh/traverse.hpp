@@ -2,12 +2,12 @@
 /// \file
 /// The closest-hit walk of a `BvhTree`: depth first through the 4-wide tree, nearest child
 /// first, four child boxes (bvh/slab.hpp) and up to four leaf triangles (bvh/watertight.hpp)
-/// per step, with the x86 kernels of bvh/detail/kernels.hpp or the portable ones; both give the
+/// per step, with the x86 kernels of bvh/kernels/walk_kernels.hpp or the portable ones; both give the
 /// same hit bit for bit.
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/ray.hpp>
-#include <mpr/scene/bvh/detail/kernels.hpp>
+#include <mpr/scene/bvh/kernels/walk_kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/slab.hpp>
 #include <mpr/scene/bvh/watertight.hpp>
@@ -39,7 +39,7 @@ void intersect_leaf(const BvhTree<T>& tree, std::uint32_t first, const Shear<T>&
 }
 
 /// The closest triangle of `tree` hit by `ray` with t in (0, t_max), with the box and edge
-/// kernels of `Kernels` (bvh/detail/kernels.hpp); see `Bvh::closest_hit`.
+/// kernels of `Kernels` (bvh/kernels/walk_kernels.hpp); see `Bvh::closest_hit`.
 template <class Kernels, std::floating_point T>
 [[nodiscard]] Hit<T> closest_hit_walk(const BvhTree<T>& tree, const Ray<T>& ray, T t_max) noexcept {
   Hit<T> hit;

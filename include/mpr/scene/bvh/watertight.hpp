@@ -5,7 +5,7 @@
 /// origin, and the triangle's 2-D edge functions U, V, W decide the hit; a zero edge function is
 /// recomputed in higher precision. A ray that crosses a shared edge or vertex hits at least one
 /// of the triangles (no cracks), and a closest-hit query reports exactly one of them. This is
-/// the portable reference; bvh/detail/kernels.hpp computes the edge functions of four triangles
+/// the portable reference; bvh/kernels/triangle_edges4_sse.hpp computes the edge functions of four triangles
 /// at once.
 
 #include <mpr/core/config.hpp>

@@ -4,7 +4,7 @@
 /// `kPacketRays` (16) rays of a packet in one 512-bit vector, with mask registers for the rays
 /// in play, and does the operations of `PortablePacketKernels<float>` (set-up, child box per ray,
 /// leaf) in the same order, so the same masks and hits bit for bit; the beam test stays on four
-/// boxes per 128-bit instruction. bvh/detail/packet_kernels.hpp picks them at run time
+/// boxes per 128-bit instruction. bvh/kernels/packet_closest_hits.hpp picks them at run time
 /// (`SimdLevel::avx512`).
 ///
 /// AVX-512F implies FMA, so these functions cannot be compiled for a target without it, as the
@@ -15,7 +15,7 @@
 /// runs in functions compiled for AVX2 *without* FMA that are never inlined here.
 
 #include <mpr/core/config.hpp>
-#include <mpr/scene/bvh/detail/kernels.hpp>
+#include <mpr/scene/bvh/kernels/walk_kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/packet.hpp>
 #include <mpr/scene/bvh/slab.hpp>

@@ -1,18 +1,15 @@
 #pragma once
 /// \file
-/// The x86 kernels of the packet walk (bvh/packet.hpp) and `packet_closest_hits`, the entry
-/// point that picks them. `Avx2PacketKernels` tests a child box against eight rays per AVX2
-/// instruction and the beam against four boxes per SSE instruction, with the operations of
+/// The AVX2 kernels of the packet walk (bvh/packet.hpp). `Avx2PacketKernels` tests a child box against eight rays per
+/// AVX2 instruction and the beam against four boxes per SSE instruction, with the operations of
 /// `PortablePacketKernels<float>` in the same order, so the same masks. The walk is compiled for
 /// AVX2 *without* FMA (`MPR_TARGET_AVX2_NOFMA`): the compiler can then fuse no multiply-add of
-/// the box or triangle tests, and the hits stay those of the single-ray walk bit for bit. Chosen
-/// at run time when the CPU has AVX2 (and `MPR_SIMD` allows it, core/simd.hpp); float only, the
-/// portable kernels otherwise.
+/// the box or triangle tests, and the hits stay those of the single-ray walk bit for bit.
+/// kernels/packet_closest_hits.hpp picks them at run time.
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
-#include <mpr/scene/bvh/detail/kernels.hpp>
-#include <mpr/scene/bvh/detail/packet_kernels_avx512.hpp>
+#include <mpr/scene/bvh/kernels/walk_kernels.hpp>
 #include <mpr/scene/bvh/node.hpp>
 #include <mpr/scene/bvh/packet.hpp>
 #include <mpr/scene/bvh/slab.hpp>
@@ -372,43 +369,6 @@ MPR_TARGET_AVX2_NOFMA inline void packet_walk_avx2(const BvhTree<float>& tree, R
 }
 
 #endif
-
-/// `hits[r]` = the closest hit of `rays[r]` in (0, t_max) for each r (at most `kPacketRays`
-/// rays, equal lengths): `packet_closest_hits_with` with the widest kernels this CPU runs. The
-/// same hits as `closest_hit_walk<WalkKernels<T>>` per ray, bit for bit.
-template <std::floating_point T>
-void packet_closest_hits(const BvhTree<T>& tree, std::span<const Ray<T>> rays, std::span<Hit<T>> hits,
-                         T t_max) noexcept {
-#if MPR_BVH_PACKET_AVX512
-  if constexpr (std::is_same_v<T, float>) {
-    if (mpr::detail::dispatch_level() >= mpr::detail::SimdLevel::avx512) {
-      for (Hit<T>& h : hits) h = Hit<T>{t_max};
-      RayPacket<T> p;
-      if (Avx512PacketKernels::make(rays, t_max, p)) {
-        packet_walk_avx512(tree, p, hits.data());
-      } else {
-        for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = closest_hit_walk<SseKernels>(tree, rays[r], t_max);
-      }
-      return;
-    }
-  }
-#endif
-#if MPR_BVH_PACKET_AVX2
-  if constexpr (std::is_same_v<T, float>) {
-    if (mpr::detail::dispatch_level() >= mpr::detail::SimdLevel::avx2) {
-      for (Hit<T>& h : hits) h = Hit<T>{t_max};
-      RayPacket<T> p;
-      if (Avx2PacketKernels::make(rays, t_max, p)) {
-        packet_walk_avx2(tree, p, hits.data());
-      } else {
-        for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = closest_hit_walk<SseKernels>(tree, rays[r], t_max);
-      }
-      return;
-    }
-  }
-#endif
-  packet_closest_hits_with<PortablePacketKernels<T>, WalkKernels<T>>(tree, rays, hits, t_max);
-}
 
 MPR_EXACT_FP_END
 

@@ -1,11 +1,11 @@
-// core/detail/kernels.hpp: the x86 step of the sRGB row encoder, at every level this CPU runs,
+// core/kernels/srgb_encode.hpp: the x86 step of the sRGB row encoder, at every level this CPU runs,
 // against the per-channel encoder; and run_at hands each body the level it is compiled for.
 #include "simd_levels.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <mpr/core/color.hpp>
-#include <mpr/core/detail/kernels.hpp>
+#include <mpr/core/kernels/srgb_encode.hpp>
 #include <mpr/core/simd.hpp>
 
 #include <algorithm>

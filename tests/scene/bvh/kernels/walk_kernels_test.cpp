@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/scene/bvh/bvh.hpp>
-#include <mpr/scene/bvh/detail/kernels.hpp>
+#include <mpr/scene/bvh/kernels/walk_kernels.hpp>
 #include <mpr/scene/bvh/slab.hpp>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 /// \file
 /// `mpr::Renderer<Surface, Selector, Sampler, Sampling>`: the composition of the four roles and
 /// the pixel sampling, and `mpr::render`, which fills several views of one output image in a
-/// single call.
+/// single call. render/ sits above core/ and sampling/ (core/ includes neither).
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/concepts.hpp>
