@@ -124,6 +124,59 @@ std::vector<mpr::Image<float>> estimated_depth_maps(const Job& job, const mpr::C
   return std::move(found.maps);
 }
 
+/// A light field as read (before its depth maps), and for --hci the centre view and the depth of
+/// the benchmark's zero-disparity plane.
+template <std::floating_point T>
+struct ReadLightField {
+  mpr::CameraFrameSet<T> set;
+  std::size_t hci_centre = 0;
+  double hci_focus = 0;
+};
+
+/// Reads the light field of a job whose sampler is a light field (_par.txt, Stanford, LFCA, HCI,
+/// COLMAP) within `limits`. Throws as the readers.
+template <std::floating_point T>
+ReadLightField<T> read_light_field(const Job& job, const mpr::LoadLimits& limits) {
+  ReadLightField<T> out;
+  switch (job.sampler) {
+  case SamplerKind::par:
+    out.set = mpr::read_par_file<T>(job.input, limits);
+    break;
+  case SamplerKind::stanford:
+    out.set = mpr::read_stanford_light_field<T>(job.input, array_options(job), limits);
+    break;
+  case SamplerKind::lfca: {
+    mpr::LfcaOptions o;
+    o.array = array_options(job);
+    out.set = mpr::read_lfca<T>(job.input, o, limits);
+    break;
+  }
+  case SamplerKind::hci: {
+    mpr::HciLightField<T> lf = mpr::read_hci_light_field<T>(job.input, {}, limits);
+    out.hci_centre = lf.centre;
+    out.hci_focus = lf.disparity.depth(0); // the benchmark's zero-disparity plane
+    out.set = std::move(lf.frames);
+    break;
+  }
+  case SamplerKind::colmap:
+    out.set = mpr::read_colmap<T>(job.input, colmap_images(job), limits);
+    break;
+  case SamplerKind::scene:
+  case SamplerKind::obj:
+    break;
+  }
+  return out;
+}
+
+// Compiled once each, in units of their own (tools/dispatch/light_field_*.cpp, estimate_*.cpp), so
+// that no unit instantiates every loader and the plane sweep together.
+extern template ReadLightField<float> read_light_field<float>(const Job&, const mpr::LoadLimits&);
+extern template ReadLightField<double> read_light_field<double>(const Job&, const mpr::LoadLimits&);
+extern template std::vector<mpr::Image<float>>
+estimated_depth_maps<float>(const Job&, const mpr::CameraFrameSet<float>&, std::vector<std::string>&);
+extern template std::vector<mpr::Image<float>>
+estimated_depth_maps<double>(const Job&, const mpr::CameraFrameSet<double>&, std::vector<std::string>&);
+
 } // namespace detail
 
 /// --save-depth-maps FOLDER: writes the estimated depth maps of `l` (after the preflight check, so
@@ -193,27 +246,16 @@ Loaded<T> load(const Job& job) {
 #endif
   }
   case SamplerKind::par:
-    l.frames = frames(mpr::read_par_file<T>(job.input, limits));
-    break;
   case SamplerKind::stanford:
-    l.frames = frames(mpr::read_stanford_light_field<T>(job.input, detail::array_options(job), limits));
-    break;
-  case SamplerKind::lfca: {
-    mpr::LfcaOptions o;
-    o.array = detail::array_options(job);
-    l.frames = frames(mpr::read_lfca<T>(job.input, o, limits));
-    break;
-  }
-  case SamplerKind::hci: {
-    mpr::HciLightField<T> lf = mpr::read_hci_light_field<T>(job.input, {}, limits);
-    hci_centre = lf.centre;
-    hci_focus = lf.disparity.depth(0); // the benchmark's zero-disparity plane
-    l.frames = frames(std::move(lf.frames));
+  case SamplerKind::lfca:
+  case SamplerKind::hci:
+  case SamplerKind::colmap: {
+    detail::ReadLightField<T> lf = detail::read_light_field<T>(job, limits);
+    hci_centre = lf.hci_centre;
+    hci_focus = lf.hci_focus;
+    l.frames = frames(std::move(lf.set));
     break;
   }
-  case SamplerKind::colmap:
-    l.frames = frames(mpr::read_colmap<T>(job.input, detail::colmap_images(job), limits));
-    break;
   }
   if (l.scene) l.scene_sampler.emplace(l.scene);
   if (l.frames) {
