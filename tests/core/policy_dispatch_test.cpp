@@ -1,4 +1,5 @@
 #include "lightfield/frame_test_scenes.hpp"
+#include "render/ray_hash.hpp"
 
 #include <mpr/policy_dispatch.hpp>
 
@@ -9,16 +10,7 @@
 
 namespace {
 
-/// A sampler whose colour encodes the ray exactly (renderer_test.cpp's): any change of a ray shows.
-template <class T>
-struct RayHash {
-  using scalar_type = T;
-  mpr::Color sample(const mpr::Ray<T>& r) const noexcept {
-    return mpr::Color(static_cast<float>(r.origin.x() * 7 + r.direction.x()),
-                      static_cast<float>(r.origin.y() * 7 + r.direction.y()),
-                      static_cast<float>(r.origin.z() + r.direction.z() * 3));
-  }
-};
+using mpr_test::RayHash;
 
 /// A sampler of the squared slopes of the ray, (dx / dz)^2 and (dy / dz)^2: their mean over a
 /// pixel grows with the spread of its rays' directions (a finite aperture's).

@@ -1,3 +1,5 @@
+#include "render/ray_hash.hpp"
+
 #include <mpr/mpr.hpp>
 
 #include <catch2/catch.hpp>
@@ -11,14 +13,7 @@ namespace {
 using T = double;
 
 /// A sampler whose colour encodes the ray exactly, so any change to any ray shows.
-struct RayHash {
-  using scalar_type = T;
-  mpr::Color sample(const mpr::Ray<T>& r) const noexcept {
-    return mpr::Color(static_cast<float>(r.origin.x() * 7 + r.direction.x()),
-                      static_cast<float>(r.origin.y() * 7 + r.direction.y()),
-                      static_cast<float>(r.origin.z() + r.direction.z() * 3));
-  }
-};
+using RayHash = mpr_test::RayHash<T>;
 
 /// RayHash with a batch and a tile path (each ray hashed on its own), so the renderer takes its
 /// row-batch (`render_row`) and tile (`render`) paths; counts the tile calls.
