@@ -8,7 +8,7 @@
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/disparity_score.hpp>
 #include <mpr/lightfield/view_depth.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>

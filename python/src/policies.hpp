@@ -1,16 +1,16 @@
 #pragma once
 // The run-time choices of a render from Python. The names are mpr's one table of them
-// (include/mpr/policy_names.hpp, which mpr-render and mpr-view parse too), and the policy types
+// (include/mpr/render/policy_names.hpp, which mpr-render and mpr-view parse too), and the policy types
 // they select, the functions that build them and the visit that resolves them are the library's
-// (include/mpr/policy_dispatch.hpp), which mpr-render and mpr-view render through too
+// (include/mpr/render/policy_dispatch.hpp), which mpr-render and mpr-view render through too
 // (render_tiles.hpp).
 
 #include "bindings.hpp"
 
 #include <mpr/core/region.hpp>
 #include <mpr/glc/aperture.hpp>
-#include <mpr/policy_dispatch.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_dispatch.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <memory>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// The render of a Python job through the library's dispatch (include/mpr/policy_dispatch.hpp),
+// The render of a Python job through the library's dispatch (include/mpr/render/policy_dispatch.hpp),
 // the same code mpr-render and mpr-view render through: the choices become the sampler and pixel
 // sampling variants, one std::visit picks the sampler, and mpr::render_chosen visits the pixel
 // sampling into a fully typed mpr::Renderer per tile (a finite aperture is
@@ -7,7 +7,7 @@
 
 #include "policies.hpp"
 
-#include <mpr/policy_dispatch.hpp>
+#include <mpr/render/policy_dispatch.hpp>
 #include <mpr/render/renderer.hpp>
 
 #include <optional>

@@ -4,7 +4,7 @@
 
 #include "policies.hpp"
 
-#include <mpr/policy_dispatch.hpp>
+#include <mpr/render/policy_dispatch.hpp>
 #include <mpr/render/renderer.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/scene_sampler.hpp>

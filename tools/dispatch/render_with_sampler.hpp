@@ -2,12 +2,12 @@
 // The definition of render_with_sampler (tools/mpr-render/render_dispatch.hpp): included only by
 // the units of tools/dispatch/, each of which instantiates it for one sampler family. The visit
 // of the pixel sampling and the finite aperture are the library's (mpr::render_chosen,
-// include/mpr/policy_dispatch.hpp), which the Python module renders through too.
+// include/mpr/render/policy_dispatch.hpp), which the Python module renders through too.
 
 #include "mpr-render/render_dispatch.hpp"
 
 #include <mpr/mpr.hpp>
-#include <mpr/policy_dispatch.hpp>
+#include <mpr/render/policy_dispatch.hpp>
 
 #include <optional>
 #include <variant>

@@ -9,8 +9,8 @@
 #include "cli_args.hpp"
 
 #include <mpr/glc.hpp>
-#include <mpr/policy_dispatch.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_dispatch.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <algorithm>
 #include <optional>

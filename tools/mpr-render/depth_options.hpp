@@ -7,7 +7,7 @@
 #include <mpr/core/error.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
 #include <mpr/lightfield/depth_proxy.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <algorithm>
 #include <string>

@@ -5,8 +5,8 @@
 
 #include "cli_args.hpp"
 
-#include <mpr/policy_dispatch.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_dispatch.hpp>
+#include <mpr/render/policy_names.hpp>
 #include <mpr/sampling.hpp>
 
 #include <string>
@@ -20,7 +20,7 @@ inline constexpr int kMaxSpp = 4096;
 inline constexpr double kMaxFilterRadius = 64;
 
 /// The pixel sampling of a render and its choice (--spp, --filter): the library's, which the
-/// Python module uses too (include/mpr/policy_dispatch.hpp).
+/// Python module uses too (include/mpr/render/policy_dispatch.hpp).
 using mpr::make_pixel_sampling;
 using mpr::PixelSamplingVariant;
 

@@ -7,7 +7,7 @@
 #include "loading.hpp"
 
 #include <mpr/lightfield.hpp>
-#include <mpr/policy_dispatch.hpp>
+#include <mpr/render/policy_dispatch.hpp>
 #include <mpr/scene.hpp>
 #include <mpr/scene/rasterized_sampler.hpp>
 

@@ -4,7 +4,7 @@
 #include "mpr-render/aperture.hpp"
 #include "mpr-render/pixel_sampling.hpp"
 
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <array>
 #include <string>

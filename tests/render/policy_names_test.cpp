@@ -1,4 +1,4 @@
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_names.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
 #include "lightfield/frame_test_scenes.hpp"
 #include "render/ray_hash.hpp"
 
-#include <mpr/policy_dispatch.hpp>
+#include <mpr/render/policy_dispatch.hpp>
 
 #include <catch2/catch.hpp>
 

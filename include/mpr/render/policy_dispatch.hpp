@@ -19,7 +19,7 @@
 #include <mpr/lightfield/frame_sampler.hpp>
 #include <mpr/lightfield/nearest_camera.hpp>
 #include <mpr/lightfield/synthetic_aperture.hpp>
-#include <mpr/policy_names.hpp>
+#include <mpr/render/policy_names.hpp>
 #include <mpr/sampling.hpp>
 #include <mpr/surface/planar_surface.hpp>
 
