@@ -77,8 +77,8 @@ def M(name, area, edits, tests, why, levels=None):
 
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
 CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
-KER = "include/mpr/lightfield/detail/kernels.hpp"
-CYW = "include/mpr/lightfield/detail/cylinder_weights.hpp"
+KER = "include/mpr/lightfield/kernels/sampler_rows.hpp"
+CYW = "include/mpr/lightfield/kernels/cylinder_weights.hpp"
 DWL = "include/mpr/lightfield/kernels/depth_walk_hwy.inl"
 DLN = "include/mpr/lightfield/kernels/depth_lane_ops_hwy.inl"
 SA_LOOP = "for (const auto& c : table.cameras())"
@@ -142,7 +142,7 @@ MUTATIONS = [
       ["core"], "the one-gather sRGB encoder's in-bin threshold one 2^-23 step late",
       levels=["avx512", "avx512vbmi"]),
     M("shift_tile_blend_weights_swapped", "lightfield",
-      [("include/mpr/lightfield/detail/decode_vbmi.hpp",
+      [("include/mpr/lightfield/kernels/decode_vbmi.hpp",
         "const __m512 v0 = _mm512_set1_ps(wy0), v1 = _mm512_set1_ps(wy1);",
         "const __m512 v0 = _mm512_set1_ps(wy1), v1 = _mm512_set1_ps(wy0);")],
       ["lightfield"], "the fused row pass of the 2-D shift-and-add blends its two rows with each other's weight"),
@@ -152,12 +152,12 @@ MUTATIONS = [
         "weight_steps[static_cast<std::size_t>(r) * (n + 1) + static_cast<std::size_t>(b.last) - 1] -= 1.0f;\n  }")],
       ["lightfield"], "a tile's per-pixel weights stop one pixel before the last pixel it adds"),
     M("resample_tile_rows_swapped", "lightfield",
-      [("include/mpr/lightfield/detail/resample_tile.hpp",
+      [("include/mpr/lightfield/kernels/resample_tile.hpp",
         "const __m512 w0 = _mm512_set1_ps((1 - ay) * scale), w1 = _mm512_set1_ps(ay * scale);",
         "const __m512 w1 = _mm512_set1_ps((1 - ay) * scale), w0 = _mm512_set1_ps(ay * scale);")],
       ["lightfield"], "the resampled block weighs each output row's upper camera row with the lower one's fraction"),
     M("shift_tile_add_reads_next_block", "lightfield",
-      [("include/mpr/lightfield/detail/decode_vbmi.hpp",
+      [("include/mpr/lightfield/kernels/decode_vbmi.hpp",
         "__m512 sum = _mm512_fmadd_ps(w0, cur[k], _mm512_maskz_loadu_ps(keep, acc + at));",
         "__m512 sum = _mm512_fmadd_ps(w0, cur[(k + 1) % 4], _mm512_maskz_loadu_ps(keep, acc + at));")],
       ["lightfield"], "a row added at a vertical offset of 0 takes its texels 16 channels too far right"),
@@ -173,24 +173,24 @@ MUTATIONS = [
       [("include/mpr/lightfield/frame_tiles.hpp", "right = ax == 0 && ay == 0 ? 0 : 1;", "right = 0;")],
       ["lightfield"], "a 2-D shift takes the image's last column into the block where it interpolates past it"),
     M("resample_groups_serve_other_positions", "lightfield",
-      [("include/mpr/lightfield/detail/resample_tile.hpp", "!groups.empty() && std::abs(x1 - x) <= 1e-4 &&",
+      [("include/mpr/lightfield/kernels/resample_tile.hpp", "!groups.empty() && std::abs(x1 - x) <= 1e-4 &&",
         "!groups.empty() &&")],
       ["lightfield"], "a resampled run reuses the kept groups of a row at other positions"),
     M("cylinder_span_drops_last_weight", "lightfield",
-      [("include/mpr/lightfield/detail/cylinder_weights.hpp",
+      [("include/mpr/lightfield/kernels/cylinder_weights.hpp",
         "last = i + static_cast<std::size_t>(32 - __builtin_clz(positive));",
         "last = i + static_cast<std::size_t>(31 - __builtin_clz(positive));")],
       ["lightfield"], "the SIMD weights kernels end the cylinder's span before its last positive weight"),
     M("weighted_row_spreads_one_phase", "lightfield",
-      [("include/mpr/lightfield/detail/decode_vbmi.hpp", "spread[at % 3]", "spread[0]")],
+      [("include/mpr/lightfield/kernels/decode_vbmi.hpp", "spread[at % 3]", "spread[0]")],
       ["lightfield"], "the one-pass weighted row gives 16 channels the weights of the wrong pixels"),
     M("shift_batch_rows_from_tile_start", "lightfield",
-      [("include/mpr/lightfield/detail/shift_batch.hpp",
+      [("include/mpr/lightfield/kernels/shift_batch.hpp",
         "b.texels + static_cast<std::ptrdiff_t>(r - b.r_begin) * b.stride;",
         "b.texels + static_cast<std::ptrdiff_t>(r) * b.stride;")],
       ["lightfield"], "a block starting below the tile's first row reads its camera rows from the wrong one"),
     M("shift_batch_sum_drops_a_camera", "lightfield",
-      [("include/mpr/lightfield/detail/shift_batch.hpp",
+      [("include/mpr/lightfield/kernels/shift_batch.hpp",
         "for (std::size_t c = c0; c < std::min(k, c0 + kShiftSumCameras); ++c) {",
         "for (std::size_t c = c0; c + 1 < std::min(k, c0 + kShiftSumCameras); ++c) {")],
       ["lightfield"], "the register sum of the cameras' whole-pixel shifts leaves out the last camera of each pass"),
@@ -291,15 +291,15 @@ MUTATIONS = [
       [(CYL, "last = std::min(w, g1 * kSegment);", "last = std::min(w, (g1 - 1) * kSegment);")],
       ["lightfield"], "the cylinder weighs a camera on every segment within reach but the last"),
     M("weighted_codes_weights_one_channel_off", "lightfield",
-      [("include/mpr/lightfield/detail/decode_vbmi.hpp", "s.index[o][l] = (16 * o + l) / 3;",
+      [("include/mpr/lightfield/kernels/decode_vbmi.hpp", "s.index[o][l] = (16 * o + l) / 3;",
         "s.index[o][l] = (16 * o + l + 1) / 3 % 16;")],
       ["lightfield"], "the one-pass weighted row spreads each pixel's weight one channel early"),
     M("projective_tile_box_ignores_ray_weights", "lightfield",
-      [("include/mpr/lightfield/detail/projective_tile.hpp",
+      [("include/mpr/lightfield/kernels/projective_tile.hpp",
         "_mm512_maskz_mul_ps(p.m, p.wt, _mm512_set1_ps(scale))", "_mm512_maskz_mov_ps(p.m, _mm512_set1_ps(scale))")],
       ["lightfield"], "the projective tile's box step adds every seen point at weight 1, whatever its ray weight"),
     M("projective_tile_rows_from_first_output", "lightfield",
-      [("include/mpr/lightfield/detail/projective_tile.hpp", "      float* acc_row = out[r].acc;",
+      [("include/mpr/lightfield/kernels/projective_tile.hpp", "      float* acc_row = out[r].acc;",
         "      float* acc_row = out[0].acc + 3 * n * r;")],
       ["lightfield"], "the projective tile places row r's sums after row 0's instead of at its own outputs"),
     M("cylinder_tile_last_row_dropped", "lightfield",
@@ -373,7 +373,7 @@ def cpu_simd_levels():
 # --levels) at those levels, unless it names its own.
 _AVX512_UP = ["avx512", "avx512vbmi"]
 LEVELS_OF_FILE = {
-    "include/mpr/lightfield/detail/decode_vbmi.hpp": ["avx512vbmi"],
+    "include/mpr/lightfield/kernels/decode_vbmi.hpp": ["avx512vbmi"],
 }
 for _m in MUTATIONS:
     _files = {e[0] for e in _m["edits"]}

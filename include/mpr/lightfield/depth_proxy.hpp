@@ -15,7 +15,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/detail/depth_proxy_lanes.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
-#include <mpr/lightfield/detail/unit_acos.hpp>
+#include <mpr/lightfield/kernels/unit_acos.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
 

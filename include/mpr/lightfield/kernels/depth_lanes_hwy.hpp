@@ -28,7 +28,7 @@
 #if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/detail/depth_walk.hpp>
-#include <mpr/lightfield/detail/unit_acos.hpp>
+#include <mpr/lightfield/kernels/unit_acos.hpp>
 #include <mpr/lightfield/kernels/depth_lane_data.hpp>
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp> // Highway's ops for every attainable target
 
