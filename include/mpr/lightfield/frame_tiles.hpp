@@ -7,7 +7,7 @@
 /// (`detail::resample_tile`), instead of a shift-and-add per run (`shift_add`, frame_runs.hpp).
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/shift_tile.hpp>
+#include <mpr/lightfield/accumulation/shift_tile.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/kernels/resample_tile.hpp>
