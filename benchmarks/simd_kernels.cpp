@@ -10,7 +10,7 @@
 #include "bench_common.hpp"
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #if MPR_HAVE_HWY
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp>

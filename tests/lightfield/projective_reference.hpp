@@ -1,8 +1,8 @@
 #pragma once
-// The long-double reference of the projective-row kernels (lightfield/detail/projective_row.hpp,
+// The long-double reference of the projective-row kernels (lightfield/kernels/projective_row.hpp,
 // projective_tile.hpp): one point's bilinear pixel, and whether the kernel's float decision
 // about it may go either way.
-#include <mpr/lightfield/detail/projective_row.hpp>
+#include <mpr/lightfield/kernels/projective_row.hpp>
 
 #include <algorithm>
 #include <cmath>

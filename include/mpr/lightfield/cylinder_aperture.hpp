@@ -7,12 +7,12 @@
 #include <mpr/core/concepts.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/ray_grid.hpp>
-#include <mpr/lightfield/detail/affine_block.hpp>
-#include <mpr/lightfield/detail/cylinder_weights.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/accumulation/affine_block.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/kernels/cylinder_weights.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/plane_rows.hpp>
 
 #include <algorithm>

@@ -16,11 +16,11 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/depth_homography.hpp>
-#include <mpr/lightfield/detail/sweep_kernels.hpp>
-#include <mpr/lightfield/detail/sweep_row.hpp>
-#include <mpr/lightfield/detail/sweep_workspace.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/kernels/sweep_kernels.hpp>
+#include <mpr/lightfield/plane_sweep/depth_homography.hpp>
+#include <mpr/lightfield/plane_sweep/sweep_row.hpp>
+#include <mpr/lightfield/plane_sweep/sweep_workspace.hpp>
 #include <mpr/lightfield/sweep_range.hpp>
 
 #include <algorithm>

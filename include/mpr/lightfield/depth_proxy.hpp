@@ -13,11 +13,11 @@
 #include <mpr/core/ray.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/depth_proxy_lanes.hpp>
-#include <mpr/lightfield/detail/depth_walk.hpp>
-#include <mpr/lightfield/detail/unit_acos.hpp>
+#include <mpr/lightfield/depth_proxy/depth_proxy_lanes.hpp>
+#include <mpr/lightfield/depth_proxy/depth_walk.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/interpolation.hpp>
+#include <mpr/lightfield/kernels/unit_acos.hpp>
 
 #include <algorithm>
 #include <array>
@@ -137,7 +137,7 @@ struct DepthProxy {
   /// `out[i] = sample(table, rays[i])` for every i (precondition: equal lengths). On x86 with
   /// Highway (`MPR_HAVE_HWY`), at every `level` from SSE4.2 up (the kernels of
   /// kernels/depth_lanes_hwy.hpp: SSE4 at `portable`, AVX2, AVX-512), for float tables of at
-  /// most 64 undistorted cameras and k < 8: sixteen rays at a time (detail/depth_proxy_lanes.hpp),
+  /// most 64 undistorted cameras and k < 8: sixteen rays at a time ((depth_proxy/depth_proxy_lanes.hpp)),
   /// one lane per ray, for the scan of the camera centres, the walks through each ray's cameras,
   /// the blend's choice of cameras and the weighing of 8-bit frames. Bit for bit the per-ray
   /// answer where the per-ray code is built without fused multiply-adds (no -march or -mfma);

@@ -7,14 +7,14 @@
 /// Vaish et al. 2004), else ray by ray. An interpolation decides which cameras weigh which rays;
 /// these functions add them.
 
-#include <mpr/lightfield/detail/affine_block.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
-#include <mpr/lightfield/detail/projective_row.hpp>
-#include <mpr/lightfield/detail/projective_tile.hpp>
-#include <mpr/lightfield/detail/resample_row.hpp>
-#include <mpr/lightfield/detail/resample_tile.hpp>
-#include <mpr/lightfield/detail/shift_tile.hpp>
+#include <mpr/lightfield/accumulation/affine_block.hpp>
+#include <mpr/lightfield/accumulation/shift_tile.hpp>
 #include <mpr/lightfield/frame_table.hpp>
+#include <mpr/lightfield/kernels/projective_row.hpp>
+#include <mpr/lightfield/kernels/projective_tile.hpp>
+#include <mpr/lightfield/kernels/resample_row.hpp>
+#include <mpr/lightfield/kernels/resample_tile.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/lerp_row_cache.hpp>
 
 #include <algorithm>

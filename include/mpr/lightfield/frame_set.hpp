@@ -44,7 +44,7 @@ struct LinearTexel {
 /// between sRGB codes in linear), so colours still round-trip through `to_rgb8` exactly. Half the
 /// bytes of the 16-bit linear texels it replaced, which matters because a full synthetic
 /// aperture reads every texel of every frame and is bound by memory bandwidth; the decode costs
-/// a table lookup (vector permutes on AVX-512, see lightfield/detail/kernels.hpp).
+/// a table lookup (vector permutes on AVX-512, see lightfield/kernels/sampler_rows.hpp).
 struct Srgb8Texel {
   using channel_type = std::uint8_t;
   /// Decoded value times `scale` is the linear colour.

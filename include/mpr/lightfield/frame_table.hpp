@@ -13,7 +13,7 @@
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/array_plane.hpp>
 #include <mpr/lightfield/camera_index.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>

@@ -3,8 +3,8 @@
 /// `mpr::LerpRowCache`: camera rows interpolated horizontally for a shift-and-add (`shift_add`,
 /// frame_runs.hpp), kept for the next output row that reads them.
 
-#include <mpr/lightfield/detail/kernels.hpp>
-#include <mpr/lightfield/detail/resample_row.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
+#include <mpr/lightfield/kernels/resample_row.hpp>
 
 #include <cmath>
 #include <cstddef>

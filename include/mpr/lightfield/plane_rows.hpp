@@ -7,7 +7,7 @@
 
 #include <mpr/core/ray_grid.hpp>
 #include <mpr/lightfield/array_plane.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 

@@ -13,8 +13,8 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/depth_homography.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/plane_sweep/depth_homography.hpp>
 
 #include <algorithm>
 #include <cmath>

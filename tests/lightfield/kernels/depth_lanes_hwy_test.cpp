@@ -1,5 +1,5 @@
 // The lane kernels of DepthProxy's batch path (lightfield/kernels/depth_lanes_hwy.hpp) at every
-// SIMD level this CPU runs: the walk against the per-ray walk (detail/depth_walk.hpp), lane by
+// SIMD level this CPU runs: the walk against the per-ray walk ((depth_proxy/depth_walk.hpp)), lane by
 // lane, from first-camera searches and from searches that earlier cameras left (a t further on,
 // a stretch seen free), and the whole batch path (`sample_rays`, `surface_rays`) against
 // `sample(ray)` and `surface(ray)` on 8-bit and float frames. Bit for bit in builds whose per-ray

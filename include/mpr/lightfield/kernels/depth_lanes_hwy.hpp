@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The lane kernels of `DepthProxy`'s batch path (lightfield/depth_proxy.hpp,
-/// detail/depth_proxy_lanes.hpp), written once with Highway and compiled for SSE4, AVX2 and
+/// (depth_proxy/depth_proxy_lanes.hpp)), written once with Highway and compiled for SSE4, AVX2 and
 /// AVX-512 (`depth_lanes_target` picks one for a `SimdLevel`). Sixteen rays go through together,
 /// one per lane (kernels/depth_lane_data.hpp); each target takes them in vectors of its width
 /// (4, 8 or 16 floats), each vector to the end of the step before the next, since the lanes never
@@ -27,10 +27,10 @@
 #include <mpr/core/config.hpp>
 #if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/depth_walk.hpp>
-#include <mpr/lightfield/detail/unit_acos.hpp>
+#include <mpr/lightfield/depth_proxy/depth_walk.hpp>
 #include <mpr/lightfield/kernels/depth_lane_data.hpp>
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp> // Highway's ops for every attainable target
+#include <mpr/lightfield/kernels/unit_acos.hpp>
 
 #include <hwy/highway.h>
 

@@ -1,7 +1,7 @@
 // No #pragma once, no includes: kernels/depth_lanes_hwy.hpp includes this file once per Highway
 // target, after kernels/depth_lane_ops_hwy.inl (the ops used here: `mul`, `depth_lookup` ...).
 /// \file
-/// `depth_walk` (detail/depth_walk.hpp) for sixteen rays at once in one camera: the rays of
+/// `depth_walk` ((depth_proxy/depth_walk.hpp)) for sixteen rays at once in one camera: the rays of
 /// `DepthProxy`'s batch path whose camera is the same walk its depth map together, one lane per
 /// ray, each lane stepping and narrowing the crossing as the per-ray walk does, with the same
 /// operations in the same order and no fused multiply-add, and ending as it ends: on the

@@ -1,4 +1,4 @@
-// The projective-row kernel (lightfield/detail/projective_row.hpp): every SIMD level against a
+// The projective-row kernel (lightfield/kernels/projective_row.hpp): every SIMD level against a
 // long-double reference of the same sums, on rows that cross the image borders, pass behind the
 // camera, stand still or step several pixels at a time, with and without per-point weights, for
 // 8-bit codes and float channels and float and double coordinates. Nothing past a row's end is
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/projective_row.hpp>
+#include <mpr/lightfield/kernels/projective_row.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>

@@ -9,8 +9,8 @@
 /// into it in one pass, with no row written in between.
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
-#include <mpr/lightfield/detail/resample_row.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
+#include <mpr/lightfield/kernels/resample_row.hpp>
 
 #include <algorithm>
 #include <cmath>

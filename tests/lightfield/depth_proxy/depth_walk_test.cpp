@@ -1,4 +1,4 @@
-#include <mpr/lightfield/detail/depth_walk.hpp>
+#include <mpr/lightfield/depth_proxy/depth_walk.hpp>
 
 #include <catch2/catch.hpp>
 

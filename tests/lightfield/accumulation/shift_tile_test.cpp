@@ -1,4 +1,4 @@
-// The 2-D shift-and-add kernel (mpr/lightfield/detail/shift_tile.hpp) at every instruction-set
+// The 2-D shift-and-add kernel (mpr/lightfield/accumulation/shift_tile.hpp) at every instruction-set
 // level against a long-double reference: every output row gets its two camera rows' bilinear
 // blend (or, at a vertical offset of 0, its one row; at offsets of 0 both ways, its texels),
 // nothing outside the block is written (accumulators beside each row, the rows' ends, the working
@@ -9,7 +9,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/shift_tile.hpp>
+#include <mpr/lightfield/accumulation/shift_tile.hpp>
 
 #include <cmath>
 #include <cstddef>

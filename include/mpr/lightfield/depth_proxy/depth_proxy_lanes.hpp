@@ -14,7 +14,7 @@
 #include <mpr/core/ray.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/depth_walk.hpp>
+#include <mpr/lightfield/depth_proxy/depth_walk.hpp>
 #include <mpr/lightfield/frame_table.hpp>
 #include <mpr/lightfield/kernels/depth_lane_data.hpp>
 #include <mpr/lightfield/kernels/depth_lanes_hwy.hpp>

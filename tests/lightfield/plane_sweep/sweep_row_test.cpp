@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/sweep_row.hpp>
+#include <mpr/lightfield/plane_sweep/sweep_row.hpp>
 
 #include <algorithm>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// The resampled block (mpr/lightfield/detail/resample_tile.hpp) at every instruction-set level
+// The resampled block (mpr/lightfield/kernels/resample_tile.hpp) at every instruction-set level
 // against a long-double reference: every output row gets the blend of its two camera rows, each
 // resampled at x + s i with the row's clamping, and nothing outside the block is written.
 
@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/resample_tile.hpp>
+#include <mpr/lightfield/kernels/resample_tile.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 /// decodes them to linear light in registers and interpolates them (no gathers).
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/decode_vbmi.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
 #include <array>

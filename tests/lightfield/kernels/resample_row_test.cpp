@@ -1,4 +1,4 @@
-// The resampling row kernel (lightfield/detail/resample_row.hpp): every SIMD level against a
+// The resampling row kernel (lightfield/kernels/resample_row.hpp): every SIMD level against a
 // long-double reference, for 8-bit codes and float channels, steps below, at and above one camera
 // pixel (and past the VBMI step's limit, where the plain loop runs), positions that reach the
 // row's last texel pair and run past it (clamped), and lengths around the 16-pixel step. Nothing
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/resample_row.hpp>
+#include <mpr/lightfield/kernels/resample_row.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <algorithm>

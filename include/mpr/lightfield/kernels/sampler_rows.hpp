@@ -20,7 +20,7 @@
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/geometry/detail/plane_kernels.hpp>
-#include <mpr/lightfield/detail/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/decode_vbmi.hpp>
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 
 namespace mpr::detail {

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/sweep_kernels.hpp>
+#include <mpr/lightfield/kernels/sweep_kernels.hpp>
 
 #include <algorithm>
 #include <cmath>

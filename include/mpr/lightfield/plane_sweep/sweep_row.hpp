@@ -3,12 +3,12 @@
 /// One reference row's matching cost at one depth plane in the plane sweep of `estimate_depth`
 /// (lightfield/depth_estimation.hpp): how each neighbour camera sees the row (a translated row
 /// over the pixels it sees, or a projective one), then per pixel the mean of the best few
-/// neighbours' truncated costs, by the row kernels of detail/sweep_kernels.hpp.
+/// neighbours' truncated costs, by the row kernels of (kernels/sweep_kernels.hpp).
 
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
-#include <mpr/lightfield/detail/sweep_kernels.hpp>
-#include <mpr/lightfield/detail/sweep_workspace.hpp>
+#include <mpr/lightfield/kernels/sweep_kernels.hpp>
+#include <mpr/lightfield/plane_sweep/sweep_workspace.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/camera/pinhole_camera.hpp>
-#include <mpr/lightfield/detail/affine_block.hpp>
+#include <mpr/lightfield/accumulation/affine_block.hpp>
 
 #include <Eigen/Geometry>
 

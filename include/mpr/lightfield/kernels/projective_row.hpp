@@ -8,7 +8,7 @@
 /// coordinates, where the four bilinear taps are gathered (core/simd.hpp dispatches).
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
 #include <cmath>

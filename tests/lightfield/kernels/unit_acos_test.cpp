@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/unit_acos.hpp>
+#include <mpr/lightfield/kernels/unit_acos.hpp>
 
 #include <cmath>
 #include <cstring>

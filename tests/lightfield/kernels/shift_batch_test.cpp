@@ -1,4 +1,4 @@
-// Many cameras' whole-pixel shifts added together (mpr/lightfield/detail/shift_batch.hpp), at
+// Many cameras' whole-pixel shifts added together (mpr/lightfield/kernels/shift_batch.hpp), at
 // every instruction-set level against a long-double reference: each output row gets the decoded
 // texels of exactly the blocks that cover it, for more cameras than one register pass sums and
 // rows of every tail length; nothing outside the rows is written.
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/shift_batch.hpp>
+#include <mpr/lightfield/kernels/shift_batch.hpp>
 
 #include <cmath>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// The projective-tile kernel (lightfield/detail/projective_tile.hpp): every SIMD level against the
+// The projective-tile kernel (lightfield/kernels/projective_tile.hpp): every SIMD level against the
 // long-double reference of each row's points, on tiles of a tilted plane (rows nearly level in
 // the camera, a few crossing camera rows), steep and sheared tiles (groups too spread for the
 // box windows), tiles that leave the image or pass behind the camera, and images narrower and
@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/detail/projective_tile.hpp>
+#include <mpr/lightfield/kernels/projective_tile.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 
 #include <cmath>

@@ -8,8 +8,8 @@
 /// interpolation of a row and the blend of the output row above it are one pass over the row.
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/decode_vbmi.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
 #include <cstddef>

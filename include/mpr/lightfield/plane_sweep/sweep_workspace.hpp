@@ -7,8 +7,8 @@
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
-#include <mpr/lightfield/detail/sweep_kernels.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/kernels/sweep_kernels.hpp>
 
 #include <algorithm>
 #include <cstddef>

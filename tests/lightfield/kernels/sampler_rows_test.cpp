@@ -9,8 +9,8 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/lightfield.hpp>
-#include <mpr/lightfield/detail/cylinder_weights.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/cylinder_weights.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/mpr.hpp>
 
 #include <algorithm>

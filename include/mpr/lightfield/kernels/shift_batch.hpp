@@ -13,8 +13,8 @@
 
 #include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/decode_vbmi.hpp>
-#include <mpr/lightfield/detail/kernels.hpp>
+#include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
 #include <cstddef>

@@ -13,8 +13,8 @@
 /// 64 bytes at a time.
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/detail/decode_vbmi.hpp>
-#include <mpr/lightfield/detail/projective_row.hpp>
+#include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/projective_row.hpp>
 
 #include <algorithm>
 #include <cmath>
