@@ -207,7 +207,7 @@ void print_scale_rows(const mpr::PinholeCamera<T>& centre, const Sampler& sample
       const std::string label = std::string("Chess scale ") + names[i] + at;
       cpu[i] = measure(label.c_str(), p, mpr::pinhole_glc(view, p), sampler, w, h, 1, repeats, true).cpu_ms;
     }
-    if (cpu[0] > 0)
+    if (cpu[0] > 0 && cpu[1] > 0 && cpu[2] > 0) // all three run (not narrowed by --only)
       std::printf("| %-34s | 1 | 1.5x: %.2f, 2x: %.2f (thread CPU over 1x; pixels 2.25x, 4x) |\n",
                   ("Chess scale ratio" + at).c_str(), cpu[1] / cpu[0], cpu[2] / cpu[0]);
   }

@@ -8,6 +8,7 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/detail/resample_tile.hpp>
+#include <mpr/lightfield/magnified_tile.hpp>
 #include <mpr/lightfield/detail/shift_batch.hpp>
 #include <mpr/lightfield/detail/shift_tile.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
@@ -217,7 +218,7 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
     tile.lut = texel_decode_table<texel_type>();
     tile.acc = block_acc;
     tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
-    if (!detail::resample_tile(tile, work.resample)) // out of memory: ray by ray
+    if (!detail::resample_tile_any(tile, work.resample)) // out of memory: ray by ray
       for (long r = b.r_begin; r < b.r_end; ++r) {
         const std::size_t o = static_cast<std::size_t>(r) * n + static_cast<std::size_t>(b.first);
         table.add_per_ray(c, points + o, tile.n, acc + 3 * o, weight + o);
