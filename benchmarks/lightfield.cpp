@@ -9,7 +9,8 @@
 // usage: lightfield [--quick] [--only=SUBSTRING] [--repeats=N] [--no-per-pixel] [--levels] [DATA_DIR]
 //   --only: run only the workloads whose label contains SUBSTRING (e.g. --only=Chess)
 //   --no-per-pixel: skip the per-pixel runs and the batch == per-pixel check (for profiling)
-//   --levels: add the Chess synthetic-aperture rows (z = 1000 and 820, 1 thread) at every SIMD
+//   --levels: add the Chess synthetic-aperture rows (z = 1000 and 820, 1 thread) and the magnified
+//     rows (Chess scale 1x/1.5x/2x) at every SIMD
 //     level the CPU runs, labelled "@level": each level runs in a child process of this program
 //     with MPR_SIMD set (a process chooses its level once), the levels in turn, twice (portable
 //     up to the best, then back down), so that a load that changes during the run shows as two
@@ -181,6 +182,37 @@ double peer_code_space_refocus(const mpr::CameraFrameSet<T>& lf, const mpr::Pinh
   return mpr_bench::time_repeated(repeats, run).median * 1e3;
 }
 
+// Output magnified from the cameras' scale: the centre camera's field of view at 1x, 1.5x and 2x
+// its pixel count per axis (1400x800, 2100x1200, 2800x1600; each output pixel steps 1/scale camera
+// pixel), 1 thread, z = 1000 and 820. The ratio row is each scale's thread CPU time over the 1x
+// view's (pixel counts 2.25x and 4x). `suffix` labels the level in a --levels child.
+template <class Sampler>
+void print_scale_rows(const mpr::PinholeCamera<T>& centre, const Sampler& sampler, int repeats,
+                      const std::string& suffix) {
+  for (const T z : {T(1000), T(820)}) {
+    const std::string at = " z=" + std::to_string(static_cast<int>(z)) + suffix;
+    double cpu[3] = {0, 0, 0};
+    const T scales[3] = {T(1), T(1.5), T(2)};
+    const char* names[3] = {"1x", "1.5x", "2x"};
+    for (int i = 0; i < 3; ++i) {
+      mpr::Mat3<T> K = centre.K();
+      const int w = static_cast<int>(static_cast<T>(centre.width()) * scales[i]);
+      const int h = static_cast<int>(static_cast<T>(centre.height()) * scales[i]);
+      K(0, 0) *= scales[i];
+      K(1, 1) *= scales[i];
+      K(0, 2) = T(0.5) * static_cast<T>(w - 1);
+      K(1, 2) = T(0.5) * static_cast<T>(h - 1);
+      const mpr::PinholeCamera<T> view(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>::Zero(), w, h);
+      const mpr::PlanarSurface<T> p = view.image_plane(z);
+      const std::string label = std::string("Chess scale ") + names[i] + at;
+      cpu[i] = measure(label.c_str(), p, mpr::pinhole_glc(view, p), sampler, w, h, 1, repeats, true).cpu_ms;
+    }
+    if (cpu[0] > 0 && cpu[1] > 0 && cpu[2] > 0) // all three run (not narrowed by --only)
+      std::printf("| %-34s | 1 | 1.5x: %.2f, 2x: %.2f (thread CPU over 1x; pixels 2.25x, 4x) |\n",
+                  ("Chess scale ratio" + at).c_str(), cpu[1] / cpu[0], cpu[2] / cpu[0]);
+  }
+}
+
 // --levels: the Chess synthetic-aperture rows at each SIMD level the CPU runs, each level in a
 // child process (`program` with MPR_SIMD set and --level-rows), portable up to the best level
 // and back down; the children's table rows are printed as they come.
@@ -201,10 +233,9 @@ void print_level_rows(const char* program, const std::string& data, int repeats)
       mpr_bench::load_average().c_str());
   std::fflush(stdout);
   for (const mpr::detail::SimdLevel level : order) {
-    const std::string command =
-        std::string("MPR_SIMD=") + mpr::detail::simd_level_name(level) + " '" + program +
-        "' --level-rows --only='Chess synthetic aperture z=' --no-per-pixel --repeats=" + std::to_string(repeats) +
-        " '" + data + "'";
+    const std::string command = std::string("MPR_SIMD=") + mpr::detail::simd_level_name(level) + " '" + program +
+                                "' --level-rows --only='Chess ' --no-per-pixel --repeats=" + std::to_string(repeats) +
+                                " '" + data + "'";
     FILE* child = popen(command.c_str(), "r");
     if (child == nullptr) {
       std::printf("(--levels: could not run %s)\n", command.c_str());
@@ -212,7 +243,9 @@ void print_level_rows(const char* program, const std::string& data, int repeats)
     }
     char line[512];
     while (std::fgets(line, sizeof line, child) != nullptr)
-      if (std::string(line).rfind("| Chess synthetic aperture z=", 0) == 0) std::fputs(line, stdout);
+      if (std::string(line).rfind("| Chess synthetic aperture z=", 0) == 0 ||
+          std::string(line).rfind("| Chess scale ", 0) == 0)
+        std::fputs(line, stdout);
     pclose(child);
     std::fflush(stdout);
   }
@@ -338,6 +371,7 @@ int main(int argc, char** argv) {
       measure(label.c_str(), p, mpr::pinhole_glc(centre, p), chess_full, centre.width(), centre.height(), 1, repeats,
               false);
     }
+    print_scale_rows(centre, chess_full, repeats, std::string(" @") + mpr::detail::simd_level_name());
     return 0;
   }
   const mpr::CameraFrameSampler<mpr::NearestCamera, T> chess_nearest(lf);
@@ -383,6 +417,10 @@ int main(int argc, char** argv) {
     measure("Chess synthetic tilt-y 20 deg z=825", p, mpr::pinhole_glc(centre, p), chess_full, centre.width(),
             centre.height(), threads, repeats, threads == 2);
   }
+
+  std::printf("\nOutput magnified from the cameras' scale (same field of view; 1 thread)\n\n| workload | threads | "
+              "batch ms (wall) | batch ms (thread CPU) | per-pixel ms | Mrays/s |\n|---|---|---|---|---|---|\n");
+  print_scale_rows(centre, chess_full, repeats, "");
 
   // Half the cameras' scale (700x400 from 1400x800: the projective rows) and the README's Chess
   // animations at their middle frame (`mpr-render --stanford chess --size 700x400 ...`).

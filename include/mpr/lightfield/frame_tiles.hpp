@@ -7,6 +7,7 @@
 /// (`detail::resample_tile`), instead of a shift-and-add per run (`shift_add`, frame_runs.hpp).
 
 #include <mpr/core/simd.hpp>
+#include <mpr/lightfield/accumulation/magnified_tile.hpp>
 #include <mpr/lightfield/accumulation/shift_tile.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -182,7 +183,7 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
     tile.lut = texel_decode_table<texel_type>();
     tile.acc = block_acc;
     tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
-    if (!detail::resample_tile(tile, work.resample)) // out of memory: ray by ray
+    if (!detail::resample_tile_any(tile, work.resample)) // out of memory: ray by ray
       for (long r = b.r_begin; r < b.r_end; ++r) {
         const std::size_t o = static_cast<std::size_t>(r) * n + static_cast<std::size_t>(b.first);
         table.add_per_ray(c, points + o, tile.n, acc + 3 * o, weight + o);
