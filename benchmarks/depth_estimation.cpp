@@ -2,13 +2,15 @@
 // on Stanford Chess (all 49 views, 1 and 2 threads) and accuracy against exact depth on a
 // rasterized virtual array of the classroom.
 //
-//   build/bench/benchmarks/depth_estimation [DATA_DIR] [--quick] [--planes=N] [--views=N]
+//   build/bench/benchmarks/depth_estimation [DATA_DIR] [--quick] [--planes=N] [--views=N] [--tuned]
 //
 // DATA_DIR (default: $MPR_DATA_DIR) holds stanford/chess; without it the Chess part is skipped.
 // --quick (ctest's smoke run) sweeps a small classroom array only. --planes=, --neighbours=,
 // --best=, --truncation=, --spatial=, --range= change the classroom's settings (default: the
 // PlaneSweepConfig defaults, 64 planes, and a second row with settings for this array: all four
-// neighbours, 256 planes, spatial 3); --views limits the Chess views timed (default all, else one by one
+// neighbours, 256 planes, spatial 3); Chess runs with the library's defaults (`estimate_scene_depth`:
+// the range from the calibration, each stage's time printed), --tuned with the range 600..1400
+// set; --views limits the Chess views timed (default all, else one by one
 // with estimate_depth); --threads=N times only N threads; --no-classroom skips the accuracy part;
 // --out=DIR writes camera 28's exact depth and each row's estimate as colour-mapped PNGs
 // (classroom_depth_exact.png, classroom_depth_estimated_<row>.png, one depth range).
@@ -18,6 +20,7 @@
 #include <mpr/io/depth_maps.hpp>
 #include <mpr/io/stanford_light_field.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/scene_depth.hpp>
 #include <mpr/scene/classroom.hpp>
 #include <mpr/scene/rasterized_sampler.hpp>
 
@@ -27,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <sys/resource.h>
 #include <utility>
@@ -140,6 +144,7 @@ int main(int argc, char** argv) {
   mpr::PlaneSweepConfig classroom_config; // the settings of the classroom run (defaults, 64 planes)
   std::filesystem::path out;              // --out=DIR: the classroom's depth maps as PNG previews
   bool classroom = true, options = false; // options: a sweep setting was given
+  bool tuned = false;                     // --tuned: Chess with the range 600..1400 set
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.rfind("--planes=", 0) == 0 || a.rfind("--neighbours=", 0) == 0 || a.rfind("--best=", 0) == 0 ||
@@ -165,6 +170,8 @@ int main(int argc, char** argv) {
       out = a.substr(6);
     else if (a == "--no-classroom")
       classroom = false;
+    else if (a == "--tuned")
+      tuned = true;
     else if (a != "--quick")
       data = a;
   }
@@ -198,30 +205,48 @@ int main(int argc, char** argv) {
     return 0;
   }
   const auto lf = mpr::read_stanford_light_field<float>(chess);
-  mpr::PlaneSweepConfig sweep;
-  sweep.near = 600;
-  sweep.far = 1400;
-  sweep.planes = 64;
+  mpr::PlaneSweepConfig sweep; // the defaults: the range from the calibration
+  if (tuned) {
+    sweep.near = 600;
+    sweep.far = 1400;
+  }
   const std::size_t n = views > 0 ? std::min<std::size_t>(static_cast<std::size_t>(views), lf.size()) : lf.size();
   std::printf(
       "\nStanford Chess: %zu views of %dx%d, %zu of them estimated (each against up to %d neighbours), %d planes "
-      "%.0f..%.0f, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
-      lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes, sweep.near, sweep.far,
-      sweep.best, sweep.truncation, sweep.spatial, sweep.range);
-  std::printf("| threads | total s (wall) | ms per view (wall) | CPU s (all threads) | load average after |\n"
-              "|---|---|---|---|---|\n");
+      "over %s, default settings (best %d, truncation %.2f, spatial %.0f, range %.2f)\n\n",
+      lf.size(), lf.camera(0).width(), lf.camera(0).height(), n, sweep.neighbours, sweep.planes,
+      tuned ? "600..1400 (--tuned)" : "the range from the calibration (estimate_scene_depth)", sweep.best,
+      sweep.truncation, sweep.spatial, sweep.range);
+  std::printf("| threads | total s (wall) | ms per view (wall) | CPU s (all threads) | stages s (wall) | range | load "
+              "average after |\n|---|---|---|---|---|---|---|\n");
   for (const int threads : {2, 1}) {
     if (only_threads > 0 && threads != only_threads) continue;
     sweep.threads = threads;
+    std::map<std::string, double> stages; // each stage's time when it ended
+    sweep.progress = [&](const mpr::DepthProgress& p) {
+      if (p.done == p.total) stages[p.stage] = p.seconds;
+    };
     double s = 0;
     const double cpu = cpu_seconds();
+    std::string range = tuned ? "600..1400" : "";
     if (n == lf.size()) {
-      s = seconds([&] { (void)mpr::estimate_depth_maps(lf, sweep); });
+      s = seconds([&] {
+        mpr::SceneDepthConfig config;
+        config.sweep = sweep;
+        const mpr::SceneDepth d = mpr::estimate_scene_depth(lf, config);
+        if (!tuned)
+          range = std::to_string(static_cast<int>(d.range.near)) + ".." + std::to_string(static_cast<int>(d.range.far));
+      });
     } else {
-      for (std::size_t i = 0; i < n; ++i) s += seconds([&] { (void)mpr::estimate_depth(lf, i, sweep); });
+      const mpr::PlaneSweepConfig ranged = mpr::with_sweep_range(lf, sweep);
+      for (std::size_t i = 0; i < n; ++i) s += seconds([&] { (void)mpr::estimate_depth(lf, i, ranged); });
+      range = std::to_string(static_cast<int>(ranged.near)) + ".." + std::to_string(static_cast<int>(ranged.far));
     }
-    std::printf("| %d | %.2f | %.0f | %.2f | %s |\n", threads, s, 1000 * s / static_cast<double>(n),
-                cpu_seconds() - cpu, mpr_bench::load_average().c_str());
+    std::string times;
+    for (const auto& [stage, t] : stages)
+      times += (times.empty() ? "" : ", ") + stage + " " + std::to_string(t).substr(0, 5);
+    std::printf("| %d | %.2f | %.0f | %.2f | %s | %s | %s |\n", threads, s, 1000 * s / static_cast<double>(n),
+                cpu_seconds() - cpu, times.c_str(), range.c_str(), mpr_bench::load_average().c_str());
     std::fflush(stdout);
   }
   return 0;

@@ -271,9 +271,13 @@ template <std::floating_point T, class Px>
       for (int i = 0; i < best; ++i) keep[i] = scratch + static_cast<std::size_t>(i) * w;
       float* value = scratch + static_cast<std::size_t>(best) * w;
       const int y0 = block * rows_per_block, y1 = std::min(height, y0 + rows_per_block);
+      // Row by row, the batch's planes together: the neighbours' rows a reference row reads at
+      // neighbouring planes are the same or adjacent ones, still in cache for the next plane.
+      float d[kSweepTrackPlanes];
+      for (int i = 0; i < count; ++i) d[i] = static_cast<float>(depth_of(first + i));
+      for (int y = y0; y < y1; ++y)
+        for (int i = 0; i < count; ++i) sweep_cost_row(inputs, y, d[i], row_of(i, y), keep, value);
       for (int i = 0; i < count; ++i) {
-        const float d = static_cast<float>(depth_of(first + i));
-        for (int y = y0; y < y1; ++y) sweep_cost_row(inputs, y, d, row_of(i, y), keep, value);
         if (!(config.spatial > 0)) continue;
         // The horizontal aggregation pass, the block's rows side by side.
         const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y0) * width;

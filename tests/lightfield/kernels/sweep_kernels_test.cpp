@@ -350,3 +350,55 @@ TEST_CASE("the argmin bookkeeping tracks the cheapest plane and its neighbours' 
     }
   });
 }
+
+TEST_CASE("the chunked kernel averages the best costs of the neighbours that see each pixel", "[sweep_kernels]") {
+  // Twelve neighbours' translated rows over a row of 53 pixels (three chunks of 16 and a
+  // remainder of 5), each seen over its own span: whole, from or up to inside a chunk, one pixel,
+  // none. The expected value per pixel: the costs of the neighbours that see it (from the
+  // texels), tau for the others, sorted, the best averaged.
+  TestImage image(80, 12, 21);
+  const int width = 53, m = 12;
+  const std::vector<float> ref = random_values(3 * width, 23);
+  const float* ref_rows[3] = {ref.data(), ref.data() + width, ref.data() + 2 * width};
+  const float tau = 0.8f;
+  const int shifts[m] = {0, 3, 17, 9, 20, 1, 5, 12, 7, 2, 14, 11}, rows[m] = {0, 4, 7, 2, 9, 1, 3, 5, 8, 6, 10, 0};
+  const int xbs[m] = {0, 5, 16, 0, 20, 31, 0, 47, 52, 10, 3, 0},
+            xes[m] = {53, 53, 32, 17, 21, 50, 48, 53, 53, 10, 40, 53};
+  const float fus[m] = {0.25f, 0.0f, 0.8f, 1.0f, 0.5f, 0.1f, 0.9f, 0.33f, 0.6f, 0.2f, 0.75f, 0.05f};
+  const float fvs[m] = {0.4f, 1.0f, 0.0f, 0.65f, 0.3f, 0.7f, 0.15f, 0.5f, 0.95f, 0.2f, 0.45f, 0.85f};
+  mpr::detail::SweepSeenRow seen[m];
+  for (int j = 0; j < m; ++j) {
+    seen[j].row.fu = fus[j];
+    seen[j].row.fv = fvs[j];
+    for (int c = 0; c < 3; ++c) {
+      seen[j].row.top[c] = image.channel(c) + rows[j] * image.stride + shifts[j] + xbs[j];
+      seen[j].row.bottom[c] = image.channel(c) + (rows[j] + 1) * image.stride + shifts[j] + xbs[j];
+    }
+    seen[j].xb = xbs[j];
+    seen[j].xe = xes[j];
+  }
+  for (int best = 1; best <= m; ++best) {
+    std::vector<float> expected(static_cast<std::size_t>(width));
+    for (int x = 0; x < width; ++x) {
+      const float px[3] = {ref_rows[0][x], ref_rows[1][x], ref_rows[2][x]};
+      std::vector<float> c;
+      for (int j = 0; j < m; ++j)
+        c.push_back(x >= xbs[j] && x < xes[j] ? reference_cost(image, static_cast<float>(x + shifts[j]) + fus[j],
+                                                               static_cast<float>(rows[j]) + fvs[j], px, tau)
+                                              : tau);
+      std::sort(c.begin(), c.end());
+      float sum = 0;
+      for (int i = 0; i < best; ++i) sum += c[static_cast<std::size_t>(i)];
+      expected[static_cast<std::size_t>(x)] = sum / static_cast<float>(best);
+    }
+    mpr_test::for_each_simd_level([&](SimdLevel level) {
+      std::vector<float> out(static_cast<std::size_t>(width) + 1, -1.0f);
+      mpr::detail::sweep_shift_mean_seen(ref_rows, seen, m, best, tau, out.data(), width, level);
+      for (int x = 0; x < width; ++x) {
+        INFO("best " << best << " x " << x);
+        CHECK(out[static_cast<std::size_t>(x)] == Approx(expected[static_cast<std::size_t>(x)]).margin(1e-5));
+      }
+      CHECK(out[static_cast<std::size_t>(width)] == -1.0f); // nothing written past the row
+    });
+  }
+}

@@ -65,16 +65,17 @@ std::vector<float> per_neighbour(const mpr::detail::SweepRowInputs& in, int y, f
 TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighbour", "[sweep_row]") {
   // Random neighbours: translated rows (reference pixel x at x + tx / d, y + ty / d) into images
   // of other widths and heights, so that the pixels each one sees differ, overlap partly or not
-  // at all, or are none; projective rows; 1-6 neighbours, every best. Every row of the
-  // reference, bit for bit, at every SIMD level.
+  // at all, or are none; projective rows; 1-6 or 1-20 neighbours (beyond 4 translated ones: the chunked
+  // kernel, rows of up to 60 pixels: whole chunks of 16, partly seen ones and a remainder), every
+  // best. Every row of the reference, bit for bit, at every SIMD level.
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  int fused_partial = 0, cases = 0;
-  for (int trial = 0; trial < 160; ++trial) {
+  int fused_partial = 0, chunked = 0, cases = 0;
+  for (int trial = 0; trial < 320; ++trial) {
     const int width = 1 + static_cast<int>(unit(rng) * 60), height = 2 + static_cast<int>(unit(rng) * 5);
     mpr::detail::SweepPlanes reference;
     mpr::detail::sweep_planes(random_image(width, height, rng), true, reference);
-    const int m = 1 + static_cast<int>(unit(rng) * 6);
+    const int m = 1 + static_cast<int>(unit(rng) * (trial % 2 == 0 ? 6.0f : 20.0f));
     std::vector<mpr::detail::SweepPlanes> neighbours(static_cast<std::size_t>(m));
     std::vector<mpr::Mat3<float>> M(static_cast<std::size_t>(m));
     std::vector<mpr::Vec3<float>> A(static_cast<std::size_t>(m));
@@ -108,6 +109,14 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
         CHECK(std::memcmp(out.data(), expected.data(), expected.size() * sizeof(float)) == 0);
         CHECK(out.back() == -1.0f); // nothing past the row
         ++cases;
+        if (level == SimdLevel::portable && m > mpr::detail::kSweepShiftMeanNeighbours &&
+            best <= mpr::detail::kSweepSeenBest) {
+          bool projective = false;
+          for (int j = 0; j < m; ++j)
+            projective = projective ||
+                         mpr::detail::sweep_neighbour_row(in, j, width, y, d).kind == SweepNeighbourRow::projective;
+          chunked += !projective;
+        }
         if (level == SimdLevel::portable && all_shift) {
           // Count rows where the fused kernel ran beside edge segments.
           int cb = 0, ce = width;
@@ -125,6 +134,7 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
   }
   CHECK(cases > 500);
   CHECK(fused_partial > 20); // the split into edge segments and fused core was exercised
+  CHECK(chunked > 50);       // the chunked kernel of many translated rows was exercised
 }
 
 TEST_CASE("a neighbour row at extreme depths and offsets reads inside both images", "[sweep_row]") {

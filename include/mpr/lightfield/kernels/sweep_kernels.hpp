@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 namespace mpr::detail {
 
@@ -123,6 +124,128 @@ MPR_ALWAYS_INLINE void sweep_shift_mean_best(const float* const ref[3], const Sw
   if constexpr (B < M)
     if (best > B) return sweep_shift_mean_best<M, B + 1>(ref, rows, best, tau, out, n);
   sweep_shift_mean_body<M, B>(ref, rows, tau, out, n);
+}
+
+/// A neighbour's translated row (`SweepShiftRow`) with the reference pixels it sees, [xb, xe):
+/// element 0 of `row`'s rows is the texel reference pixel xb blends from.
+struct SweepSeenRow {
+  SweepShiftRow row;
+  int xb, xe;
+};
+
+/// The pixels `sweep_shift_mean_seen` takes together (one AVX-512 vector, two AVX2 ones).
+inline constexpr int kSweepSeenChunk = 16;
+
+/// The most kept costs `sweep_shift_mean_seen` takes.
+inline constexpr int kSweepSeenBest = 16;
+
+#if defined(__GNUC__)
+/// kSweepSeenChunk floats as one vector of the compiler's (GCC and Clang lower it to the
+/// registers of the level `run_at` compiles for: one AVX-512 register, two AVX2 or four SSE ones).
+typedef float SweepLanes __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
+
+/// kSweepSeenChunk floats from p (any alignment) times w (through a reference: a vector
+/// return value would change the ABI between levels).
+MPR_ALWAYS_INLINE void sweep_lanes(SweepLanes& v, float w, const float* p) noexcept {
+  std::memcpy(&v, p, sizeof v);
+  v *= w;
+}
+#endif
+
+/// out[x] = the mean of the B smallest costs (`SweepShiftCost`) of pixel x among the m
+/// neighbours rows[0..m) that see it, an unseen neighbour counting as tau, for x in [0, width):
+/// what filling B rows with tau, then for every neighbour in order `sweep_shift_keep` over the
+/// pixels it sees, and `sweep_mean_best` give (the same insertions and sums), in chunks of
+/// kSweepSeenChunk pixels whose kept costs stay in registers. An unseen neighbour is skipped:
+/// inserting tau into costs that are all <= tau changes nothing. A chunk a neighbour sees only
+/// in part takes its costs pixel by pixel.
+template <int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_seen_body(const float* const ref[3], const SweepSeenRow* rows, int m, float tau,
+                                                  float* MPR_RESTRICT out, int width) noexcept {
+  constexpr int W = kSweepSeenChunk;
+#if defined(__GNUC__)
+  const SweepLanes t = SweepLanes{} + tau;
+  for (int x0 = 0; x0 < width; x0 += W) {
+    const int len = std::min(W, width - x0);
+    SweepLanes keep[B];
+    for (int i = 0; i < B; ++i) keep[i] = t;
+    for (int j = 0; j < m; ++j) {
+      const SweepSeenRow& r = rows[j];
+      const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
+      if (lo >= hi) continue;
+      const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
+      const SweepShiftCost cost(seen_ref, r.row, tau);
+      const std::size_t at = static_cast<std::size_t>(x0 - r.xb);
+      SweepLanes v = t;
+      if (hi - lo == W) {
+        SweepLanes s{};
+        for (int c = 0; c < 3; ++c) {
+          SweepLanes p00, p10, p01, p11, q;
+          sweep_lanes(p00, cost.w00, cost.a[c] + at);
+          sweep_lanes(p10, cost.w10, cost.a[c] + at + 1);
+          sweep_lanes(p01, cost.w01, cost.b[c] + at);
+          sweep_lanes(p11, cost.w11, cost.b[c] + at + 1);
+          sweep_lanes(q, 1.0f, cost.r[c] + at);
+          const SweepLanes d = p00 + p10 + p01 + p11 - q;
+          const SweepLanes e = d < 0 ? -d : d;
+          s = c == 0 ? e : s + e;
+        }
+        v = s < t ? s : t;
+      } else {
+        for (int x = lo; x < hi; ++x) v[x - x0] = cost(static_cast<std::size_t>(x - r.xb));
+      }
+#pragma GCC unroll 16
+      for (int i = 0; i < B; ++i) {
+        const SweepLanes k = keep[i];
+        keep[i] = v < k ? v : k;
+        v = k < v ? v : k;
+      }
+    }
+    SweepLanes s = keep[0];
+#pragma GCC unroll 16
+    for (int i = 1; i < B; ++i) s += keep[i];
+    s = s / static_cast<float>(B);
+    if (len == W)
+      std::memcpy(out + x0, &s, sizeof s);
+    else
+      for (int w = 0; w < len; ++w) out[x0 + w] = s[w];
+  }
+#else
+  for (int x0 = 0; x0 < width; x0 += W) {
+    const int len = std::min(W, width - x0);
+    float keep[B][W];
+    for (int i = 0; i < B; ++i)
+      for (int w = 0; w < W; ++w) keep[i][w] = tau;
+    for (int j = 0; j < m; ++j) {
+      const SweepSeenRow& r = rows[j];
+      const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
+      const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
+      const SweepShiftCost cost(seen_ref, r.row, tau);
+      for (int x = lo; x < hi; ++x) {
+        float v = cost(static_cast<std::size_t>(x - r.xb));
+        for (int i = 0; i < B; ++i) {
+          const float k = keep[i][x - x0];
+          keep[i][x - x0] = std::min(k, v);
+          v = std::max(k, v);
+        }
+      }
+    }
+    for (int w = 0; w < len; ++w) {
+      float s = keep[0][w];
+      for (int i = 1; i < B; ++i) s += keep[i][w];
+      out[x0 + w] = s / static_cast<float>(B);
+    }
+  }
+#endif
+}
+
+/// `sweep_shift_mean_seen_body<B>` for a run-time `best` in [B, kSweepSeenBest].
+template <int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_seen_best(const float* const ref[3], const SweepSeenRow* rows, int m, int best,
+                                                  float tau, float* out, int width) noexcept {
+  if constexpr (B < kSweepSeenBest)
+    if (best > B) return sweep_shift_mean_seen_best<B + 1>(ref, rows, m, best, tau, out, width);
+  sweep_shift_mean_seen_body<B>(ref, rows, m, tau, out, width);
 }
 
 /// A neighbour camera's image for the projective path: planar channels, `stride` floats per row.
@@ -359,6 +482,12 @@ inline void sweep_shift_mean(const float* const ref[3], const SweepShiftRow* row
     else
       sweep_shift_mean_best<4, 1>(ref, rows, best, tau, out, n);
   });
+}
+/// `sweep_shift_mean_seen_body` for m (1..32) neighbours and `best` (1..kSweepSeenBest) kept
+/// costs over the reference row's `width` pixels.
+inline void sweep_shift_mean_seen(const float* const ref[3], const SweepSeenRow* rows, int m, int best, float tau,
+                                  float* out, int width, SimdLevel level = dispatch_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_mean_seen_best<1>(ref, rows, m, best, tau, out, width); });
 }
 inline void sweep_projective_cost(const float* const ref[3], const SweepImage& image, const SweepProjectiveRow& row,
                                   int first, float tau, float* out, std::size_t n,

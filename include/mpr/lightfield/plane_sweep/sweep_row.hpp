@@ -121,7 +121,10 @@ struct SweepNeighbourRow {
 /// `best` rows of the width, consecutive (keep[i] = keep[0] + i width), and `value` one row.
 /// Where every neighbour is a translated row (at most kSweepShiftMeanNeighbours of them), the
 /// pixels all of them see take the fused kernel (`sweep_shift_mean`: the same values in one
-/// pass), the others the kernels neighbour by neighbour.
+/// pass), the others the kernels neighbour by neighbour; where no neighbour is projective
+/// otherwise (more neighbours, as the row-and-column selection gives), the whole row takes the
+/// chunked kernel `sweep_shift_mean_seen` (the same values again); projective rows go neighbour
+/// by neighbour.
 inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out, float* const* keep,
                            float* value) noexcept {
   const int width = in.reference->width, best = in.best;
@@ -131,16 +134,27 @@ inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out,
   for (int c = 0; c < 3; ++c)
     ref_row[c] = in.reference->channel(c) + static_cast<std::ptrdiff_t>(y) * in.reference->stride;
   SweepNeighbourRow plan[32];
-  bool all_shift = in.m <= kSweepShiftMeanNeighbours;
+  bool all_shift = in.m <= kSweepShiftMeanNeighbours, any_projective = false;
   int cb = 0, ce = width; // the pixels every neighbour sees, when all are translated rows
   for (int j = 0; j < in.m; ++j) {
     plan[j] = sweep_neighbour_row(in, j, width, y, d);
     if (plan[j].kind != SweepNeighbourRow::shift) {
       all_shift = false;
+      any_projective = any_projective || plan[j].kind == SweepNeighbourRow::projective;
     } else {
       cb = std::max(cb, plan[j].xb);
       ce = std::min(ce, plan[j].xe);
     }
+  }
+  if (!any_projective && best <= kSweepSeenBest && !(all_shift && cb < ce)) {
+    // Translated rows or unseen ones, more than the fused kernel of the common pixels takes (or
+    // no pixel seen by all): the whole row in chunks, each neighbour over the pixels it sees.
+    SweepSeenRow seen[32];
+    int count = 0;
+    for (int j = 0; j < in.m; ++j)
+      if (plan[j].kind == SweepNeighbourRow::shift)
+        seen[count++] = SweepSeenRow{plan[j].shifted(in.neighbours[j], plan[j].xb), plan[j].xb, plan[j].xe};
+    return sweep_shift_mean_seen(ref_row, seen, count, best, tau, out, width, level);
   }
   // Pixels [a, b) neighbour by neighbour: the best costs kept sorted in keep[0..best), then
   // averaged.
