@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace {
@@ -58,6 +59,21 @@ TEST_CASE("aperture shapes fill their shape uniformly (second moments) and stay 
   }
   CHECK_THROWS_AS(mpr::glc::PolygonAperture(2), mpr::argument_error);
   CHECK_THROWS_AS(mpr::glc::PolygonAperture(65), mpr::argument_error);
+}
+
+TEST_CASE("PolygonAperture clamps a sample outside [0, 1) before choosing the triangle", "[glc][aperture]") {
+  // The triangle index comes from a float-to-int conversion of p.x * blades: out of range (or
+  // NaN) it would be undefined; clamped, NaN and -3e38 read p.x = 0 (the centre, radius 0) and
+  // +inf and 3e38 read p.x = 1 (the last triangle's outer edge, t = 0.5 its midpoint).
+  const mpr::glc::PolygonAperture pentagon(5);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const double step = 2 * std::numbers::pi / 5;
+  const mpr::Vec2<double> last_mid(0.5 * (std::cos(4 * step) + 1), 0.5 * std::sin(4 * step));
+  for (const double x : {nan, -inf, -3e38, -1.0}) CHECK(pentagon.at({x, 0.5}).norm() == 0.0);
+  for (const double x : {inf, 3e38, 1.0}) {
+    const mpr::Vec2<double> a = pentagon.at({x, 0.5});
+    CHECK((a - last_mid).norm() < 1e-12);
+  }
 }
 
 TEST_CASE("the disc aperture: Shirley-Chiu angles worked by hand, and every sector filled alike", "[glc]") {

@@ -153,6 +153,57 @@ TEMPLATE_TEST_CASE("DepthProxy finds the surface from the depth maps whatever th
   CHECK_FALSE(half.surface(proxy.table(), beyond).has_value());
 }
 
+TEMPLATE_TEST_CASE("DepthProxy on a tilted plane: the crossing in closed form", "[depth_proxy]", float, double) {
+  using T = TestType;
+  // The 3 x 3 cameras of `plane_set` see the plane z = 5 + 0.3 x - 0.2 y (depth 3.3 to 6.7 over
+  // the images, about 0.05 per pixel): exact depth maps that vary inside every pixel, so a
+  // lookup that reads the nearest pixel instead of interpolating misses the crossing by up to
+  // 0.025, and a ray's crossing t* = (z0 + a ox + b oy - oz) / (dz - a dx - b dy) is the oracle.
+  const mpr_test::TiltedPlane plane;
+  const auto cams = mpr_test::grid_cameras<T>(3, 3, 1.0, 40, 30, 30.0);
+  std::vector<mpr::Image<float>> maps;
+  auto images = mpr_test::tilted_plane_images(cams, plane, &maps);
+  const auto frames = std::make_shared<const mpr::CameraFrameSet<T, mpr::Color>>(
+      mpr::CameraFrameSet<T, mpr::Color>(cams, std::move(images)).with_depth(std::move(maps)));
+  mpr::FrameSamplerConfig<T> config;
+  config.depth = T(2); // a wrong focal plane: only the maps lead to the surface
+  const mpr::CameraFrameSampler<mpr::DepthProxy, T, mpr::Color> proxy(frames, mpr::DepthProxy{2.0}, config);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.8, 0.8), slope(-0.25, 0.25);
+  std::vector<mpr::Ray<T>> rays;
+  for (int n = 0; n < 64; ++n)
+    rays.push_back(mpr::Ray<T>{mpr::Vec3<T>(static_cast<T>(u(rng)), static_cast<T>(u(rng)), T(0)),
+                               mpr::Vec3<T>(static_cast<T>(slope(rng)), static_cast<T>(slope(rng)), T(1))});
+  std::vector<mpr::Color> batch(rays.size());
+  proxy.sample_rays(rays, batch);
+  std::vector<std::optional<T>> batch_t(rays.size()); // sixteen-lane walks (float, x86 with Highway)
+  proxy.interpolation().surface_rays(proxy.table(), std::span<const mpr::Ray<T>>(rays),
+                                     std::span<std::optional<T>>(batch_t));
+  double worst_t = 0, worst_batch_t = 0, worst_colour = 0, worst_batch = 0, deepest = 0, shallowest = 1e9;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const mpr::Vec3<double> o = rays[i].origin.template cast<double>(), d = rays[i].direction.template cast<double>();
+    const double t_exact = plane.hit_t(o, d);
+    const mpr::Vec3<double> x = o + t_exact * d;
+    deepest = std::max(deepest, x.z());
+    shallowest = std::min(shallowest, x.z());
+    const std::optional<T> t = proxy.interpolation().surface(proxy.table(), rays[i]);
+    REQUIRE(t.has_value());
+    worst_t = std::max(worst_t, std::abs(static_cast<double>(*t) - t_exact));
+    REQUIRE(batch_t[i].has_value());
+    worst_batch_t = std::max(worst_batch_t, std::abs(static_cast<double>(*batch_t[i]) - t_exact));
+    const mpr::Color truth = mpr_test::plane_texture(x.x(), x.y());
+    worst_colour = std::max(worst_colour, static_cast<double>((proxy.sample(rays[i]) - truth).abs().maxCoeff()));
+    worst_batch = std::max(worst_batch, static_cast<double>((batch[i] - truth).abs().maxCoeff()));
+  }
+  INFO("worst |t - t*| per ray " << worst_t << ", batch " << worst_batch_t << "; colour error per ray " << worst_colour
+                                 << ", batch " << worst_batch);
+  CHECK(deepest - shallowest > 0.3); // the rays meet the plane at depths that differ
+  CHECK(worst_t < 1e-3);
+  CHECK(worst_batch_t < 1e-3);
+  CHECK(worst_colour < 1e-4);
+  CHECK(worst_batch < 1e-4);
+}
+
 TEMPLATE_TEST_CASE("DepthProxy blends only the cameras whose depth maps see the point", "[depth_proxy]", float,
                    double) {
   using T = TestType;

@@ -88,6 +88,45 @@ std::vector<mpr::Image<mpr::Color>> plane_images(const std::vector<mpr::PinholeC
   return images;
 }
 
+/// The tilted plane z = z0 + a x + b y (world frame), carrying `plane_texture`: unlike the plane
+/// z = depth its depth varies across every image, so depth maps of it are not constant and a
+/// lookup that ignores the position inside a pixel, or a crossing taken at the wrong depth, shows.
+struct TiltedPlane {
+  double z0 = 5, a = 0.3, b = -0.2;
+
+  /// Closed-form crossing of the ray o + t d with the plane: t = (z0 + a ox + b oy - oz) /
+  /// (dz - a dx - b dy); NaN or infinite when the ray is parallel to it.
+  [[nodiscard]] double hit_t(const mpr::Vec3<double>& o, const mpr::Vec3<double>& d) const {
+    return (z0 + a * o.x() + b * o.y() - o.z()) / (d.z() - a * d.x() - b * d.y());
+  }
+};
+
+/// Images of `plane` seen by `cameras` (linear colour), each pixel the texture where its centre's
+/// ray meets the plane; with `depths`, also each camera's depth map (camera z of that point:
+/// the world z, for cameras with R = I on z = 0).
+template <class T>
+std::vector<mpr::Image<mpr::Color>> tilted_plane_images(const std::vector<mpr::PinholeCamera<T>>& cameras,
+                                                        const TiltedPlane& plane,
+                                                        std::vector<mpr::Image<float>>* depths = nullptr) {
+  std::vector<mpr::Image<mpr::Color>> images;
+  for (const auto& cam : cameras) {
+    mpr::Image<mpr::Color> img(cam.width(), cam.height());
+    mpr::Image<float> depth(cam.width(), cam.height());
+    const mpr::PinholeCamera<double> c(cam.K().template cast<double>(), cam.R().template cast<double>(),
+                                       cam.t().template cast<double>(), cam.width(), cam.height());
+    for (int y = 0; y < cam.height(); ++y)
+      for (int x = 0; x < cam.width(); ++x) {
+        const mpr::Ray<double> r = c.ray_through({x, y});
+        const mpr::Vec3<double> p = r.at(plane.hit_t(r.origin, r.direction));
+        img(x, y) = plane_texture(p.x(), p.y());
+        depth(x, y) = static_cast<float>(p.z());
+      }
+    images.push_back(std::move(img));
+    if (depths != nullptr) depths->push_back(std::move(depth));
+  }
+  return images;
+}
+
 /// Camera i's constant colour: channels are multiples of 1/16 (exact in float) taken from
 /// quadratic and cubic residues of i, so they are neither linear nor symmetric in i. With colours
 /// linear in i the mean of a symmetric set of cameras equals the middle camera's colour, and a

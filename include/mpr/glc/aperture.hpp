@@ -52,9 +52,9 @@ public:
   }
   [[nodiscard]] int blades() const noexcept { return blades_; }
   /// p.x chooses the triangle (centre, vertex k, vertex k + 1) and, rescaled, with p.y a uniform
-  /// point in it.
+  /// point in it. p.x outside [0, 1] is clamped onto it (NaN reads 0) before the conversion to k.
   [[nodiscard]] Vec2<double> at(SamplePoint p) const noexcept {
-    const double scaled = p.x * blades_;
+    const double scaled = (p.x >= 0 ? std::min(p.x, 1.0) : 0.0) * blades_;
     const int k = std::min(static_cast<int>(scaled), blades_ - 1);
     const double s = scaled - k, t = p.y;
     const double step = 2 * std::numbers::pi / blades_;
