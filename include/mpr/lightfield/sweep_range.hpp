@@ -138,8 +138,8 @@ template <class Px>
 
 /// Bilinear sample of `g` at (x, y), clamped to the image.
 [[nodiscard]] inline float grey_at(const Image<float>& g, double x, double y) noexcept {
-  x = std::clamp(x, 0.0, g.width() - 1.0);
-  y = std::clamp(y, 0.0, g.height() - 1.0);
+  x = x >= 0 ? std::min(x, g.width() - 1.0) : 0.0;  // NaN reads the first column, as -inf does
+  y = y >= 0 ? std::min(y, g.height() - 1.0) : 0.0;
   const int x0 = std::min(static_cast<int>(x), g.width() - 2 < 0 ? 0 : g.width() - 2);
   const int y0 = std::min(static_cast<int>(y), g.height() - 2 < 0 ? 0 : g.height() - 2);
   const int x1 = std::min(x0 + 1, g.width() - 1), y1 = std::min(y0 + 1, g.height() - 1);
@@ -236,7 +236,8 @@ inline bool match_along_segment(const RangePartner& o, const float* a, double no
     return Vec2<double>((q.x() / q.z() - 0.5 * (scale - 1)) / scale, (q.y() / q.z() - 0.5 * (scale - 1)) / scale);
   };
   const double length = (seen(hi) - seen(lo)).norm();
-  const int count = std::clamp(static_cast<int>(std::ceil(2 * length)), 2, 768);
+  const double steps = 2 * length;  // clamped before the conversion: NaN or inf take the limits
+  const int count = steps > 2 ? static_cast<int>(std::ceil(std::min(steps, 768.0))) : 2;
   std::vector<double> score(static_cast<std::size_t>(count) + 1);
   int best = 0;
   for (int k = 0; k <= count; ++k) {
