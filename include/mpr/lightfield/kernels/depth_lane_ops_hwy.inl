@@ -233,7 +233,7 @@ inline void choose_cameras(const LaneCamera* cameras, const RayLanes& lanes, con
     }
     // First every camera's cosines, pixels and visibility, each camera apart from the others (so
     // that the depth lookups of several cameras are in flight at once), then the choice in order.
-    HWY_ALIGN float cosine[64][16], px[64][16], py[64][16];
+    HWY_ALIGN_MAX float cosine[64][16], px[64][16], py[64][16];
     MF seen[64], above[64];
     for (int c = 0; c < count; ++c) {
       const std::size_t i = static_cast<std::size_t>(order[c]);

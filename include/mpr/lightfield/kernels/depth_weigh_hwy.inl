@@ -39,7 +39,7 @@ inline void weigh_lanes(const WeighCamera* cameras, const LaneChoice& choice, in
       const VF w = hn::Div(hn::Sub(one, hn::Div(p, threshold)), hn::Add(p, tiny));
       total = hn::IfThenElse(m, hn::Add(total, w), total);
       // Each lane's camera size.
-      HWY_ALIGN int wide[16], high[16];
+      HWY_ALIGN_MAX int wide[16], high[16];
       const unsigned bits = bits_of(m, 0);
       for (int l = 0; l < width(); ++l) {
         const int i = (bits >> l & 1u) != 0 ? choice.camera[j][o + l] : -1;
@@ -57,13 +57,13 @@ inline void weigh_lanes(const WeighCamera* cameras, const LaneChoice& choice, in
       const VF s = mul(w, set(scale));
       const VF bx = hn::Sub(one, ax), by = hn::Sub(one, ay);
       const VF tap_weight[4] = {mul(mul(bx, by), s), mul(mul(ax, by), s), mul(mul(bx, ay), s), mul(mul(ax, ay), s)};
-      HWY_ALIGN int tap[4][16];
+      HWY_ALIGN_MAX int tap[4][16];
       hn::Store(hn::Add(ya, xa), di, tap[0]);
       hn::Store(hn::Add(ya, xb), di, tap[1]);
       hn::Store(hn::Add(yb, xa), di, tap[2]);
       hn::Store(hn::Add(yb, xb), di, tap[3]);
       // The texels of each lane's camera, decoded to linear light (0 in the other lanes).
-      HWY_ALIGN float value[4][3][16] = {};
+      HWY_ALIGN_MAX float value[4][3][16] = {};
       for (unsigned b = bits; b != 0; b &= b - 1) {
         const int l = __builtin_ctz(b);
         const std::uint8_t* texels = cameras[choice.camera[j][o + l]].texels;
