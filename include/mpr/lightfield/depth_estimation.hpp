@@ -21,6 +21,7 @@
 #include <mpr/lightfield/detail/sweep_kernels.hpp>
 #include <mpr/lightfield/detail/sweep_row.hpp>
 #include <mpr/lightfield/detail/sweep_workspace.hpp>
+#include <mpr/lightfield/edge_snap.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/sweep_range.hpp>
 
@@ -98,6 +99,10 @@ struct PlaneSweepConfig {
   /// weighted median guided by the camera's image and weighted by the confidence); radius 0:
   /// none. Default: a 7 x 7 window, range 0.16, windows within one plane left alone.
   WeightedMedianConfig median;
+  /// Then the mixed pixels of depth edges decided by their colour (edge_snap.hpp), in planes:
+  /// a pixel whose neighbours differ by more than `snap.jump` planes (default 8) takes the value
+  /// of the one whose colour it is nearer to in linear light; jump = infinity: none.
+  EdgeSnapConfig snap;
   /// Worker threads (the caller included); 0 or less: all hardware threads.
   int threads = 0;
   /// Working memory of the sweep, bytes, > 0: each worker holds about 90 bytes per pixel of the
@@ -136,6 +141,7 @@ inline void validate(const PlaneSweepConfig& c) {
   if (!(c.range > 0) || !std::isfinite(c.range)) throw argument_error("range", "must be positive");
   if (!(c.memory_limit > 0)) throw argument_error("memory_limit", "must be positive");
   validate(c.median);
+  validate(c.snap);
 }
 
 namespace detail {
@@ -361,6 +367,9 @@ template <std::floating_point T, class Px>
   if (config.median.radius > 0)
     coordinate = weighted_median(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height),
                                  out.confidence.view(), config.median);
+  if (std::isfinite(config.snap.jump))
+    coordinate =
+        snap_mixed_pixels(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height), config.snap);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) out.depth(x, y) = static_cast<float>(depth_of(coordinate(x, y)));
   return out;
