@@ -366,7 +366,7 @@ template <std::floating_point T, class Px>
     }
   if (config.median.radius > 0)
     coordinate = weighted_median(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height),
-                                 out.confidence.view(), config.median);
+                                 out.confidence.view(), config.median, threads);
   if (std::isfinite(config.snap.jump))
     coordinate =
         snap_mixed_pixels(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height), config.snap);
