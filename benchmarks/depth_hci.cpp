@@ -7,6 +7,8 @@
 //   build/bench/benchmarks/depth_hci [HCI_DIR] [--quick] [--threads=N] [--views=SET] [--out=DIR]
 //                                    [--planes=N] [--neighbours=N] [--best=N] [--spatial=X]
 //                                    [--range=X] [--truncation=X] [--selection=nearest] [--no-classroom]
+//                                    [--median-radius=N] [--median-range=X] [--median-flat=X]
+//                                    [--snap-jump=X]
 //
 // HCI_DIR (default $MPR_DATA_DIR/hci, else the build's data folder /hci) is one scene folder
 // (input_CamNNN.png ...) or a folder of them; every scene is estimated, those with
@@ -172,12 +174,14 @@ void hci(const std::filesystem::path& dir, Settings settings) {
     const auto set = subset(lf.frames, centre, settings.quick ? "row" : settings.views, lf.cams_y, lf.cams_x,
                             [&](std::size_t i) { return std::pair<int, int>(lf.row(i), lf.column(i)); });
     if (!header_printed)
-      std::printf("\nHCI 4D benchmark under %s: centre view, disparity range of each scene (default -4..4 px), "
-                  "%d planes, %s neighbours %d, best %d, spatial %.0f, range %.2f, %d threads\n\n",
-                  dir.string().c_str(), settings.sweep.planes,
-                  settings.sweep.selection == mpr::NeighbourSelection::axes ? "row and column" : "nearest",
-                  settings.sweep.neighbours, settings.sweep.best, settings.sweep.spatial, settings.sweep.range,
-                  settings.sweep.threads);
+      std::printf(
+          "\nHCI 4D benchmark under %s: centre view, disparity range of each scene (default -4..4 px), "
+          "%d planes, %s neighbours %d, best %d, spatial %.0f, range %.2f, median radius %d range %.2f, snap jump %g, "
+          "%d threads\n\n",
+          dir.string().c_str(), settings.sweep.planes,
+          settings.sweep.selection == mpr::NeighbourSelection::axes ? "row and column" : "nearest",
+          settings.sweep.neighbours, settings.sweep.best, settings.sweep.spatial, settings.sweep.range,
+          settings.sweep.median.radius, settings.sweep.median.range, settings.sweep.snap.jump, settings.sweep.threads);
     run_scene(name, set, centre, lf.disparity, lf.disparity_min, lf.disparity_max,
               lf.ground_truth ? &*lf.ground_truth : nullptr, settings);
     if (name == "backgammon" && !published) {
@@ -253,6 +257,14 @@ int main(int argc, char** argv) {
       settings.sweep.spatial = std::atof(value("--spatial=").c_str());
     else if (a.rfind("--range=", 0) == 0)
       settings.sweep.range = std::atof(value("--range=").c_str());
+    else if (a.rfind("--median-radius=", 0) == 0)
+      settings.sweep.median.radius = std::atoi(value("--median-radius=").c_str());
+    else if (a.rfind("--median-range=", 0) == 0)
+      settings.sweep.median.range = std::atof(value("--median-range=").c_str());
+    else if (a.rfind("--snap-jump=", 0) == 0)
+      settings.sweep.snap.jump = std::atof(value("--snap-jump=").c_str());
+    else if (a.rfind("--median-flat=", 0) == 0)
+      settings.sweep.median.flat = std::atof(value("--median-flat=").c_str());
     else if (a == "--selection=nearest")
       settings.sweep.selection = mpr::NeighbourSelection::nearest;
     else if (a.rfind("--threads=", 0) == 0)
@@ -266,7 +278,8 @@ int main(int argc, char** argv) {
     else if (a == "--help" || a == "-h") {
       std::printf("usage: depth_hci [HCI_DIR] [--quick] [--threads=N] [--views=all|row|column|cross|star] [--out=DIR]\n"
                   "                 [--planes=N] [--neighbours=N] [--best=N] [--spatial=X] [--range=X] "
-                  "[--truncation=X]\n                 [--selection=nearest] [--no-classroom]\n");
+                  "[--truncation=X]\n                 [--selection=nearest] [--no-classroom] [--median-radius=N] "
+                  "[--median-range=X]\n                 [--median-flat=X] [--snap-jump=X]\n");
       return 0;
     } else if (a.rfind("--", 0) == 0 && a != "--quick") {
       std::fprintf(stderr, "depth_hci: unknown option '%s' (--help lists them)\n", a.c_str());

@@ -16,6 +16,8 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/parallel.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/depth_median.hpp>
+#include <mpr/lightfield/edge_snap.hpp>
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/kernels/sweep_kernels.hpp>
 #include <mpr/lightfield/plane_sweep/depth_homography.hpp>
@@ -93,6 +95,14 @@ struct PlaneSweepConfig {
   /// colour difference (sum over channels of sRGB codes / 255) that cuts the support, > 0.
   double spatial = 12;
   double range = 0.2;
+  /// The final edge-aware filter of the refined plane coordinates (depth_median.hpp: a joint
+  /// weighted median guided by the camera's image and weighted by the confidence); radius 0:
+  /// none. Default: a 7 x 7 window, range 0.16, windows within one plane left alone.
+  WeightedMedianConfig median;
+  /// Then the mixed pixels of depth edges decided by their colour (edge_snap.hpp), in planes:
+  /// a pixel whose neighbours differ by more than `snap.jump` planes (default 8) takes the value
+  /// of the one whose colour it is nearer to in linear light; jump = infinity: none.
+  EdgeSnapConfig snap;
   /// Worker threads (the caller included); 0 or less: all hardware threads.
   int threads = 0;
   /// Working memory of the sweep, bytes, > 0: each worker holds about 90 bytes per pixel of the
@@ -130,6 +140,8 @@ inline void validate(const PlaneSweepConfig& c) {
   if (!(c.spatial >= 0) || !std::isfinite(c.spatial)) throw argument_error("spatial", "must be finite and >= 0");
   if (!(c.range > 0) || !std::isfinite(c.range)) throw argument_error("range", "must be positive");
   if (!(c.memory_limit > 0)) throw argument_error("memory_limit", "must be positive");
+  validate(c.median);
+  validate(c.snap);
 }
 
 namespace detail {
@@ -339,7 +351,10 @@ template <std::floating_point T, class Px>
       }
     });
   }
+  // The refined plane coordinate of each pixel (plane index + parabola offset), then the final
+  // filter on it, then depth.
   DepthEstimate out{Image<float>(width, height), Image<float>(width, height)};
+  Image<float> coordinate(width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t k = static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
@@ -349,10 +364,18 @@ template <std::floating_point T, class Px>
         const double curvature = left[k] - 2.0 * best_cost[k] + right[k];
         if (curvature > 0) offset = std::clamp(0.5 * (left[k] - right[k]) / curvature, -0.5, 0.5);
       }
-      out.depth(x, y) = static_cast<float>(depth_of(b + offset));
+      coordinate(x, y) = static_cast<float>(b + offset);
       const float mean = sum[k] / static_cast<float>(config.planes);
       out.confidence(x, y) = mean > 0 ? std::clamp(1.0f - best_cost[k] / mean, 0.0f, 1.0f) : 0.0f;
     }
+  if (config.median.radius > 0)
+    coordinate = weighted_median(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height),
+                                 out.confidence.view(), config.median, threads);
+  if (std::isfinite(config.snap.jump))
+    coordinate =
+        snap_mixed_pixels(coordinate.view(), ImageView<const Rgb8>(rt.codes.data(), width, height), config.snap);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) out.depth(x, y) = static_cast<float>(depth_of(coordinate(x, y)));
   return out;
 }
 

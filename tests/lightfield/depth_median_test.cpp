@@ -1,0 +1,79 @@
+#include <mpr/lightfield/depth_median.hpp>
+
+#include <catch2/catch.hpp>
+
+namespace {
+
+// A 9x7 image split at x = 4.5: black with value 0 on the left, white with value 10 on the right.
+struct Step {
+  mpr::Image<float> values{9, 7};
+  mpr::Image<mpr::Rgb8> guide{9, 7};
+  mpr::Image<float> confidence{9, 7, 1.0f};
+  Step() {
+    for (int y = 0; y < 7; ++y)
+      for (int x = 0; x < 9; ++x) {
+        const bool right = x >= 5;
+        values(x, y) = right ? 10.0f : 0.0f;
+        guide(x, y) = right ? mpr::Rgb8{255, 255, 255} : mpr::Rgb8{0, 0, 0};
+      }
+  }
+};
+
+} // namespace
+
+TEST_CASE("weighted median: a step stays a step and a wrong sliver beside it takes its colour side's value",
+          "[depth_median]") {
+  Step s;
+  for (int y = 0; y < 7; ++y) s.values(4, y) = 10.0f; // the left side's last column took the right's value
+  const mpr::Image<float> out = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {2, 0.16});
+  for (int y = 0; y < 7; ++y) {
+    CHECK(out(4, y) == 0.0f); // black: the white pixels weigh exp(-3 / 0.16), nothing
+    CHECK(out(3, y) == 0.0f);
+    CHECK(out(5, y) == 10.0f);
+    CHECK(out(8, y) == 10.0f);
+  }
+}
+
+TEST_CASE("weighted median: confidence weighs the votes (hand-worked 3x3)", "[depth_median]") {
+  // One colour; the 3x3 window around (1, 1): five values 1 of confidence 0.1 (weight 0.5 in all)
+  // and four values 5 of confidence 1 (weight 4): half of 4.5 is reached within the 5s. A plain
+  // median would give 1.
+  mpr::Image<float> values(3, 3, 1.0f), confidence(3, 3, 0.1f);
+  const mpr::Image<mpr::Rgb8> guide(3, 3, mpr::Rgb8{90, 90, 90});
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{2, 0}, std::pair{0, 2}, std::pair{2, 2}}) {
+    values(x, y) = 5.0f;
+    confidence(x, y) = 1.0f;
+  }
+  const mpr::Image<float> out = mpr::weighted_median(values.view(), guide.view(), confidence.view(), {1, 0.16});
+  CHECK(out(1, 1) == 5.0f);
+  // Corner (0, 0): window (0..1)^2 holds 5 (weight 1) and three 1s (0.3): 5.
+  CHECK(out(0, 0) == 5.0f);
+  // Edge (1, 0): window x 0..2, y 0..1: two 5s (2) and four 1s (0.4): 5.
+  CHECK(out(1, 0) == 5.0f);
+}
+
+TEST_CASE("weighted median: radius 0 and windows within `flat` leave the values unchanged", "[depth_median]") {
+  Step s;
+  s.values(2, 3) = 0.75f; // within flat = 1 of its neighbours
+  const mpr::Image<float> none = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {0});
+  CHECK(none(2, 3) == 0.75f);
+  CHECK(none(4, 3) == 0.0f);
+  const mpr::Image<float> flat = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {1});
+  CHECK(flat(2, 3) == 0.75f);
+  mpr::WeightedMedianConfig strict{1};
+  strict.flat = 0.5; // now the window's spread 0.75 counts as an edge: the median of the 0s
+  const mpr::Image<float> filtered = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), strict);
+  CHECK(filtered(2, 3) == 0.0f);
+}
+
+TEST_CASE("weighted median: bad settings and sizes are refused by name", "[depth_median]") {
+  Step s;
+  const mpr::Image<float> small(3, 3);
+  CHECK_THROWS_WITH(mpr::weighted_median(s.values.view(), s.guide.view(), small.view()), Catch::Contains("confidence"));
+  CHECK_THROWS_WITH(mpr::weighted_median(s.values.view(), mpr::Image<mpr::Rgb8>(2, 2).view(), s.confidence.view()),
+                    Catch::Contains("guide"));
+  CHECK_THROWS_WITH(mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {8}),
+                    Catch::Contains("radius"));
+  CHECK_THROWS_WITH(mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {1, 0.0}),
+                    Catch::Contains("range"));
+}
