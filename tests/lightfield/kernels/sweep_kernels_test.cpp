@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <mpr/lightfield/kernels/sweep_kernels.hpp>
+#include <mpr/lightfield/kernels/sweep_seen_kernels.hpp>
 
 #include <algorithm>
 #include <cmath>

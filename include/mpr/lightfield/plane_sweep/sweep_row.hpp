@@ -8,6 +8,7 @@
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
 #include <mpr/lightfield/kernels/sweep_kernels.hpp>
+#include <mpr/lightfield/kernels/sweep_seen_kernels.hpp>
 #include <mpr/lightfield/plane_sweep/sweep_workspace.hpp>
 
 #include <algorithm>

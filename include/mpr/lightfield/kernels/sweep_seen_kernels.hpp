@@ -1,0 +1,147 @@
+#pragma once
+/// \file
+/// The plane sweep's fused row kernel for many translated neighbours (lightfield/plane_sweep/
+/// sweep_row.hpp): the mean of the best costs of each reference pixel among the neighbours that
+/// see it, in chunks of pixels whose kept costs stay in registers. Written once as plain C++ with
+/// the compiler's vector type and compiled for every level of core/simd.hpp through `run_at`,
+/// like the other row kernels of kernels/sweep_kernels.hpp, whose cost (`SweepShiftCost`) it uses.
+
+#include <mpr/core/simd.hpp>
+#include <mpr/lightfield/kernels/sweep_kernels.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+
+namespace mpr::detail {
+
+/// A neighbour's translated row (`SweepShiftRow`) with the reference pixels it sees, [xb, xe):
+/// element 0 of `row`'s rows is the texel reference pixel xb blends from.
+struct SweepSeenRow {
+  SweepShiftRow row;
+  int xb, xe;
+};
+
+/// The pixels `sweep_shift_mean_seen` takes together (one AVX-512 vector, two AVX2 ones).
+inline constexpr int kSweepSeenChunk = 16;
+
+/// The most kept costs `sweep_shift_mean_seen` takes.
+inline constexpr int kSweepSeenBest = 16;
+
+#if defined(__GNUC__)
+/// kSweepSeenChunk floats as one vector of the compiler's (GCC and Clang lower it to the
+/// registers of the level `run_at` compiles for: one AVX-512 register, two AVX2 or four SSE ones).
+typedef float SweepLanes __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
+
+/// kSweepSeenChunk floats from p (any alignment) times w (through a reference: a vector
+/// return value would change the ABI between levels).
+MPR_ALWAYS_INLINE void sweep_lanes(SweepLanes& v, float w, const float* p) noexcept {
+  std::memcpy(&v, p, sizeof v);
+  v *= w;
+}
+#endif
+
+/// out[x] = the mean of the B smallest costs (`SweepShiftCost`) of pixel x among the m
+/// neighbours rows[0..m) that see it, an unseen neighbour counting as tau, for x in [0, width):
+/// what filling B rows with tau, then for every neighbour in order `sweep_shift_keep` over the
+/// pixels it sees, and `sweep_mean_best` give (the same insertions and sums), in chunks of
+/// kSweepSeenChunk pixels whose kept costs stay in registers. An unseen neighbour is skipped:
+/// inserting tau into costs that are all <= tau changes nothing. A chunk a neighbour sees only
+/// in part takes its costs pixel by pixel.
+template <int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_seen_body(const float* const ref[3], const SweepSeenRow* rows, int m, float tau,
+                                                  float* MPR_RESTRICT out, int width) noexcept {
+  constexpr int W = kSweepSeenChunk;
+#if defined(__GNUC__)
+  const SweepLanes t = SweepLanes{} + tau;
+  for (int x0 = 0; x0 < width; x0 += W) {
+    const int len = std::min(W, width - x0);
+    SweepLanes keep[B];
+    for (int i = 0; i < B; ++i) keep[i] = t;
+    for (int j = 0; j < m; ++j) {
+      const SweepSeenRow& r = rows[j];
+      const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
+      if (lo >= hi) continue;
+      const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
+      const SweepShiftCost cost(seen_ref, r.row, tau);
+      const std::size_t at = static_cast<std::size_t>(x0 - r.xb);
+      SweepLanes v = t;
+      if (hi - lo == W) {
+        SweepLanes s{};
+        for (int c = 0; c < 3; ++c) {
+          SweepLanes p00, p10, p01, p11, q;
+          sweep_lanes(p00, cost.w00, cost.a[c] + at);
+          sweep_lanes(p10, cost.w10, cost.a[c] + at + 1);
+          sweep_lanes(p01, cost.w01, cost.b[c] + at);
+          sweep_lanes(p11, cost.w11, cost.b[c] + at + 1);
+          sweep_lanes(q, 1.0f, cost.r[c] + at);
+          const SweepLanes d = p00 + p10 + p01 + p11 - q;
+          const SweepLanes e = d < 0 ? -d : d;
+          s = c == 0 ? e : s + e;
+        }
+        v = s < t ? s : t;
+      } else {
+        for (int x = lo; x < hi; ++x) v[x - x0] = cost(static_cast<std::size_t>(x - r.xb));
+      }
+#pragma GCC unroll 16
+      for (int i = 0; i < B; ++i) {
+        const SweepLanes k = keep[i];
+        keep[i] = v < k ? v : k;
+        v = k < v ? v : k;
+      }
+    }
+    SweepLanes s = keep[0];
+#pragma GCC unroll 16
+    for (int i = 1; i < B; ++i) s += keep[i];
+    s = s / static_cast<float>(B);
+    if (len == W)
+      std::memcpy(out + x0, &s, sizeof s);
+    else
+      for (int w = 0; w < len; ++w) out[x0 + w] = s[w];
+  }
+#else
+  for (int x0 = 0; x0 < width; x0 += W) {
+    const int len = std::min(W, width - x0);
+    float keep[B][W];
+    for (int i = 0; i < B; ++i)
+      for (int w = 0; w < W; ++w) keep[i][w] = tau;
+    for (int j = 0; j < m; ++j) {
+      const SweepSeenRow& r = rows[j];
+      const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
+      const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
+      const SweepShiftCost cost(seen_ref, r.row, tau);
+      for (int x = lo; x < hi; ++x) {
+        float v = cost(static_cast<std::size_t>(x - r.xb));
+        for (int i = 0; i < B; ++i) {
+          const float k = keep[i][x - x0];
+          keep[i][x - x0] = std::min(k, v);
+          v = std::max(k, v);
+        }
+      }
+    }
+    for (int w = 0; w < len; ++w) {
+      float s = keep[0][w];
+      for (int i = 1; i < B; ++i) s += keep[i][w];
+      out[x0 + w] = s / static_cast<float>(B);
+    }
+  }
+#endif
+}
+
+/// `sweep_shift_mean_seen_body<B>` for a run-time `best` in [B, kSweepSeenBest].
+template <int B>
+MPR_ALWAYS_INLINE void sweep_shift_mean_seen_best(const float* const ref[3], const SweepSeenRow* rows, int m, int best,
+                                                  float tau, float* out, int width) noexcept {
+  if constexpr (B < kSweepSeenBest)
+    if (best > B) return sweep_shift_mean_seen_best<B + 1>(ref, rows, m, best, tau, out, width);
+  sweep_shift_mean_seen_body<B>(ref, rows, m, tau, out, width);
+}
+
+/// `sweep_shift_mean_seen_body` for m (1..32) neighbours and `best` (1..kSweepSeenBest) kept
+/// costs over the reference row's `width` pixels.
+inline void sweep_shift_mean_seen(const float* const ref[3], const SweepSeenRow* rows, int m, int best, float tau,
+                                  float* out, int width, SimdLevel level = dispatch_level()) noexcept {
+  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_mean_seen_best<1>(ref, rows, m, best, tau, out, width); });
+}
+
+} // namespace mpr::detail
