@@ -98,7 +98,9 @@ def render_views(frames: FrameSet, views: Sequence[View], width: int, height: in
                  focus: float = 0.0) -> npt.NDArray[Union[np.uint8, np.float32]]: ...
 def estimate_depth(frames: FrameSet, camera: int, near: float = 0.0, far: float = 0.0, planes: int = 64,
                    selection: str = "axes", neighbours: int = 16, best: int = 8, truncation: float = 0.3,
-                   spatial: float = 12.0, range: float = 0.2, threads: int = 0) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
+                   spatial: float = 12.0, range: float = 0.2, median_radius: int = 3, median_range: float = 0.16,
+                   median_flat: float = 1.0, median_min_confidence: float = 0.02, snap_jump: float = 8.0,
+                   threads: int = 0) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
 
 class Scene:
     """A triangle scene with its BVH (world units)."""

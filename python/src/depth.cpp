@@ -2,25 +2,39 @@
 
 #include "bindings.hpp"
 
-#include <mpr/render/renderer.hpp>
 #include <mpr/io/hci_light_field.hpp>
 #include <mpr/lightfield/array_disparity.hpp>
 #include <mpr/lightfield/depth_estimation.hpp>
+#include <mpr/lightfield/depth_median.hpp>
 #include <mpr/lightfield/disparity_score.hpp>
+#include <mpr/lightfield/edge_snap.hpp>
 #include <mpr/lightfield/view_depth.hpp>
 #include <mpr/render/policy_names.hpp>
+#include <mpr/render/renderer.hpp>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <cstring>
 #include <optional>
+#include <string>
 #include <type_traits>
 
 namespace mpr_py {
 namespace {
 
 const mpr::PlaneSweepConfig kSweep{}; // the library's defaults
+
+/// `validate(part)` with the parameter renamed to its Python keyword (`prefix` + the field), so
+/// that median's `range` is not mistaken for the sweep's.
+template <class Config>
+void validate_as(const Config& part, const std::string& prefix) {
+  try {
+    mpr::validate(part);
+  } catch (const mpr::argument_error& e) {
+    throw mpr::argument_error(prefix + e.parameter(), e.reason());
+  }
+}
 
 py::array_t<float> to_array(const mpr::Image<float>& image) {
   py::array_t<float> out({static_cast<py::ssize_t>(image.height()), static_cast<py::ssize_t>(image.width())});
@@ -29,7 +43,8 @@ py::array_t<float> to_array(const mpr::Image<float>& image) {
 }
 
 mpr::PlaneSweepConfig config_of(double near, double far, int planes, const std::string& selection, int neighbours,
-                                int best, double truncation, double spatial, double range, int threads) {
+                                int best, double truncation, double spatial, double range,
+                                const mpr::WeightedMedianConfig& median, const mpr::EdgeSnapConfig& snap, int threads) {
   mpr::PlaneSweepConfig c;
   c.selection = mpr::choose(mpr::neighbour_selection_names, selection, "selection");
   c.near = near;
@@ -40,7 +55,11 @@ mpr::PlaneSweepConfig config_of(double near, double far, int planes, const std::
   c.truncation = truncation;
   c.spatial = spatial;
   c.range = range;
+  c.median = median;
+  c.snap = snap;
   c.threads = threads;
+  validate_as(median, "median_");
+  validate_as(snap, "snap_");
   mpr::validate(c);
   return c;
 }
@@ -70,9 +89,11 @@ void bind_depth(py::module_& m) {
   m.def(
       "estimate_depth",
       [](const FrameSet& frames, std::size_t camera, double near, double far, int planes, const std::string& selection,
-         int neighbours, int best, double truncation, double spatial, double range, int threads) {
-        const mpr::PlaneSweepConfig c =
-            config_of(near, far, planes, selection, neighbours, best, truncation, spatial, range, threads);
+         int neighbours, int best, double truncation, double spatial, double range, int median_radius,
+         double median_range, double median_flat, double median_min_confidence, double snap_jump, int threads) {
+        const mpr::WeightedMedianConfig median{median_radius, median_range, median_flat, median_min_confidence};
+        const mpr::PlaneSweepConfig c = config_of(near, far, planes, selection, neighbours, best, truncation, spatial,
+                                                  range, median, mpr::EdgeSnapConfig{snap_jump}, threads);
         mpr::DepthEstimate e;
         {
           py::gil_scoped_release release;
@@ -83,13 +104,22 @@ void bind_depth(py::module_& m) {
       py::arg("frames"), py::arg("camera"), py::arg("near") = kSweep.near, py::arg("far") = kSweep.far,
       py::arg("planes") = kSweep.planes, py::arg("selection") = "axes", py::arg("neighbours") = kSweep.neighbours,
       py::arg("best") = kSweep.best, py::arg("truncation") = kSweep.truncation, py::arg("spatial") = kSweep.spatial,
-      py::arg("range") = kSweep.range, py::arg("threads") = 0,
+      py::arg("range") = kSweep.range, py::arg("median_radius") = kSweep.median.radius,
+      py::arg("median_range") = kSweep.median.range, py::arg("median_flat") = kSweep.median.flat,
+      py::arg("median_min_confidence") = kSweep.median.min_confidence, py::arg("snap_jump") = kSweep.snap.jump,
+      py::arg("threads") = 0,
       "Plane-sweep depth of camera `camera` (mpr::estimate_depth, defaults as mpr::PlaneSweepConfig): against up to "
       "`neighbours` cameras, those along the camera's image row and column (`selection='axes'`, falling back to the "
       "nearest where the array has no such axes) or the nearest (`'nearest'`), the `best` costs of each plane "
       "kept; returns (depth, confidence), two H x W float32 arrays; depth along the camera's optical axis in world "
       "units within [near, far], confidence in [0, 1]. near = far = 0 (the default): the range from the calibration "
-      "and the images (mpr::sweep_range). The GIL is released while sweeping.");
+      "and the images (mpr::sweep_range). The final filters (mpr::PlaneSweepConfig::median and ::snap): a joint "
+      "weighted median over a (2 median_radius + 1)^2 window (median_radius 0..7, 0: none), guided by the camera's "
+      "colours (median_range > 0: the colour distance, sum of |sRGB code difference| / 255 over channels, over "
+      "which a neighbour's weight falls by e) and weighted by confidence (at least median_min_confidence, in (0, "
+      "1]), windows whose values lie within median_flat planes (>= 0) left alone; then the mixed pixels of depth "
+      "edges decided by colour where a pixel's neighbours differ by more than snap_jump planes (> 0; math.inf: "
+      "none). A bad value raises ValueError naming the keyword. The GIL is released while sweeping.");
   m.def(
       "read_hci",
       [](const std::filesystem::path& folder) {
