@@ -9,6 +9,13 @@ test program at a time in the listed order, stopping at the first that fails (--
 all); then restores the file. It prints a table: mutation -> caught by (the failing tests) /
 MISSED (every listed test passed).
 
+Focused first pass (unless --no-focus): each mutation is first tested with its test programs built
+from only the test files that include an edited file directly or mirror it (CMake's
+MPR_TEST_FILES); a mutation those catch is caught by the suite, which holds them, and the table
+names the files. Where they miss it (or there are none), the whole programs are built and run.
+This makes a mutation of a widely included header cost minutes instead of a rebuild of every
+test file.
+
 A mutation whose text is not found, or that does not compile, is reported as such and counts
 as a failure of the run (the list has rotted: fix the pattern). The unmutated copy is built and
 tested first; the run stops if it does not pass.
@@ -423,13 +430,52 @@ def copy_tree():
     shutil.copytree(ROOT, SRC, ignore=ignore, symlinks=True, dirs_exist_ok=True, copy_function=_copy_if_changed)
 
 
-def configure(log):
+def configure(log, test_files=""):
+    """Configures the scratch build; `test_files`: the MPR_TEST_FILES regular expression (empty:
+    every test file)."""
     env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"] if shutil.which("ccache") else []
     # The same spelling as the tree's default (a compile definition: part of ccache's hash).
     data = os.environ.get("MPR_DATA_DIR", str(ROOT) + "/../shared/data")
     return run(["cmake", "-S", SRC, "-B", BUILD, "-DCMAKE_BUILD_TYPE=Release", "-DMPR_DATA_DIR=" + data,
-                "-DMPR_BUILD_EXAMPLES=OFF", "-DMPR_BUILD_BENCHMARKS=OFF", "-DMPR_INSTALL=OFF"] + env_launcher,
+                "-DMPR_BUILD_EXAMPLES=OFF", "-DMPR_BUILD_BENCHMARKS=OFF", "-DMPR_INSTALL=OFF",
+                "-DMPR_TEST_FILES=" + test_files] + env_launcher,
                ROOT, log)
+
+
+def focus_files(mutation):
+    """The test files (paths under tests/) of a mutation's focused pass: in the areas of its test
+    programs, the mirror test of each edited header and every test file that includes an edited
+    file directly. A mutation these catch is caught by the suite, which holds them; one they miss
+    runs the full programs."""
+    areas = [t for t in mutation["tests"] if t in TEST_TARGET]
+    edited = sorted({e[0] for e in mutation["edits"]})
+    out = set()
+    for area in areas:
+        for test in sorted((ROOT / "tests" / area).rglob("*_test.cpp")):
+            rel = test.relative_to(ROOT / "tests").as_posix()
+            text = test.read_text(errors="replace")
+            for path in edited:
+                header = path[len("include/"):] if path.startswith("include/") else path
+                mirror = Path(header).with_suffix("").as_posix()[len("mpr/"):] + "_test.cpp"
+                if rel == mirror or ("<" + header + ">") in text or ('"' + header + '"') in text:
+                    out.add(rel)
+    return sorted(out)
+
+
+_configured = [None]  # the MPR_TEST_FILES of the scratch build's last configure
+
+
+def filter_to(test_files, log):
+    """Configures the scratch build for these test files (a regular expression; empty: all), when
+    it is not already."""
+    if _configured[0] != test_files:
+        if configure(log, test_files) != 0:
+            raise SystemExit("configure failed; see " + str(log))
+        _configured[0] = test_files
+
+
+def files_regex(files):
+    return "(" + "|".join("/tests/" + f.replace(".", "\\.") for f in files) + ")$"
 
 
 def targets_of(tests):
@@ -520,6 +566,8 @@ def main():
     parser.add_argument("--all", action="store_true",
                         help="run every listed test of a mutation (default: stop at the first test program that fails)")
     parser.add_argument("--tests", nargs="*", help="run only these of each mutation's ctest entries")
+    parser.add_argument("--no-focus", action="store_true",
+                        help="no focused first pass: build and run each mutation's whole test programs")
     parser.add_argument("--no-baseline", action="store_true", help="skip the unmutated build and test")
     parser.add_argument("--levels", nargs="*", metavar="LEVEL",
                         help="run each mutation's tests at every SIMD level the CPU has (or at the LEVELs named: "
@@ -548,8 +596,7 @@ def main():
     log.write_text("")
     print("copying the tree to", SRC, flush=True)
     copy_tree()
-    if configure(log) != 0:
-        raise SystemExit("configure failed; see " + str(log))
+    filter_to("", log)
     if not args.no_baseline:
         all_tests = sorted({t for m in chosen for t in m["tests"]})
         print("baseline: building and testing the unmutated copy ...", flush=True)
@@ -569,11 +616,21 @@ def main():
             print("pattern not found", flush=True)
             continue
         cells = []  # (text, caught) per level
+        focus = [] if args.no_focus else focus_files(m)
+        focus_tests = [t for t in m["tests"] if any(f.startswith(t + "/") for f in focus)]
         try:
             for level in levels:
                 if level and m["levels"] and level not in m["levels"]:
                     cells.append(("not its code's level", True))
                     continue
+                if focus_tests:
+                    filter_to(files_regex(focus), log)
+                    ok, failed = build_and_test(focus_tests, args.jobs, log, stop_at_first=True, level=level)
+                    if ok and failed:
+                        names = ", ".join(Path(f).name for f in focus)
+                        cells.append(("caught by " + ", ".join(failed) + " (" + names + ")", True))
+                        continue
+                filter_to("", log)
                 ok, failed = build_and_test(m["tests"], args.jobs, log, stop_at_first=not args.all, level=level)
                 if not ok:
                     cells = [("DOES NOT COMPILE", False)] * len(levels)
