@@ -46,7 +46,8 @@ const std::uint16_t* other_table() {
 }
 
 // How the row is run: the dispatcher (`projective_row` at the level), or the Highway kernel
-// called directly at the level (its AVX-512 target too, which the dispatcher may not pick).
+// called directly at the level (at avx512 and above, where the dispatcher runs the AVX-512
+// kernel, its AVX2 target).
 enum class Entry { dispatch, hwy };
 
 template <class T, class C>

@@ -2,8 +2,9 @@
 /// \file
 /// The projective-row kernel (kernels/projective_row.hpp: one camera's bilinear pixels at n
 /// points whose pixel coordinates are x_i = (a + i b) / (c + i d)) written once with Highway for
-/// float coordinates and 8-bit or float channels, and compiled for SSE4, AVX2 and AVX-512
-/// (`projective_row_hwy` picks one for a `SimdLevel`). Each vector of points: the projective map
+/// float coordinates and 8-bit or float channels, and compiled for SSE4 and AVX2
+/// (`projective_row_hwy` picks one for a `SimdLevel`; AVX-512 has its own kernel,
+/// kernels/projective_row.hpp). Each vector of points: the projective map
 /// per lane (a division), the seen-mask (w > 0, pixel inside the image, weight > 0), the four
 /// bilinear taps gathered (8-bit texels a 32-bit word each, decoded to linear light by the sRGB
 /// cubic or the decode table, as kernels/lerp_row_hwy.hpp decodes), weighed and added to the
@@ -26,7 +27,7 @@
 #include <cstdint>
 #include <type_traits>
 
-// The kernel's body, once per target (AVX-512 with VBMI runs the AVX-512 one).
+// The kernel's body, once per target.
 #if HWY_TARGETS & HWY_SSE4
 HWY_PUSH_ATTRIBUTES(HWY_TARGET_STR_SSE4)
 namespace mpr::kernels::projective_sse4 {
@@ -45,29 +46,17 @@ namespace hn = hwy::N_AVX2;
 HWY_POP_ATTRIBUTES
 #endif
 
-#if HWY_TARGETS & HWY_AVX3
-HWY_PUSH_ATTRIBUTES(HWY_TARGET_STR_AVX3)
-namespace mpr::kernels::projective_avx512 {
-namespace hn = hwy::N_AVX3;
-#include <mpr/lightfield/kernels/projective_row_hwy.inl>
-} // namespace mpr::kernels::projective_avx512
-HWY_POP_ATTRIBUTES
-#endif
-
 namespace mpr::kernels {
 
 /// The projective row of `r` (`detail::ProjectiveRow<float, C>`, C std::uint8_t or float; 8-bit
 /// texels with readable bytes after the last, image `detail::gather_indexable`) over [0, n), as
-/// `detail::projective_row_portable` computes it, at the Highway target for `level`: `avx512`
-/// and above the AVX-512 one, `avx2` the AVX2 one, `portable` SSE4 when the CPU has SSE4.2.
+/// `detail::projective_row_portable` computes it, at the Highway target for `level`: `avx2` and
+/// above the AVX2 one, `portable` SSE4 when the CPU has SSE4.2.
 /// False, with nothing done, when the build or the CPU has no target for `level`.
 /// Precondition: the CPU runs `level`.
 template <class Row>
 [[nodiscard]] inline bool projective_row_hwy(const Row& r, std::size_t n, const float* rw, float* acc, float* seen,
                                              detail::SimdLevel level) noexcept {
-#if HWY_TARGETS & HWY_AVX3
-  if (level >= detail::SimdLevel::avx512) return projective_avx512::projective_row(r, n, rw, acc, seen), true;
-#endif
 #if HWY_TARGETS & HWY_AVX2
   if (level >= detail::SimdLevel::avx2) return projective_avx2::projective_row(r, n, rw, acc, seen), true;
 #endif

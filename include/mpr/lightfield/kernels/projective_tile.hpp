@@ -14,7 +14,6 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/kernels/decode_vbmi.hpp>
-#include <mpr/lightfield/kernels/projective_lanes_avx512.hpp>
 #include <mpr/lightfield/kernels/projective_row.hpp>
 
 #include <algorithm>
