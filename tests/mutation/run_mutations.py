@@ -86,6 +86,7 @@ SA = "include/mpr/lightfield/synthetic_aperture.hpp"
 CYL = "include/mpr/lightfield/cylinder_aperture.hpp"
 KER = "include/mpr/lightfield/kernels/sampler_rows.hpp"
 CYW = "include/mpr/lightfield/kernels/cylinder_weights.hpp"
+CYH = "include/mpr/lightfield/kernels/cylinder_weights_hwy.inl"
 DWL = "include/mpr/lightfield/kernels/depth_walk_hwy.inl"
 DLN = "include/mpr/lightfield/kernels/depth_lane_ops_hwy.inl"
 SA_LOOP = "for (const auto& c : table.cameras())"
@@ -105,10 +106,7 @@ MUTATIONS = [
        (CYL, "static_cast<float>(T(1) - std::sqrt(d2) / r)", "static_cast<float>(T(1) - d2 / (r * r))"),
        (CYW, "std::max(T(1) - std::sqrt(d2) * inv_radius, T(0))",
         "std::max(T(1) - d2 * inv_radius * inv_radius, T(0))"),
-       (CYW, "_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one)",
-        "_mm256_fnmadd_ps(_mm256_mul_ps(d2, vinv), vinv, one)"),
-       (CYW, "_mm512_fnmadd_ps(_mm512_maskz_sqrt_ps(0xFFFF, d2), vinv, one)",
-        "_mm512_fnmadd_ps(_mm512_mul_ps(d2, vinv), vinv, one)")],
+       (CYH, "hn::NegMulAdd(hn::Sqrt(d2), vinv, one)", "hn::NegMulAdd(hn::Mul(d2, vinv), vinv, one)")],
       ["lightfield", "tools"], "1 - (d/r)^2 instead of 1 - d/r in every path"),
     M("par_t_one_field_early", "io",
       [("include/mpr/io/par_file.hpp", "parse_number(par_file, line, 19 + k)", "parse_number(par_file, line, 18 + k)")],

@@ -8,8 +8,8 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/kernels/projective_row.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/kernels/projective_row.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -33,8 +33,36 @@ constexpr std::size_t kLengths[] = {0, 1, 5, 15, 16, 17, 31, 32, 33, 64, 100, 25
 constexpr std::size_t kGuard = 21;
 constexpr float kSentinel = -12345.0f;
 
+// A decode table that is not the sRGB one (the kernels then gather from the table rather than
+// evaluate the sRGB cubic): a steep, uneven curve through whole numbers below 2^16.
+const std::uint16_t* other_table() {
+  static const auto table = [] {
+    std::vector<std::uint16_t> t(256);
+    for (int c = 0; c < 256; ++c)
+      t[static_cast<std::size_t>(c)] = static_cast<std::uint16_t>((c * c * 7 + c * 13) % 65536);
+    return t;
+  }();
+  return table.data();
+}
+
+// How the row is run: the dispatcher (`projective_row` at the level), or the Highway kernel
+// called directly at the level (at avx512 and above, where the dispatcher runs the AVX-512
+// kernel, its AVX2 target).
+enum class Entry { dispatch, hwy };
+
 template <class T, class C>
-void check_kernel() {
+void run_row(Entry entry, const ProjectiveRow<T, C>& r, std::size_t n, const float* rw, float* acc, float* seen,
+             SimdLevel level) {
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
+  if constexpr (std::is_same_v<T, float>)
+    if (entry == Entry::hwy && mpr::kernels::projective_row_hwy(r, n, rw, acc, seen, level)) return;
+#endif
+  (void)entry;
+  mpr::detail::projective_row(r, n, rw, acc, seen, level);
+}
+
+template <class T, class C>
+void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entry entry = Entry::dispatch) {
   std::mt19937_64 rng(2007 + sizeof(T) * 10 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
   const int width = 37, height = 23;
@@ -47,7 +75,7 @@ void check_kernel() {
       c = static_cast<C>(rng() % (std::is_same_v<C, std::uint8_t> ? 256 : 65536));
   }
   const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
-  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? mpr::Srgb8Texel::linear16() : nullptr;
+  const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? table : nullptr;
   // Coordinates far from the origin make float rounding of the projective map realistic.
   const LD margin = std::is_same_v<T, float> ? 2e-3L : 1e-9L;
   int failures = 0, compared = 0, seen_points = 0;
@@ -79,7 +107,7 @@ void check_kernel() {
       for (std::size_t j = 0; j < n; ++j) seen0[j] = static_cast<float>(unit(rng));
       mpr_test::for_each_simd_level([&](SimdLevel level) {
         std::vector<float> acc = acc0, seen = seen0;
-        mpr::detail::projective_row(r, n, weighted ? rw.data() : nullptr, acc.data(), seen.data(), level);
+        run_row(entry, r, n, weighted ? rw.data() : nullptr, acc.data(), seen.data(), level);
         for (std::size_t j = 3 * n; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
         for (std::size_t j = n; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -108,6 +136,14 @@ TEMPLATE_TEST_CASE("projective_row: every level adds the bilinear pixels of the 
                    "[projective_row]", float, double) {
   SECTION("8-bit sRGB codes") { check_kernel<TestType, std::uint8_t>(); }
   SECTION("float channels") { check_kernel<TestType, float>(); }
+  SECTION("8-bit codes, another decode table") { check_kernel<TestType, std::uint8_t>(other_table()); }
+}
+
+TEST_CASE("projective_row_hwy: the Highway kernel at every level adds the bilinear pixels of the reference",
+          "[projective_row]") {
+  SECTION("8-bit sRGB codes") { check_kernel<float, std::uint8_t>(mpr::Srgb8Texel::linear16(), Entry::hwy); }
+  SECTION("8-bit codes, another decode table") { check_kernel<float, std::uint8_t>(other_table(), Entry::hwy); }
+  SECTION("float channels") { check_kernel<float, float>(nullptr, Entry::hwy); }
 }
 
 TEST_CASE("gather_indexable: 32-bit channel offsets for the whole image", "[projective_row]") {
@@ -122,7 +158,7 @@ TEST_CASE("projective_row: a w that is subnormal, overflows or is infinite is se
           "[projective_row]") {
   // An ordinary row scaled by 1e-39 (w subnormal), a finite row whose w overflows to inf from
   // point 4 on, and w = inf itself: the plain loop divides and sees every point; the AVX-512
-  // step must not lose them to a reciprocal estimate that is 0 or inf there.
+  // kernels must not lose them to a reciprocal estimate that is 0 or inf there.
   std::vector<std::uint8_t, mpr::detail::HugePageAllocator<std::uint8_t>> texels(3 * 4 * 4, 200);
   const std::uint16_t* lut = mpr::Srgb8Texel::linear16();
   const float rows[3][6] = {{1.5e-39f, 1.5e-39f, 1e-39f, 0, 0, 0},

@@ -2,7 +2,9 @@
 /// \file
 /// The weights of `CylinderAperture` (lightfield/cylinder_aperture.hpp) for a row of rays: the
 /// linear falloff with the distance from a camera centre to each ray line, and the span of the
-/// rays it weighs, portable and in AVX2 and AVX-512 kernels with the same arithmetic.
+/// rays it weighs: a portable loop, and the same arithmetic written once with Highway and
+/// compiled for SSE4, AVX2 and AVX-512 (kernels/cylinder_weights_hwy.inl, included below once per
+/// target as kernels/depth_lanes_hwy.hpp includes its body).
 
 #include <mpr/core/config.hpp>
 #include <mpr/core/simd.hpp>
@@ -11,10 +13,13 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 
-#if defined(MPR_SIMD_X86)
-#include <immintrin.h>
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
+#include <mpr/lightfield/kernels/lerp_row_hwy.hpp> // Highway's ops for every attainable target
+
+#include <hwy/highway.h>
 #endif
 
 namespace mpr::detail {
@@ -42,9 +47,8 @@ inline std::array<std::size_t, 2> cylinder_weights_portable(const T* xu, const T
   return {first, first == n ? n : last};
 }
 
-#if defined(MPR_SIMD_X86)
-// The span of positive weights, gathered vector by vector (`positive`: the mask of the weights
-// from i that are > 0), then the portable tail's from i.
+/// The span of positive weights, gathered vector by vector (`positive`: the mask of the weights
+/// from i that are > 0, lane l in bit l), then the portable tail's from i.
 struct PositiveSpan {
   std::size_t n, first, last;
   MPR_ALWAYS_INLINE void add(std::size_t i, unsigned positive) noexcept {
@@ -61,63 +65,59 @@ struct PositiveSpan {
   }
 };
 
-// Written with intrinsics: with errno-setting sqrt (the default), compilers do not vectorise
-// std::sqrt, and this loop is mostly the square root.
-MPR_TARGET_AVX2 inline std::array<std::size_t, 2> cylinder_weights_avx2(const float* xu, const float* xv,
-                                                                        const float* du, const float* dv,
-                                                                        const float* inv_dd, std::size_t n, float cu,
-                                                                        float cv, float inv_radius, float* w) noexcept {
-  const __m256 vcu = _mm256_set1_ps(cu), vcv = _mm256_set1_ps(cv), vinv = _mm256_set1_ps(inv_radius);
-  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
-  PositiveSpan span{n, n, n};
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    const __m256 eu = _mm256_sub_ps(vcu, _mm256_loadu_ps(xu + i)), ev = _mm256_sub_ps(vcv, _mm256_loadu_ps(xv + i));
-    const __m256 ed = _mm256_fmadd_ps(eu, _mm256_loadu_ps(du + i), _mm256_mul_ps(ev, _mm256_loadu_ps(dv + i)));
-    const __m256 r2 = _mm256_fmadd_ps(eu, eu, _mm256_mul_ps(ev, ev));
-    const __m256 d2 = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_mul_ps(ed, ed), _mm256_loadu_ps(inv_dd + i), r2), zero);
-    const __m256 wi = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(d2), vinv, one), zero);
-    _mm256_storeu_ps(w + i, wi);
-    span.add(i, static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(wi, zero, _CMP_GT_OQ))));
-  }
-  return span.with_tail(
-      i, cylinder_weights_portable(xu + i, xv + i, du + i, dv + i, inv_dd + i, n - i, cu, cv, inv_radius, w + i));
-}
+} // namespace mpr::detail
 
-// The AVX2 kernel's arithmetic sixteen lanes at a time (masked forms: GCC bug 105593,
-// -Wmaybe-uninitialized).
-MPR_TARGET_AVX512 inline std::array<std::size_t, 2>
-cylinder_weights_avx512(const float* xu, const float* xv, const float* du, const float* dv, const float* inv_dd,
-                        std::size_t n, float cu, float cv, float inv_radius, float* w) noexcept {
-  const __m512 vcu = _mm512_set1_ps(cu), vcv = _mm512_set1_ps(cv), vinv = _mm512_set1_ps(inv_radius);
-  const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-  PositiveSpan span{n, n, n};
-  std::size_t i = 0;
-  for (; i + 16 <= n; i += 16) {
-    const __m512 eu = _mm512_sub_ps(vcu, _mm512_loadu_ps(xu + i)), ev = _mm512_sub_ps(vcv, _mm512_loadu_ps(xv + i));
-    const __m512 ed = _mm512_fmadd_ps(eu, _mm512_loadu_ps(du + i), _mm512_mul_ps(ev, _mm512_loadu_ps(dv + i)));
-    const __m512 r2 = _mm512_fmadd_ps(eu, eu, _mm512_mul_ps(ev, ev));
-    const __m512 d2 =
-        _mm512_maskz_max_ps(0xFFFF, _mm512_fnmadd_ps(_mm512_mul_ps(ed, ed), _mm512_loadu_ps(inv_dd + i), r2), zero);
-    const __m512 wi = _mm512_maskz_max_ps(0xFFFF, _mm512_fnmadd_ps(_mm512_maskz_sqrt_ps(0xFFFF, d2), vinv, one), zero);
-    _mm512_storeu_ps(w + i, wi);
-    span.add(i, _mm512_cmp_ps_mask(wi, zero, _CMP_GT_OQ));
-  }
-  return span.with_tail(
-      i, cylinder_weights_portable(xu + i, xv + i, du + i, dv + i, inv_dd + i, n - i, cu, cv, inv_radius, w + i));
-}
+// The kernel, once per Highway target (AVX-512 with VBMI runs the AVX-512 one).
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
+#if HWY_TARGETS & HWY_SSE4
+HWY_PUSH_ATTRIBUTES(HWY_TARGET_STR_SSE4)
+namespace mpr::kernels::cylinder_sse4 {
+namespace hn = hwy::N_SSE4;
+#include <mpr/lightfield/kernels/cylinder_weights_hwy.inl>
+} // namespace mpr::kernels::cylinder_sse4
+HWY_POP_ATTRIBUTES
+#endif
+#if HWY_TARGETS & HWY_AVX2
+HWY_PUSH_ATTRIBUTES(HWY_TARGET_STR_AVX2)
+namespace mpr::kernels::cylinder_avx2 {
+namespace hn = hwy::N_AVX2;
+#include <mpr/lightfield/kernels/cylinder_weights_hwy.inl>
+} // namespace mpr::kernels::cylinder_avx2
+HWY_POP_ATTRIBUTES
+#endif
+#if HWY_TARGETS & HWY_AVX3
+HWY_PUSH_ATTRIBUTES(HWY_TARGET_STR_AVX3)
+namespace mpr::kernels::cylinder_avx512 {
+namespace hn = hwy::N_AVX3;
+#include <mpr/lightfield/kernels/cylinder_weights_hwy.inl>
+} // namespace mpr::kernels::cylinder_avx512
+HWY_POP_ATTRIBUTES
+#endif
 #endif
 
-/// `cylinder_weights_portable`, or the AVX2 / AVX-512 kernel (float, the same arithmetic) when
-/// `level` allows.
+namespace mpr::detail {
+
+/// `cylinder_weights_portable`, or for float the Highway kernel (kernels/cylinder_weights_hwy.inl:
+/// the same arithmetic, fused multiply-adds where the target has them) at `level`: `avx512` and
+/// above the AVX-512 target, `avx2` the AVX2 one, `portable` SSE4 when the CPU has SSE4.2.
 template <class T>
 inline std::array<std::size_t, 2> cylinder_weights(const T* xu, const T* xv, const T* du, const T* dv, const T* inv_dd,
                                                    std::size_t n, T cu, T cv, T inv_radius, float* w,
                                                    SimdLevel level = dispatch_level()) noexcept {
-#if defined(MPR_SIMD_X86)
+#if MPR_HAVE_HWY && defined(MPR_SIMD_X86)
   if constexpr (std::is_same_v<T, float>) {
-    if (level >= SimdLevel::avx512) return cylinder_weights_avx512(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
-    if (level == SimdLevel::avx2) return cylinder_weights_avx2(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+#if HWY_TARGETS & HWY_AVX3
+    if (level >= SimdLevel::avx512)
+      return kernels::cylinder_avx512::cylinder_weights(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+#endif
+#if HWY_TARGETS & HWY_AVX2
+    if (level >= SimdLevel::avx2)
+      return kernels::cylinder_avx2::cylinder_weights(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+#endif
+#if HWY_TARGETS & HWY_SSE4
+    if (__builtin_cpu_supports("sse4.2"))
+      return kernels::cylinder_sse4::cylinder_weights(xu, xv, du, dv, inv_dd, n, cu, cv, inv_radius, w);
+#endif
   }
 #endif
   (void)level;
