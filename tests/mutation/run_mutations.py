@@ -10,8 +10,8 @@ all); then restores the file. It prints a table: mutation -> caught by (the fail
 MISSED (every listed test passed).
 
 Focused first pass (unless --no-focus): each mutation is first tested with its test programs built
-from only the test files that include an edited file directly or mirror it (CMake's
-MPR_TEST_FILES); a mutation those catch is caught by the suite, which holds them, and the table
+from only the test files that include an edited file directly or mirror it, or else those of the
+headers that include it directly (CMake's MPR_TEST_FILES); a mutation those catch is caught by the suite, which holds them, and the table
 names the files. Where they miss it (or there are none), the whole programs are built and run.
 This makes a mutation of a widely included header cost minutes instead of a rebuild of every
 test file.
@@ -444,23 +444,38 @@ def configure(log, test_files=""):
                ROOT, log)
 
 
-def focus_files(mutation):
-    """The test files (paths under tests/) of a mutation's focused pass: in the areas of its test
-    programs, the mirror test of each edited header and every test file that includes an edited
-    file directly. A mutation these catch is caught by the suite, which holds them; one they miss
-    runs the full programs."""
-    areas = [t for t in mutation["tests"] if t in TEST_TARGET]
-    edited = sorted({e[0] for e in mutation["edits"]})
+def _tests_of(headers, areas):
+    """Test files (paths under tests/) in `areas` that mirror one of `headers` (paths under
+    include/) or include one directly."""
     out = set()
     for area in areas:
         for test in sorted((ROOT / "tests" / area).rglob("*_test.cpp")):
             rel = test.relative_to(ROOT / "tests").as_posix()
             text = test.read_text(errors="replace")
-            for path in edited:
+            for path in headers:
                 header = path[len("include/"):] if path.startswith("include/") else path
                 mirror = Path(header).with_suffix("").as_posix()[len("mpr/"):] + "_test.cpp"
                 if rel == mirror or ("<" + header + ">") in text or ('"' + header + '"') in text:
                     out.add(rel)
+    return out
+
+
+def focus_files(mutation, most=8):
+    """The test files (paths under tests/) of a mutation's focused pass: in the areas of its test
+    programs, the mirror test of each edited file and every test file that includes one directly;
+    where there are none, the same for the headers that include an edited file directly (at most
+    `most` files, else none). A mutation these catch is caught by the suite, which holds them; one
+    they miss runs the full programs."""
+    areas = [t for t in mutation["tests"] if t in TEST_TARGET]
+    edited = sorted({e[0] for e in mutation["edits"]})
+    out = _tests_of(edited, areas)
+    if not out:
+        names = ["<" + e[len("include/"):] + ">" for e in edited if e.startswith("include/")]
+        includers = [h.relative_to(ROOT).as_posix() for h in sorted((ROOT / "include").rglob("*.hpp"))
+                     if any(n in h.read_text(errors="replace") for n in names)]
+        out = _tests_of(includers, areas)
+        if len(out) > most:
+            out = set()
     return sorted(out)
 
 
