@@ -48,55 +48,75 @@ inline void validate(const WeightedMedianConfig& c) {
 
 namespace detail {
 
-/// The weighted median at pixel (x, y) of `values`; see `weighted_median`.
+/// Value bins of `weighted_median_at`.
+inline constexpr int kWeightedMedianBins = 32;
+
+/// The weighted median at pixel (x, y) of `values`; see `weighted_median`: the smallest value of
+/// the window whose cumulative weight in ascending order (equal values together) reaches half the
+/// total. The values go into kWeightedMedianBins bins evenly over the window's [min, max] (a
+/// monotone map, so a bin's values all lie below the next bin's) with their weights summed per
+/// bin; the bin where the running sum reaches half the total holds the median, found among that
+/// bin's few values in order. No sorting of the window, no data-dependent swaps.
 [[nodiscard]] inline float weighted_median_at(ImageView<const float> values, ImageView<const Rgb8> guide,
                                               ImageView<const float> confidence, int x, int y,
                                               const WeightedMedianConfig& c, const float* table) noexcept {
-  std::array<std::pair<float, float>, 225> window; // (value, weight)
+  constexpr int N = 225, B = kWeightedMedianBins;
+  float value[N], weight[N];
   int count = 0;
   float total = 0;
   const int x0 = std::max(0, x - c.radius), x1 = std::min(values.width() - 1, x + c.radius);
   const int y0 = std::max(0, y - c.radius), y1 = std::min(values.height() - 1, y + c.radius);
   const Rgb8 p = guide(x, y);
   const float floor = static_cast<float>(c.min_confidence);
-  for (int v = y0; v <= y1; ++v)
-    for (int u = x0; u <= x1; ++u) {
-      const Rgb8 q = guide(u, v);
+  float lo = values(x, y), hi = lo;
+  for (int v = y0; v <= y1; ++v) {
+    const float* vr = values.row(v);
+    const float* cr = confidence.row(v);
+    const Rgb8* gr = guide.row(v);
+    for (int u = x0; u <= x1; ++u, ++count) {
+      const Rgb8 q = gr[u];
       const int diff = std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
-      const float w = table[diff] * std::max(confidence(u, v), floor);
-      window[static_cast<std::size_t>(count++)] = {values(u, v), w};
+      const float w = table[diff] * std::max(cr[u], floor);
+      value[count] = vr[u];
+      weight[count] = w;
+      lo = std::min(lo, vr[u]);
+      hi = std::max(hi, vr[u]);
       total += w;
     }
-  // Weighted selection (a three-way quickselect): the smallest value whose cumulative weight in
-  // ascending order reaches half the total, in expected linear time.
-  float target = 0.5f * total;
-  int lo = 0, hi = count;
-  while (hi - lo > 1) {
-    const float pivot = window[static_cast<std::size_t>(lo + (hi - lo) / 2)].first;
-    int lt = lo, gt = hi, i = lo;
-    float below = 0, equal = 0;
-    while (i < gt) { // [lo, lt) < pivot, [lt, i) == pivot, [gt, hi) > pivot
-      const auto e = window[static_cast<std::size_t>(i)];
-      if (e.first < pivot) {
-        below += e.second;
-        std::swap(window[static_cast<std::size_t>(lt++)], window[static_cast<std::size_t>(i++)]);
-      } else if (e.first > pivot) {
-        std::swap(window[static_cast<std::size_t>(--gt)], window[static_cast<std::size_t>(i)]);
-      } else {
-        equal += e.second;
-        ++i;
-      }
-    }
-    if (below >= target && lt > lo) {
-      hi = lt;
-    } else if (below + equal >= target || gt == hi) {
-      return pivot;
-    } else {
-      target -= below + equal;
-      lo = gt;
-    }
   }
-  return window[static_cast<std::size_t>(lo)].first;
+  if (!(hi > lo)) return lo;
+  // Bin k holds the values with floor((v - lo) * B / (hi - lo)) = k (the top one in bin B - 1);
+  // in double, so that a tiny spread does not overflow the scale.
+  const double scale = B / (static_cast<double>(hi) - static_cast<double>(lo));
+  const auto bin_of = [&](float v) {
+    return std::min(static_cast<int>((static_cast<double>(v) - static_cast<double>(lo)) * scale), B - 1);
+  };
+  float mass[B] = {};
+  for (int k = 0; k < count; ++k) mass[bin_of(value[k])] += weight[k];
+  const float target = 0.5f * total;
+  float below = 0;
+  int median_bin = 0;
+  while (median_bin < B - 1 && below + mass[median_bin] < target) below += mass[median_bin++];
+  // That bin's values in ascending order (insertion: a handful), then the running sum.
+  float in_value[N], in_weight[N];
+  int in = 0;
+  for (int k = 0; k < count; ++k) {
+    if (bin_of(value[k]) != median_bin) continue;
+    int i = in++;
+    for (; i > 0 && in_value[i - 1] > value[k]; --i) {
+      in_value[i] = in_value[i - 1];
+      in_weight[i] = in_weight[i - 1];
+    }
+    in_value[i] = value[k];
+    in_weight[i] = weight[k];
+  }
+  for (int i = 0; i < in;) {
+    const float v = in_value[i];
+    for (; i < in && in_value[i] == v; ++i) below += in_weight[i];
+    if (below >= target) return v;
+  }
+  // Only where rounding left the sums short of the target: the bin's largest value.
+  return in > 0 ? in_value[in - 1] : hi;
 }
 
 /// The spread (max - min) of `values` over each pixel's (2r+1)^2 window, clipped at the image:
