@@ -56,19 +56,23 @@ inline constexpr int kWeightedMedianBins = 32;
 /// total. The values go into kWeightedMedianBins bins evenly over the window's [min, max] (a
 /// monotone map, so a bin's values all lie below the next bin's) with their weights summed per
 /// bin; the bin where the running sum reaches half the total holds the median, found among that
-/// bin's few values in order. No sorting of the window, no data-dependent swaps.
+/// bin's few values in order. No sorting of the window, no data-dependent swaps. lo < hi: the
+/// window's smallest and largest value (`window_range`).
 [[nodiscard]] inline float weighted_median_at(ImageView<const float> values, ImageView<const Rgb8> guide,
-                                              ImageView<const float> confidence, int x, int y,
+                                              ImageView<const float> confidence, int x, int y, float lo, float hi,
                                               const WeightedMedianConfig& c, const float* table) noexcept {
   constexpr int N = 225, B = kWeightedMedianBins;
-  float value[N], weight[N];
+  float value[N], weight[N], mass[B] = {};
+  unsigned char bin[N];
   int count = 0;
   float total = 0;
   const int x0 = std::max(0, x - c.radius), x1 = std::min(values.width() - 1, x + c.radius);
   const int y0 = std::max(0, y - c.radius), y1 = std::min(values.height() - 1, y + c.radius);
   const Rgb8 p = guide(x, y);
   const float floor = static_cast<float>(c.min_confidence);
-  float lo = values(x, y), hi = lo;
+  // Bin k holds the values with floor((v - lo) * scale) = k, the top one in bin B - 1 (a scale
+  // kept finite: a tiny spread puts every value but hi in bin 0, still in order).
+  const float scale = static_cast<float>(std::min(B / (static_cast<double>(hi) - static_cast<double>(lo)), 1e30));
   for (int v = y0; v <= y1; ++v) {
     const float* vr = values.row(v);
     const float* cr = confidence.row(v);
@@ -77,22 +81,14 @@ inline constexpr int kWeightedMedianBins = 32;
       const Rgb8 q = gr[u];
       const int diff = std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
       const float w = table[diff] * std::max(cr[u], floor);
+      const int k = static_cast<int>(std::min((vr[u] - lo) * scale, static_cast<float>(B - 1)));
       value[count] = vr[u];
       weight[count] = w;
-      lo = std::min(lo, vr[u]);
-      hi = std::max(hi, vr[u]);
+      bin[count] = static_cast<unsigned char>(k);
+      mass[k] += w;
       total += w;
     }
   }
-  if (!(hi > lo)) return lo;
-  // Bin k holds the values with floor((v - lo) * B / (hi - lo)) = k (the top one in bin B - 1);
-  // in double, so that a tiny spread does not overflow the scale.
-  const double scale = B / (static_cast<double>(hi) - static_cast<double>(lo));
-  const auto bin_of = [&](float v) {
-    return std::min(static_cast<int>((static_cast<double>(v) - static_cast<double>(lo)) * scale), B - 1);
-  };
-  float mass[B] = {};
-  for (int k = 0; k < count; ++k) mass[bin_of(value[k])] += weight[k];
   const float target = 0.5f * total;
   float below = 0;
   int median_bin = 0;
@@ -101,7 +97,7 @@ inline constexpr int kWeightedMedianBins = 32;
   float in_value[N], in_weight[N];
   int in = 0;
   for (int k = 0; k < count; ++k) {
-    if (bin_of(value[k]) != median_bin) continue;
+    if (bin[k] != median_bin) continue;
     int i = in++;
     for (; i > 0 && in_value[i - 1] > value[k]; --i) {
       in_value[i] = in_value[i - 1];
@@ -119,11 +115,15 @@ inline constexpr int kWeightedMedianBins = 32;
   return in > 0 ? in_value[in - 1] : hi;
 }
 
-/// The spread (max - min) of `values` over each pixel's (2r+1)^2 window, clipped at the image:
+/// The smallest and largest of `values` over each pixel's (2r+1)^2 window, clipped at the image:
 /// a running min and max along the rows, then along the columns.
-[[nodiscard]] inline Image<float> window_spread(ImageView<const float> values, int r) {
+struct WindowRange {
+  Image<float> lo, hi;
+};
+[[nodiscard]] inline WindowRange window_range(ImageView<const float> values, int r) {
   const int w = values.width(), h = values.height();
-  Image<float> lo(w, h), hi(w, h), spread(w, h);
+  Image<float> lo(w, h), hi(w, h);
+  WindowRange out{Image<float>(w, h), Image<float>(w, h)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float a = values(x, y), b = a;
@@ -141,9 +141,10 @@ inline constexpr int kWeightedMedianBins = 32;
         a = std::min(a, lo(x, v));
         b = std::max(b, hi(x, v));
       }
-      spread(x, y) = b - a;
+      out.lo(x, y) = a;
+      out.hi(x, y) = b;
     }
-  return spread;
+  return out;
 }
 
 } // namespace detail
@@ -167,13 +168,14 @@ inline constexpr int kWeightedMedianBins = 32;
   std::array<float, 766> table;
   for (std::size_t k = 0; k < table.size(); ++k)
     table[k] = static_cast<float>(std::exp(-static_cast<double>(k) / 255.0 / c.range));
-  const Image<float> spread = detail::window_spread(values, c.radius);
+  const detail::WindowRange range = detail::window_range(values, c.radius);
   const float flat = static_cast<float>(c.flat);
   detail::parallel_rows(0, values.height(), detail::resolve_thread_count(threads, values.height()),
                         [&](int y) noexcept {
                           for (int x = 0; x < values.width(); ++x)
-                            if (spread(x, y) > flat)
-                              out(x, y) = detail::weighted_median_at(values, guide, confidence, x, y, c, table.data());
+                            if (range.hi(x, y) - range.lo(x, y) > flat)
+                              out(x, y) = detail::weighted_median_at(values, guide, confidence, x, y, range.lo(x, y),
+                                                                     range.hi(x, y), c, table.data());
                         });
   return out;
 }
