@@ -77,3 +77,19 @@ TEST_CASE("weighted median: bad settings and sizes are refused by name", "[depth
   CHECK_THROWS_WITH(mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {1, 0.0}),
                     Catch::Contains("range"));
 }
+
+TEST_CASE("weighted median: close values, ranked within one another (hand-worked 3x3)", "[depth_median]") {
+  // One colour; the window of (1, 1) holds 0 and 100 (confidence 1) and seven values between 10
+  // and 10.6 (confidence 0.1, but 10.4 and 10.5: 1). Ascending cumulative weight: 0: 1, 10.0..10.3:
+  // 1.1..1.4, 10.4: 2.4, which first reaches half of 4.5: 10.4 (a plain median gives 10.3).
+  const float v[9] = {10.2f, 100.0f, 10.0f, 10.5f, 10.3f, 0.0f, 10.6f, 10.4f, 10.1f};
+  const float c[9] = {0.1f, 1.0f, 0.1f, 1.0f, 0.1f, 1.0f, 0.1f, 1.0f, 0.1f};
+  mpr::Image<float> values(3, 3), confidence(3, 3);
+  for (int k = 0; k < 9; ++k) {
+    values(k % 3, k / 3) = v[k];
+    confidence(k % 3, k / 3) = c[k];
+  }
+  const mpr::Image<mpr::Rgb8> guide(3, 3, mpr::Rgb8{40, 50, 60});
+  const mpr::Image<float> out = mpr::weighted_median(values.view(), guide.view(), confidence.view(), {1, 0.16});
+  CHECK(out(1, 1) == 10.4f);
+}

@@ -48,62 +48,82 @@ inline void validate(const WeightedMedianConfig& c) {
 
 namespace detail {
 
-/// The weighted median at pixel (x, y) of `values`; see `weighted_median`.
+/// Value bins of `weighted_median_at`.
+inline constexpr int kWeightedMedianBins = 32;
+
+/// The weighted median at pixel (x, y) of `values`; see `weighted_median`: the smallest value of
+/// the window whose cumulative weight in ascending order (equal values together) reaches half the
+/// total. The values go into kWeightedMedianBins bins evenly over the window's [min, max] (a
+/// monotone map, so a bin's values all lie below the next bin's) with their weights summed per
+/// bin; the bin where the running sum reaches half the total holds the median, found among that
+/// bin's few values in order. No sorting of the window, no data-dependent swaps. lo < hi: the
+/// window's smallest and largest value (`window_range`).
 [[nodiscard]] inline float weighted_median_at(ImageView<const float> values, ImageView<const Rgb8> guide,
-                                              ImageView<const float> confidence, int x, int y,
+                                              ImageView<const float> confidence, int x, int y, float lo, float hi,
                                               const WeightedMedianConfig& c, const float* table) noexcept {
-  std::array<std::pair<float, float>, 225> window; // (value, weight)
+  constexpr int N = 225, B = kWeightedMedianBins;
+  float value[N], weight[N], mass[B] = {};
+  unsigned char bin[N];
   int count = 0;
   float total = 0;
   const int x0 = std::max(0, x - c.radius), x1 = std::min(values.width() - 1, x + c.radius);
   const int y0 = std::max(0, y - c.radius), y1 = std::min(values.height() - 1, y + c.radius);
   const Rgb8 p = guide(x, y);
   const float floor = static_cast<float>(c.min_confidence);
-  for (int v = y0; v <= y1; ++v)
-    for (int u = x0; u <= x1; ++u) {
-      const Rgb8 q = guide(u, v);
+  // Bin k holds the values with floor((v - lo) * scale) = k, the top one in bin B - 1 (a scale
+  // kept finite: a tiny spread puts every value but hi in bin 0, still in order).
+  const float scale = static_cast<float>(std::min(B / (static_cast<double>(hi) - static_cast<double>(lo)), 1e30));
+  for (int v = y0; v <= y1; ++v) {
+    const float* vr = values.row(v);
+    const float* cr = confidence.row(v);
+    const Rgb8* gr = guide.row(v);
+    for (int u = x0; u <= x1; ++u, ++count) {
+      const Rgb8 q = gr[u];
       const int diff = std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
-      const float w = table[diff] * std::max(confidence(u, v), floor);
-      window[static_cast<std::size_t>(count++)] = {values(u, v), w};
+      const float w = table[diff] * std::max(cr[u], floor);
+      const int k = static_cast<int>(std::min((vr[u] - lo) * scale, static_cast<float>(B - 1)));
+      value[count] = vr[u];
+      weight[count] = w;
+      bin[count] = static_cast<unsigned char>(k);
+      mass[k] += w;
       total += w;
     }
-  // Weighted selection (a three-way quickselect): the smallest value whose cumulative weight in
-  // ascending order reaches half the total, in expected linear time.
-  float target = 0.5f * total;
-  int lo = 0, hi = count;
-  while (hi - lo > 1) {
-    const float pivot = window[static_cast<std::size_t>(lo + (hi - lo) / 2)].first;
-    int lt = lo, gt = hi, i = lo;
-    float below = 0, equal = 0;
-    while (i < gt) { // [lo, lt) < pivot, [lt, i) == pivot, [gt, hi) > pivot
-      const auto e = window[static_cast<std::size_t>(i)];
-      if (e.first < pivot) {
-        below += e.second;
-        std::swap(window[static_cast<std::size_t>(lt++)], window[static_cast<std::size_t>(i++)]);
-      } else if (e.first > pivot) {
-        std::swap(window[static_cast<std::size_t>(--gt)], window[static_cast<std::size_t>(i)]);
-      } else {
-        equal += e.second;
-        ++i;
-      }
-    }
-    if (below >= target && lt > lo) {
-      hi = lt;
-    } else if (below + equal >= target || gt == hi) {
-      return pivot;
-    } else {
-      target -= below + equal;
-      lo = gt;
-    }
   }
-  return window[static_cast<std::size_t>(lo)].first;
+  const float target = 0.5f * total;
+  float below = 0;
+  int median_bin = 0;
+  while (median_bin < B - 1 && below + mass[median_bin] < target) below += mass[median_bin++];
+  // That bin's values in ascending order (insertion: a handful), then the running sum.
+  float in_value[N], in_weight[N];
+  int in = 0;
+  for (int k = 0; k < count; ++k) {
+    if (bin[k] != median_bin) continue;
+    int i = in++;
+    for (; i > 0 && in_value[i - 1] > value[k]; --i) {
+      in_value[i] = in_value[i - 1];
+      in_weight[i] = in_weight[i - 1];
+    }
+    in_value[i] = value[k];
+    in_weight[i] = weight[k];
+  }
+  for (int i = 0; i < in;) {
+    const float v = in_value[i];
+    for (; i < in && in_value[i] == v; ++i) below += in_weight[i];
+    if (below >= target) return v;
+  }
+  // Only where rounding left the sums short of the target: the bin's largest value.
+  return in > 0 ? in_value[in - 1] : hi;
 }
 
-/// The spread (max - min) of `values` over each pixel's (2r+1)^2 window, clipped at the image:
+/// The smallest and largest of `values` over each pixel's (2r+1)^2 window, clipped at the image:
 /// a running min and max along the rows, then along the columns.
-[[nodiscard]] inline Image<float> window_spread(ImageView<const float> values, int r) {
+struct WindowRange {
+  Image<float> lo, hi;
+};
+[[nodiscard]] inline WindowRange window_range(ImageView<const float> values, int r) {
   const int w = values.width(), h = values.height();
-  Image<float> lo(w, h), hi(w, h), spread(w, h);
+  Image<float> lo(w, h), hi(w, h);
+  WindowRange out{Image<float>(w, h), Image<float>(w, h)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float a = values(x, y), b = a;
@@ -121,9 +141,10 @@ namespace detail {
         a = std::min(a, lo(x, v));
         b = std::max(b, hi(x, v));
       }
-      spread(x, y) = b - a;
+      out.lo(x, y) = a;
+      out.hi(x, y) = b;
     }
-  return spread;
+  return out;
 }
 
 } // namespace detail
@@ -147,13 +168,14 @@ namespace detail {
   std::array<float, 766> table;
   for (std::size_t k = 0; k < table.size(); ++k)
     table[k] = static_cast<float>(std::exp(-static_cast<double>(k) / 255.0 / c.range));
-  const Image<float> spread = detail::window_spread(values, c.radius);
+  const detail::WindowRange range = detail::window_range(values, c.radius);
   const float flat = static_cast<float>(c.flat);
   detail::parallel_rows(0, values.height(), detail::resolve_thread_count(threads, values.height()),
                         [&](int y) noexcept {
                           for (int x = 0; x < values.width(); ++x)
-                            if (spread(x, y) > flat)
-                              out(x, y) = detail::weighted_median_at(values, guide, confidence, x, y, c, table.data());
+                            if (range.hi(x, y) - range.lo(x, y) > flat)
+                              out(x, y) = detail::weighted_median_at(values, guide, confidence, x, y, range.lo(x, y),
+                                                                     range.hi(x, y), c, table.data());
                         });
   return out;
 }

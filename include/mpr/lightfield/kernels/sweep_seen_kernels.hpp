@@ -33,11 +33,88 @@ inline constexpr int kSweepSeenBest = 16;
 /// registers of the level `run_at` compiles for: one AVX-512 register, two AVX2 or four SSE ones).
 typedef float SweepLanes __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
 
+/// The same lanes' bits as integers (|x| as x's bits without the sign bit: one AND, where
+/// x < 0 ? -x : x takes a compare and a blend).
+typedef unsigned SweepLaneBits __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
+
 /// kSweepSeenChunk floats from p (any alignment) times w (through a reference: a vector
 /// return value would change the ABI between levels).
 MPR_ALWAYS_INLINE void sweep_lanes(SweepLanes& v, float w, const float* p) noexcept {
   std::memcpy(&v, p, sizeof v);
   v *= w;
+}
+#endif
+
+#if defined(__GNUC__)
+/// v = neighbour `r`'s costs (`SweepShiftCost`) of the kSweepSeenChunk pixels from x0, of which
+/// it sees [lo, hi) (non-empty): tau for the others (through a reference, as `sweep_lanes`);
+/// q: the reference's channels at those pixels, loaded once a chunk (read where hi - lo is the
+/// whole chunk).
+MPR_ALWAYS_INLINE void sweep_seen_cost(SweepLanes& v, const SweepLanes q[3], const float* const ref[3],
+                                       const SweepSeenRow& r, float tau, int x0, int lo, int hi) noexcept {
+  constexpr int W = kSweepSeenChunk;
+  const SweepLanes t = SweepLanes{} + tau;
+  const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
+  const SweepShiftCost cost(seen_ref, r.row, tau);
+  const std::size_t at = static_cast<std::size_t>(x0 - r.xb);
+  v = t;
+  if (hi - lo == W) {
+    SweepLanes s{};
+    for (int c = 0; c < 3; ++c) {
+      SweepLanes p00, p10, p01, p11;
+      sweep_lanes(p00, cost.w00, cost.a[c] + at);
+      sweep_lanes(p10, cost.w10, cost.a[c] + at + 1);
+      sweep_lanes(p01, cost.w01, cost.b[c] + at);
+      sweep_lanes(p11, cost.w11, cost.b[c] + at + 1);
+      const SweepLanes d = p00 + p10 + p01 + p11 - q[c];
+      const SweepLanes e = (SweepLanes)((SweepLaneBits)d & 0x7fffffffu);
+      s = c == 0 ? e : s + e;
+    }
+    v = s < t ? s : t;
+  } else {
+    for (int x = lo; x < hi; ++x) v[x - x0] = cost(static_cast<std::size_t>(x - r.xb));
+  }
+}
+
+/// out[x] = the mean of the `best` smallest of the m costs of pixel x as in
+/// `sweep_shift_mean_seen_body`, for K = m - best < best, computed as (the sum of all m costs -
+/// the sum of the K largest) / best: K insertions a neighbour instead of `best`. The same values
+/// up to the rounding of the sums (within a few ulp of 3 m).
+template <int K>
+MPR_ALWAYS_INLINE void sweep_shift_drop_seen_body(const float* const ref[3], const SweepSeenRow* rows, int m, float tau,
+                                                  float* MPR_RESTRICT out, int width) noexcept {
+  constexpr int W = kSweepSeenChunk;
+  const SweepLanes t = SweepLanes{} + tau;
+  for (int x0 = 0; x0 < width; x0 += W) {
+    const int len = std::min(W, width - x0);
+    SweepLanes q[3] = {};
+    if (len == W)
+      for (int c = 0; c < 3; ++c) sweep_lanes(q[c], 1.0f, ref[c] + x0);
+    SweepLanes drop[K > 0 ? K : 1];
+    for (int i = 0; i < K; ++i) drop[i] = SweepLanes{}; // costs are >= 0
+    SweepLanes sum{};
+    for (int j = 0; j < m; ++j) {
+      const SweepSeenRow& r = rows[j];
+      const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
+      SweepLanes v = t;
+      if (lo < hi) sweep_seen_cost(v, q, ref, r, tau, x0, lo, hi);
+      sum += v;
+#pragma GCC unroll 16
+      for (int i = 0; i < K; ++i) {
+        const SweepLanes k = drop[i];
+        drop[i] = v < k ? k : v;
+        v = v < k ? v : k;
+      }
+    }
+#pragma GCC unroll 16
+    for (int i = 0; i < K; ++i) sum -= drop[i];
+    SweepLanes s = sum / static_cast<float>(m - K);
+    s = s < 0 ? SweepLanes{} : s;
+    if (len == W)
+      std::memcpy(out + x0, &s, sizeof s);
+    else
+      for (int w = 0; w < len; ++w) out[x0 + w] = s[w];
+  }
 }
 #endif
 
@@ -56,33 +133,17 @@ MPR_ALWAYS_INLINE void sweep_shift_mean_seen_body(const float* const ref[3], con
   const SweepLanes t = SweepLanes{} + tau;
   for (int x0 = 0; x0 < width; x0 += W) {
     const int len = std::min(W, width - x0);
+    SweepLanes q[3] = {};
+    if (len == W)
+      for (int c = 0; c < 3; ++c) sweep_lanes(q[c], 1.0f, ref[c] + x0);
     SweepLanes keep[B];
     for (int i = 0; i < B; ++i) keep[i] = t;
     for (int j = 0; j < m; ++j) {
       const SweepSeenRow& r = rows[j];
       const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
       if (lo >= hi) continue;
-      const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
-      const SweepShiftCost cost(seen_ref, r.row, tau);
-      const std::size_t at = static_cast<std::size_t>(x0 - r.xb);
-      SweepLanes v = t;
-      if (hi - lo == W) {
-        SweepLanes s{};
-        for (int c = 0; c < 3; ++c) {
-          SweepLanes p00, p10, p01, p11, q;
-          sweep_lanes(p00, cost.w00, cost.a[c] + at);
-          sweep_lanes(p10, cost.w10, cost.a[c] + at + 1);
-          sweep_lanes(p01, cost.w01, cost.b[c] + at);
-          sweep_lanes(p11, cost.w11, cost.b[c] + at + 1);
-          sweep_lanes(q, 1.0f, cost.r[c] + at);
-          const SweepLanes d = p00 + p10 + p01 + p11 - q;
-          const SweepLanes e = d < 0 ? -d : d;
-          s = c == 0 ? e : s + e;
-        }
-        v = s < t ? s : t;
-      } else {
-        for (int x = lo; x < hi; ++x) v[x - x0] = cost(static_cast<std::size_t>(x - r.xb));
-      }
+      SweepLanes v;
+      sweep_seen_cost(v, q, ref, r, tau, x0, lo, hi);
 #pragma GCC unroll 16
       for (int i = 0; i < B; ++i) {
         const SweepLanes k = keep[i];
@@ -137,10 +198,29 @@ MPR_ALWAYS_INLINE void sweep_shift_mean_seen_best(const float* const ref[3], con
   sweep_shift_mean_seen_body<B>(ref, rows, m, tau, out, width);
 }
 
-/// `sweep_shift_mean_seen_body` for m (1..32) neighbours and `best` (1..kSweepSeenBest) kept
-/// costs over the reference row's `width` pixels.
+#if defined(__GNUC__)
+/// `sweep_shift_drop_seen_body<K>` for a run-time m - best = `drop` in [K, kSweepSeenBest).
+template <int K>
+MPR_ALWAYS_INLINE void sweep_shift_drop_seen_count(const float* const ref[3], const SweepSeenRow* rows, int m, int drop,
+                                                   float tau, float* out, int width) noexcept {
+  if constexpr (K + 1 < kSweepSeenBest)
+    if (drop > K) return sweep_shift_drop_seen_count<K + 1>(ref, rows, m, drop, tau, out, width);
+  sweep_shift_drop_seen_body<K>(ref, rows, m, tau, out, width);
+}
+#endif
+
+/// The mean of the `best` (1..kSweepSeenBest) smallest costs of m (1..32) neighbours over the
+/// reference row's `width` pixels: `sweep_shift_mean_seen_body`, or where fewer are dropped than
+/// kept (0 <= m - best < best, such as the best 8 of 12), `sweep_shift_drop_seen_body` (fewer
+/// insertions; equal up to rounding). Neighbours left out of `rows` count as tau: with m >= best
+/// they are not among the best.
 inline void sweep_shift_mean_seen(const float* const ref[3], const SweepSeenRow* rows, int m, int best, float tau,
                                   float* out, int width, SimdLevel level = dispatch_level()) noexcept {
+#if defined(__GNUC__)
+  if (m >= best && m - best < best)
+    return run_at(level,
+                  [&]() MPR_INLINE_LAMBDA { sweep_shift_drop_seen_count<0>(ref, rows, m, m - best, tau, out, width); });
+#endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_mean_seen_best<1>(ref, rows, m, best, tau, out, width); });
 }
 
