@@ -9,6 +9,7 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 #include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
@@ -189,17 +190,23 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
 }
 #endif
 
-/// `resample_row_portable`, with the VBMI step for 8-bit codes when `level` is `avx512`, the CPU
-/// has VBMI and s <= `kResampleMaxStep`.
+/// `resample_row_portable` at `level`: for 8-bit codes, the VBMI step when `level` is
+/// `avx512vbmi` and s <= `kResampleMaxStep`, else the Highway kernel of `level`
+/// (kernels/resample_row_hwy.hpp) where Highway is present; float channels (and 8-bit codes
+/// without Highway) the plain loop compiled for `level`.
 template <class C>
 inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* lut, double x, double s, float scale,
                          float* h, std::size_t n, const C* ahead = nullptr,
                          SimdLevel level = dispatch_level()) noexcept {
+  if constexpr (std::is_same_v<C, std::uint8_t>) {
 #if defined(MPR_SIMD_X86)
-  if constexpr (std::is_same_v<C, std::uint8_t>)
     if (level >= SimdLevel::avx512vbmi && s <= kResampleMaxStep)
       return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n, ahead);
 #endif
+#if MPR_HAVE_HWY
+    return kernels::resample_row_hwy(row, texels, lut, x, s, scale, h, n, ahead, level);
+#endif
+  }
   run_at(level, [&]() MPR_INLINE_LAMBDA { resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead); });
 }
 
