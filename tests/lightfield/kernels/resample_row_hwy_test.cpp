@@ -1,8 +1,8 @@
 // The Highway resampling row (lightfield/kernels/resample_row_hwy.inl, `resample_row_hwy`) at
 // every level the CPU runs, the AVX3_DL target at avx512vbmi included (`resample_row` takes the
-// VBMI step there): a hand-worked row, and the plain loop `resample_row_portable` on random rows
-// (codes of both halves of the byte range, the sRGB table's cubic decode and another table's
-// gather, steps of magnified and reduced output) with the row ending where its allocation ends.
+// VBMI step there): a hand-worked row (8-bit codes and float channels), and the plain loop `resample_row_portable` on
+// random rows (codes of both halves of the byte range, the sRGB table's cubic decode and another table's gather, steps
+// of magnified and reduced output) with the row ending where its allocation ends.
 #include <mpr/core/config.hpp>
 
 #include <catch2/catch.hpp>
@@ -14,6 +14,7 @@
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -40,6 +41,16 @@ TEST_CASE("resample_row_hwy: a hand-worked row at every level", "[resample_row_h
     int written_past = 0;
     for (std::size_t j = 15; j < h.size(); ++j) written_past += h[j] != -1.0f ? 1 : 0;
     CHECK(written_past == 0);
+    // The same row as float channels (the table unused), scaled by 2.
+    const std::vector<float> channels(row.begin(), row.end());
+    std::vector<float> hf(3 * 5 + 20, -1.0f);
+    mpr::kernels::resample_row_hwy(channels.data(), 4, nullptr, 0.25, 0.75, 2.0f, hf.data(), 5, nullptr, level);
+    for (std::size_t i = 0; i < 5; ++i)
+      for (std::size_t k = 0; k < 3; ++k) {
+        INFO("float channels: pixel " << i << " channel " << k);
+        CHECK(hf[3 * i + k] == Approx(2 * want[i][k]).margin(1e-4));
+      }
+    CHECK(std::all_of(hf.begin() + 15, hf.end(), [](float v) { return v == -1.0f; }));
   });
 }
 

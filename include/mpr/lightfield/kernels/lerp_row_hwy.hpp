@@ -364,6 +364,14 @@ inline void resample_row_hwy(const std::uint8_t* row, std::size_t texels, const 
   hwy_visit(level, false, [&](auto t) { resample_row_codes(t, row, texels, lut, x, s, scale, h, n, ahead); });
 }
 
+/// The same for float channels (`lut` unused).
+inline void resample_row_hwy(const float* row, std::size_t texels, const std::uint16_t* lut, double x, double s,
+                             float scale, float* h, std::size_t n, const float* ahead = nullptr,
+                             detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  (void)lut;
+  hwy_visit(level, false, [&](auto t) { resample_row_floats(t, row, texels, x, s, scale, h, n, ahead); });
+}
+
 } // namespace mpr::kernels
 #endif
 #endif // MPR_HAVE_HWY

@@ -1,7 +1,7 @@
 // No #pragma once, no includes: kernels/lerp_row_hwy.hpp includes this file once per Highway
 // target, inside that target's namespace (`hn`, `Target`, `CodeDecoder` are its own).
 /// \file
-/// One camera row of 8-bit sRGB codes resampled at x + s i (`detail::resample_row_portable`'s
+/// One camera row of 8-bit sRGB codes (or float channels) resampled at x + s i (`detail::resample_row_portable`'s
 /// inputs, outputs and preconditions), written once with Highway and compiled for every x86
 /// target (SSE4, AVX2, AVX-512, AVX-512 with VBMI), chosen per `SimdLevel` by `hwy_visit`
 /// (`resample_row_hwy`, kernels/lerp_row_hwy.hpp). It is the horizontal half of a separable
@@ -9,64 +9,108 @@
 ///
 /// Each step takes one vector of pixels (4, 8 or 16): their positions relative to the group's
 /// first texel j0 in float (at most a few dozen camera pixels, so the fractions keep ~1e-6),
-/// j = floor and f = the fraction per lane, two 32-bit gathers of codes at byte offsets 3 j and
-/// 3 j + 2 (r0 g0 b0 r1 and b0 r1 g1 b1: the six codes of the texel pair, nothing past the pair
-/// read), the six channels decoded (`CodeDecoder`: the cubic decode or a table gather), then
-/// scale (v0 + f (v1 - v0)) stored interleaved.
+/// j = floor and f = the fraction per lane, the six channels of each lane's texel pair gathered
+/// (8-bit codes: two 32-bit gathers, then decoded by `CodeDecoder`, the cubic decode or a table
+/// gather), then scale (v0 + f (v1 - v0)) stored interleaved.
 
-/// `detail::resample_row_portable` for 8-bit codes at this target (the kernel tag `Target`
-/// selects it, see `hwy_visit`). Reads only the row's texel pairs it interpolates.
-inline void resample_row_codes(Target, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
-                               const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
-                               float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
+/// The loop of the resampling kernels below: for each vector of pixels from pixel i, the
+/// group's first texel pair j0 (double), the lanes' pair offsets jl from it (clamped to the row's
+/// last pair) and fractions f (float), `lerp(row + 3 j0, jl, f, r, g, b)` for their channels,
+/// stored interleaved (the last, partial vector through a buffer); `ahead` prefetched over the
+/// span each group reads.
+template <class C, class Lerp>
+HWY_INLINE void resample_row_lanes(const C* HWY_RESTRICT row, std::size_t texels, double x, double s,
+                                   float* HWY_RESTRICT h, std::size_t n, const C* ahead, const Lerp& lerp) noexcept {
   using DF = hn::ScalableTag<float>;
   const DF df;
   const hn::RebindToSigned<DF> di;
   const std::size_t lanes = hn::Lanes(df);
-  const CodeDecoder decode(lut);
   const long last_pair = static_cast<long>(texels) - 2;
-  const auto pair_of = [last_pair](double v) noexcept { // floor(v) for v >= 0, clamped
+  const auto pair_of = [last_pair](double v) { // floor(v) for v >= 0, clamped
     return std::clamp(static_cast<long>(v), 0L, last_pair);
   };
   const long j_first = pair_of(x);
   // The bytes a group's pixels read (its last pixel's pair included), for the prefetch.
-  const std::size_t span = 3 * static_cast<std::size_t>(std::ceil(s * static_cast<double>(lanes))) + 6;
-  const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f), vscale = hn::Set(df, scale);
+  const std::size_t span = 3 * sizeof(C) * (static_cast<std::size_t>(std::ceil(s * static_cast<double>(lanes))) + 2);
+  const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f);
   const auto step = hn::Mul(hn::Set(df, static_cast<float>(s)), hn::Iota(df, 0.0f));
-  const auto mask8 = hn::Set(di, 0xFF);
   HWY_ALIGN float tail[3 * hn::MaxLanes(df)];
   for (std::size_t i = 0; i < n; i += lanes) {
     const double xg = x + s * static_cast<double>(i);
     const long j0 = pair_of(xg);
     if (ahead != nullptr)
       for (std::size_t b = 0; b < span; b += 64)
-        mpr::detail::prefetch_l2(ahead, 3 * static_cast<std::size_t>(j0 - j_first) + b);
+        mpr::detail::prefetch_l2(ahead, 3 * sizeof(C) * static_cast<std::size_t>(j0 - j_first) + b);
     // Positions from texel j0 (float), their pairs (clamped to the row's last) and fractions.
     const auto xl = hn::Add(hn::Set(df, static_cast<float>(xg - static_cast<double>(j0))), step);
     const auto jl = hn::Min(hn::ConvertTo(di, hn::Max(xl, zero)), hn::Set(di, static_cast<int>(last_pair - j0)));
     const auto f = hn::Min(hn::Max(hn::Sub(xl, hn::ConvertTo(df, jl)), zero), one);
-    const auto offset = hn::Add(jl, hn::Add(jl, jl)); // 3 j
-    const auto* base = reinterpret_cast<const std::int32_t*>(row + 3 * static_cast<std::size_t>(j0));
-    const auto a = hn::GatherOffset(di, base, offset);                          // r0 g0 b0 r1
-    const auto b = hn::GatherOffset(di, base, hn::Add(offset, hn::Set(di, 2))); // b0 r1 g1 b1
-    // Byte k of each lane (the shift is arithmetic on signed lanes: masked after it).
-    const auto code = [&](auto v, auto k) noexcept { return hn::And(hn::ShiftRight<8 * k()>(v), mask8); };
-    const auto lerp = [&](auto code0, auto code1) noexcept {
-      const auto v0 = decode(code0);
-      return hn::Mul(vscale, hn::MulAdd(f, hn::Sub(decode(code1), v0), v0));
-    };
-    using B0 = std::integral_constant<int, 0>;
-    using B1 = std::integral_constant<int, 1>;
-    using B2 = std::integral_constant<int, 2>;
-    using B3 = std::integral_constant<int, 3>;
-    const auto r = lerp(code(a, B0{}), code(a, B3{}));
-    const auto g = lerp(code(a, B1{}), code(b, B2{}));
-    const auto bl = lerp(code(a, B2{}), code(b, B3{}));
+    hn::Vec<DF> r, g, b;
+    lerp(row + 3 * static_cast<std::size_t>(j0), jl, f, r, g, b);
     if (i + lanes <= n) {
-      hn::StoreInterleaved3(r, g, bl, df, h + 3 * i);
+      hn::StoreInterleaved3(r, g, b, df, h + 3 * i);
     } else {
-      hn::StoreInterleaved3(r, g, bl, df, tail);
+      hn::StoreInterleaved3(r, g, b, df, tail);
       std::copy(tail, tail + 3 * (n - i), h + 3 * i);
     }
   }
+}
+
+/// `detail::resample_row_portable` for 8-bit codes at this target (the kernel tag `Target`
+/// selects it, see `hwy_visit`): two 32-bit gathers of codes per vector, at byte offsets 3 j and
+/// 3 j + 2 (r0 g0 b0 r1 and b0 r1 g1 b1: the pair's six codes, nothing past the pair read),
+/// decoded by `CodeDecoder`.
+inline void resample_row_codes(Target, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
+                               const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
+                               float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::RebindToSigned<DF> di;
+  const CodeDecoder decode(lut);
+  const auto vscale = hn::Set(df, scale);
+  const auto mask8 = hn::Set(di, 0xFF);
+  using VI = hn::Vec<decltype(di)>;
+  using VF = hn::Vec<DF>;
+  resample_row_lanes(
+      row, texels, x, s, h, n, ahead, [&](const std::uint8_t* at, VI jl, VF f, VF& r, VF& g, VF& b) HWY_ATTR {
+        const auto offset = hn::Add(jl, hn::Add(jl, jl)); // 3 j
+        const auto* base = reinterpret_cast<const std::int32_t*>(at);
+        const auto lo = hn::GatherOffset(di, base, offset);                          // r0 g0 b0 r1
+        const auto hi = hn::GatherOffset(di, base, hn::Add(offset, hn::Set(di, 2))); // b0 r1 g1 b1
+        // Byte k of each lane (the shift is arithmetic on signed lanes: masked after it).
+        const auto code = [&](VI v, auto k) HWY_ATTR { return hn::And(hn::ShiftRight<8 * k()>(v), mask8); };
+        const auto lerp = [&](VI code0, VI code1) HWY_ATTR {
+          const VF v0 = decode(code0);
+          return hn::Mul(vscale, hn::MulAdd(f, hn::Sub(decode(code1), v0), v0));
+        };
+        using B0 = std::integral_constant<int, 0>;
+        using B1 = std::integral_constant<int, 1>;
+        using B2 = std::integral_constant<int, 2>;
+        using B3 = std::integral_constant<int, 3>;
+        r = lerp(code(lo, B0{}), code(lo, B3{}));
+        g = lerp(code(lo, B1{}), code(hi, B2{}));
+        b = lerp(code(lo, B2{}), code(hi, B3{}));
+      });
+}
+
+/// `detail::resample_row_portable` for float channels at this target: six float gathers per
+/// vector (the pair's channels at 3 j + k and 3 j + 3 + k).
+inline void resample_row_floats(Target, const float* HWY_RESTRICT row, std::size_t texels, double x, double s,
+                                float scale, float* HWY_RESTRICT h, std::size_t n, const float* ahead) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::RebindToSigned<DF> di;
+  const auto vscale = hn::Set(df, scale);
+  using VI = hn::Vec<decltype(di)>;
+  using VF = hn::Vec<DF>;
+  resample_row_lanes(row, texels, x, s, h, n, ahead, [&](const float* at, VI jl, VF f, VF& r, VF& g, VF& b) HWY_ATTR {
+    const auto offset = hn::Add(jl, hn::Add(jl, jl)); // 3 j
+    const auto lerp = [&](int k) HWY_ATTR {
+      const VF v0 = hn::GatherIndex(df, at + k, offset), v1 = hn::GatherIndex(df, at + k + 3, offset);
+      return hn::Mul(vscale, hn::MulAdd(f, hn::Sub(v1, v0), v0));
+    };
+    r = lerp(0);
+    g = lerp(1);
+    b = lerp(2);
+  });
 }
