@@ -56,13 +56,13 @@ HWY_INLINE void resample_row_lanes(const C* HWY_RESTRICT row, std::size_t texels
   }
 }
 
-/// `detail::resample_row_portable` for 8-bit codes at this target (the kernel tag `Target`
-/// selects it, see `hwy_visit`): two 32-bit gathers of codes per vector, at byte offsets 3 j and
+/// `detail::resample_row_portable` for 8-bit codes at this target, any step: two 32-bit gathers
+/// of codes per vector, at byte offsets 3 j and
 /// 3 j + 2 (r0 g0 b0 r1 and b0 r1 g1 b1: the pair's six codes, nothing past the pair read),
 /// decoded by `CodeDecoder`.
-inline void resample_row_codes(Target, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
-                               const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
-                               float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
+inline void resample_row_codes_gather(Target, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
+                                      const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
+                                      float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
   using DF = hn::ScalableTag<float>;
   const DF df;
   const hn::RebindToSigned<DF> di;
@@ -113,4 +113,101 @@ inline void resample_row_floats(Target, const float* HWY_RESTRICT row, std::size
     g = lerp(1);
     b = lerp(2);
   });
+}
+
+/// Texels a step of `resample_row_codes_window` decodes at most.
+inline constexpr std::size_t kResampleWindowBlock = 256;
+
+/// The largest step `resample_row_codes_window` takes: a vector of N pixels then reads its pairs
+/// from the 2N texels from its first pair on (its last pair's right texel is at most
+/// floor(f + s (N - 1)) + 1 <= 2N - 1 on).
+inline constexpr double kResampleWindowMaxStep = 2.0;
+
+/// `resample_row_codes` without gathers, for steps s <= `kResampleWindowMaxStep`: the texels the
+/// row's pixels read decoded a block at a time (`CodeDecoder` on consecutive codes) into three
+/// planar float buffers (deinterleaved with `LoadInterleaved3`); each vector of N pixels picks
+/// its pairs' channels out of the 2N texels from its first pair on, two vectors per channel, with
+/// lane permutes (`TableLookupLanes`). The same values as `resample_row_codes`.
+inline void resample_row_codes_window(Target, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
+                                      const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
+                                      float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::RebindToSigned<DF> di;
+  constexpr std::size_t kMax = hn::MaxLanes(DF());
+  const std::size_t lanes = hn::Lanes(df);
+  if (n == 0) return;
+  const CodeDecoder decode(lut);
+  const long last_pair = static_cast<long>(texels) - 2;
+  const auto pair_of = [last_pair](double v) { return std::clamp(static_cast<long>(v), 0L, last_pair); };
+  // Texels [j_begin, j_end) are read; buffers hold a block and the 2N texels a window may load.
+  const long j_end = pair_of(x + s * static_cast<double>(n - 1)) + 2;
+  HWY_ALIGN float plane[3][kResampleWindowBlock + 2 * kMax];
+  HWY_ALIGN float mixed[3 * kMax];
+  for (auto& p : plane) std::fill(p, p + kResampleWindowBlock + 2 * kMax, 0.0f); // no lane reads garbage
+  const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f), vscale = hn::Set(df, scale);
+  const auto step = hn::Mul(hn::Set(df, static_cast<float>(s)), hn::Iota(df, 0.0f));
+  const auto low = hn::Set(di, static_cast<int>(lanes - 1));
+  HWY_ALIGN float tail[3 * kMax];
+  const long j_first = pair_of(x);
+  long ja = -1, jb = -1; // the block decoded: texels [ja, jb)
+  for (std::size_t i = 0; i < n; i += lanes) {
+    const double xg = x + s * static_cast<double>(i);
+    const long j0 = pair_of(xg);
+    if (ja < 0 || (j0 + 2 * static_cast<long>(lanes) > jb && jb < j_end)) { // decode the next block
+      ja = j0;
+      jb = std::min<long>(j_end, ja + static_cast<long>(kResampleWindowBlock));
+      if (ahead != nullptr)
+        for (long b = 0; b < 3 * (jb - ja); b += 64)
+          mpr::detail::prefetch_l2(ahead, static_cast<std::size_t>(3 * (ja - j_first) + b));
+      const std::uint8_t* a = row + 3 * ja;
+      const std::size_t count = static_cast<std::size_t>(jb - ja);
+      std::size_t t = 0;
+      for (; t + lanes <= count; t += lanes) {
+        for (std::size_t q = 0; q < 3; ++q) hn::Store(decode(a + 3 * t + q * lanes), df, mixed + q * lanes);
+        hn::Vec<DF> r, g, b;
+        hn::LoadInterleaved3(df, mixed, r, g, b);
+        hn::Store(r, df, plane[0] + t);
+        hn::Store(g, df, plane[1] + t);
+        hn::Store(b, df, plane[2] + t);
+      }
+      for (; t < count; ++t)
+        for (std::size_t q = 0; q < 3; ++q) plane[q][t] = decode[a[3 * t + q]];
+    }
+    const auto xl = hn::Add(hn::Set(df, static_cast<float>(xg - static_cast<double>(j0))), step);
+    const auto jl = hn::Min(hn::ConvertTo(di, hn::Max(xl, zero)), hn::Set(di, static_cast<int>(last_pair - j0)));
+    const auto f = hn::Min(hn::Max(hn::Sub(xl, hn::ConvertTo(df, jl)), zero), one);
+    // Lane j of the window [j0, j0 + 2N): lane j mod N of its first or second vector.
+    const auto pick = [&](const float* w, decltype(jl) j) HWY_ATTR {
+      const auto idx = hn::IndicesFromVec(df, hn::And(j, low));
+      const auto second = hn::RebindMask(df, hn::Gt(j, low)); // j >= N
+      return hn::IfThenElse(second, hn::TableLookupLanes(hn::LoadU(df, w + lanes), idx),
+                            hn::TableLookupLanes(hn::LoadU(df, w), idx));
+    };
+    const auto right = hn::Add(jl, hn::Set(di, 1));
+    hn::Vec<DF> v[3];
+    for (std::size_t q = 0; q < 3; ++q) {
+      const float* w = plane[q] + (j0 - ja);
+      const auto v0 = pick(w, jl);
+      v[q] = hn::Mul(vscale, hn::MulAdd(f, hn::Sub(pick(w, right), v0), v0));
+    }
+    if (i + lanes <= n) {
+      hn::StoreInterleaved3(v[0], v[1], v[2], df, h + 3 * i);
+    } else {
+      hn::StoreInterleaved3(v[0], v[1], v[2], df, tail);
+      std::copy(tail, tail + 3 * (n - i), h + 3 * i);
+    }
+  }
+}
+
+/// `detail::resample_row_portable` for 8-bit codes at this target (the kernel tag `Target`
+/// selects it, see `hwy_visit`): `resample_row_codes_window` for steps up to
+/// `kResampleWindowMaxStep`, `resample_row_codes_gather` for longer ones.
+inline void resample_row_codes(Target t, const std::uint8_t* HWY_RESTRICT row, std::size_t texels,
+                               const std::uint16_t* HWY_RESTRICT lut, double x, double s, float scale,
+                               float* HWY_RESTRICT h, std::size_t n, const std::uint8_t* ahead) noexcept {
+  if (s <= kResampleWindowMaxStep)
+    resample_row_codes_window(t, row, texels, lut, x, s, scale, h, n, ahead);
+  else
+    resample_row_codes_gather(t, row, texels, lut, x, s, scale, h, n, ahead);
 }
