@@ -639,38 +639,41 @@ TEMPLATE_TEST_CASE("far from the world origin the grid paths still give the per-
 TEMPLATE_TEST_CASE("output at any scale of the cameras' gives the per-pixel image", "[camera_frame_sampler]", float,
                    double) {
   using T = TestType;
-  // Rows that step 2 or 3 camera pixels per output pixel (the strided shift-and-add), 0.75, 1.5
-  // and 2.4 (resampled rows), on a plane parallel to the array; 8-bit frames with fine detail.
+  // Rows that step 2 or 3 camera pixels per output pixel (the strided shift-and-add), 0.5, 2/3,
+  // 0.75, 1.5 and 2.4 (resampled rows), on a plane parallel to the array; 8-bit frames with fine
+  // detail. On the plane z = 10 every camera's shift is a whole pixel (16 per 0.5 apart): there
+  // the synthetic aperture's resampled blocks share their weights (`SharedWeightsBatch`).
   auto cams = mpr_test::grid_cameras<T>(3, 2, 0.5, 320, 40, 320.0);
   const auto linear = mpr_test::plane_images(cams, 12.0);
   const auto images = mpr_test::with_detail(linear, 11, 0, 0, 63);
   auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(cams, images);
-  for (const T step : {T(2), T(3), T(0.75), T(1.5), T(2.4)}) {
-    INFO("camera pixels per output pixel: " << step);
-    mpr::Mat3<T> K = cams[0].K();
-    K(0, 0) /= step;
-    K(1, 1) /= step;
-    const int w = static_cast<int>(300 / step), h = static_cast<int>(36 / step);
-    K(0, 2) = T(0.5) * static_cast<T>(w - 1);
-    K(1, 2) = T(0.5) * static_cast<T>(h - 1);
-    const mpr::PinholeCamera<T> view(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), w, h);
-    const mpr::PlanarSurface<T> plane = view.image_plane(T(12));
-    const mpr::Region region(0, 0, w, h);
-    const auto compare = [&](const auto& sampler) {
-      const mpr::Renderer renderer(plane, mpr::pinhole_glc(view, plane), sampler);
-      mpr::Image<mpr::Rgb8> batch(w, h);
-      renderer.render(batch.view(), region, mpr::RenderOptions{2});
-      int worst = 0;
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-          const mpr::Rgb8 p = mpr::to_rgb8(renderer.shade({x, y}, region));
-          const mpr::Rgb8 b = batch(x, y);
-          worst = std::max({worst, std::abs(p.r - b.r), std::abs(p.g - b.g), std::abs(p.b - b.b)});
-        }
-      CHECK(worst <= 1);
-    };
-    compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
-    compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
-    compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
-  }
+  for (const T depth : {T(12), T(10)})
+    for (const T step : {T(2), T(3), T(0.5), T(2) / 3, T(0.75), T(1.5), T(2.4)}) {
+      INFO("camera pixels per output pixel: " << step << ", plane z = " << depth);
+      mpr::Mat3<T> K = cams[0].K();
+      K(0, 0) /= step;
+      K(1, 1) /= step;
+      const int w = static_cast<int>(300 / step), h = static_cast<int>(36 / step);
+      K(0, 2) = T(0.5) * static_cast<T>(w - 1);
+      K(1, 2) = T(0.5) * static_cast<T>(h - 1);
+      const mpr::PinholeCamera<T> view(K, mpr::Mat3<T>::Identity(), mpr::Vec3<T>(T(0.05), T(-0.1), 0), w, h);
+      const mpr::PlanarSurface<T> plane = view.image_plane(depth);
+      const mpr::Region region(0, 0, w, h);
+      const auto compare = [&](const auto& sampler) {
+        const mpr::Renderer renderer(plane, mpr::pinhole_glc(view, plane), sampler);
+        mpr::Image<mpr::Rgb8> batch(w, h);
+        renderer.render(batch.view(), region, mpr::RenderOptions{2});
+        int worst = 0;
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const mpr::Rgb8 p = mpr::to_rgb8(renderer.shade({x, y}, region));
+            const mpr::Rgb8 b = batch(x, y);
+            worst = std::max({worst, std::abs(p.r - b.r), std::abs(p.g - b.g), std::abs(p.b - b.b)});
+          }
+        CHECK(worst <= 1);
+      };
+      compare(mpr::CameraFrameSampler<mpr::SyntheticAperture, T>(frames));
+      compare(mpr::CameraFrameSampler<mpr::NearestCamera, T>(frames));
+      compare(mpr::CameraFrameSampler<mpr::CylinderAperture, T>(frames, mpr::CylinderAperture{0.6}));
+    }
 }

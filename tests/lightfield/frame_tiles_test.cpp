@@ -122,6 +122,68 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
   CHECK(deferred > 0);
 }
 
+TEMPLATE_TEST_CASE("shift_add_tile defers whole-pixel resampled blocks that share their weights; added together "
+                   "they give the per-camera sums",
+                   "[frame_tiles]", float, double) {
+  using T = TestType;
+  // Two cameras 0.5 apart, focal length 200: on the plane z = 10 the second sees every point 10
+  // whole pixels from where the first does, at the same fractional offset.
+  const auto cams = mpr_test::grid_cameras<T>(2, 1, 0.5, 200, 60, 200.0);
+  auto frames = std::make_shared<const mpr::CameraFrameSet<T>>(
+      cams, mpr_test::with_detail(mpr_test::plane_images(cams, 10.0), 17, 31, 63, 0));
+  const mpr::FrameTable<T> table(frames);
+  const T pixel = T(0.05), depth = T(10);
+  constexpr std::size_t rows = 8;
+  struct Case {
+    const char* name;
+    T x0, y0, step; // the tile's first point (camera pixels of the first camera from its centre), step
+    std::size_t n;
+    std::size_t taken; // blocks the batch takes
+  };
+  const Case cases[] = {
+      {"magnified 2x", -30.7, -2.2, 0.5, 100, 2},
+      {"magnified 1.5x", -20.35, -6.6, T(2) / 3, 90, 2},
+      {"a 960x540 view of 1400x800 cameras", -40.2, -11.1, 1.4583333, 40, 2},
+      // Blocks over part of the tile: the same part for both cameras (taken), or not (the first
+      // camera's taken, the other's added by itself).
+      {"across the top edge", 7.7, -31.4, 0.5, 50, 2},
+      {"across the left and right edges", -105.2, -3.25, 0.5, 420, 1},
+      {"wholly above the image", 7.7, -40.4, 0.5, 50, 0},
+  };
+  mpr::TileWork work;
+  mpr_test::for_each_simd_level([&](mpr::detail::SimdLevel level) {
+    for (const Case& k : cases) {
+      INFO(k.name);
+      const auto points =
+          tile_points<T>(k.x0 * pixel, k.y0 * pixel, k.step * pixel, k.step * pixel, T(0), depth, rows, k.n);
+      const std::size_t total = rows * k.n;
+      std::vector<float> acc(3 * total, 0.25f), weight(total, 0.5f), steps(rows * (k.n + 1), 0.0f);
+      std::vector<float> acc_b = acc, weight_b = weight, steps_b = steps;
+      mpr::detail::SharedWeightsBatch batch;
+      batch.blocks.reserve(table.size());
+      for (const auto& c : table.cameras()) {
+        REQUIRE(mpr::shift_add_tile(table, c, points.data(), rows, k.n, acc.data(), weight.data(), steps.data(), work));
+        REQUIRE(mpr::shift_add_tile(table, c, points.data(), rows, k.n, acc_b.data(), weight_b.data(), steps_b.data(),
+                                    work, nullptr, nullptr, &batch));
+      }
+      CHECK(batch.blocks.size() == k.taken);
+      mpr::detail::add_shared_weights(batch, mpr::Srgb8Texel::linear16(), mpr::Srgb8Texel::scale, acc_b.data(),
+                                      3 * static_cast<std::ptrdiff_t>(k.n), level);
+      CHECK(batch.blocks.empty());
+      CHECK(weight_b == weight);
+      CHECK(steps_b == steps);
+      int apart = 0;
+      float worst = 0;
+      for (std::size_t j = 0; j < acc.size(); ++j) {
+        worst = std::max(worst, std::abs(acc_b[j] - acc[j]));
+        apart += std::abs(acc_b[j] - acc[j]) <= 2e-5f ? 0 : 1;
+      }
+      INFO("largest difference " << worst);
+      CHECK(apart == 0);
+    }
+  });
+}
+
 TEST_CASE("add_weight_steps folds the step rows into running counts at every SIMD level", "[frame_tiles]") {
   // Rows of every length up to two vectors and beyond, steps of whole camera counts (starts and
   // ends of runs, several on one pixel), onto weights that are not whole.

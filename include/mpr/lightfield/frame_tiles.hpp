@@ -8,6 +8,7 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/accumulation/magnified_tile.hpp>
+#include <mpr/lightfield/accumulation/shared_weights_batch.hpp>
 #include <mpr/lightfield/accumulation/shift_tile.hpp>
 #include <mpr/lightfield/frame_runs.hpp>
 #include <mpr/lightfield/frame_table.hpp>
@@ -93,13 +94,17 @@ TileBlock tile_block(T x0, T y0, T sx, T sy, std::size_t rows, std::size_t n, in
 /// spans the runs' whole length is not added but appended to it, while it has room (its
 /// capacity), to be added with the other cameras' (`detail::add_shifted_blocks`); its edges and
 /// weights are added now. (Blocks over part of the runs are added at once: summed row by row with
-/// the others, their pieces scatter the reads, docs/performance.md.)
+/// the others, their pieces scatter the reads, docs/performance.md.) Likewise with `shared`
+/// (nullptr: none) and 8-bit codes, a resampled block that shares the bilinear weights and the
+/// extent of the blocks taken before it (a whole-pixel focal plane at another scale) is taken
+/// by it (`detail::defer_shared_weights`), to be added with the others'
+/// (`detail::add_shared_weights`).
 /// Preconditions: every run evenly spaced (`evenly_spaced`), bilinear filtering.
 template <std::floating_point T, class Px>
 bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>::Camera& c, const Vec3<T>* points,
                     std::size_t rows, std::size_t n, float* acc, float* weight, float* weight_steps, TileWork& work,
-                    const typename FrameTable<T, Px>::Camera* ahead = nullptr,
-                    detail::ShiftBatch* batch = nullptr) noexcept {
+                    const typename FrameTable<T, Px>::Camera* ahead = nullptr, detail::ShiftBatch* batch = nullptr,
+                    detail::SharedWeightsBatch* shared = nullptr) noexcept {
   using Table = FrameTable<T, Px>;
   using texel_type = typename Table::texel_type;
   if (rows < 2 || n < 8 || c.distorted || c.width < 2 || c.height < 2) return false;
@@ -165,6 +170,15 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
   if (b.empty()) return true;
   float* block_acc = acc + 3 * (static_cast<std::size_t>(b.r_begin) * n + static_cast<std::size_t>(b.first));
   if (!shift) {
+    if constexpr (std::is_same_v<typename texel_type::channel_type, std::uint8_t>) {
+      if (shared != nullptr &&
+          detail::defer_shared_weights(*shared, c.texels->c, static_cast<std::size_t>(c.width),
+                                       static_cast<std::size_t>(c.height), static_cast<double>(x0),
+                                       static_cast<double>(y0), static_cast<double>(sx), static_cast<double>(sy),
+                                       static_cast<std::size_t>(b.first), static_cast<std::size_t>(b.last),
+                                       static_cast<std::size_t>(b.r_begin), static_cast<std::size_t>(b.r_end)))
+        return true;
+    }
     for (long r = b.r_begin; r < b.r_end; ++r) {
       const T y = y0 + sy * static_cast<T>(r), fr = std::floor(y);
       work.iy[static_cast<std::size_t>(r - b.r_begin)] = static_cast<int>(fr);

@@ -96,7 +96,8 @@ private:
     std::vector<unsigned char> even;
     LerpRowCache rows;
     TileWork tiles;
-    detail::ShiftBatch shifted; // the cameras' whole-pixel shifts, added together
+    detail::ShiftBatch shifted;        // the cameras' whole-pixel shifts, added together
+    detail::SharedWeightsBatch shared; // the cameras' resampled blocks that share their weights
   };
 
   // Every camera once per tile of n points in rows of w; `fill(points, even)` gives the points
@@ -123,6 +124,13 @@ private:
     } catch (...) {
       batch = nullptr; // each camera's shift added by itself
     }
+    detail::SharedWeightsBatch* shared = &scratch.shared;
+    shared->blocks.clear();
+    try {
+      shared->blocks.reserve(table.size());
+    } catch (...) {
+      shared = nullptr; // each camera's block resampled by itself
+    }
     scratch.rows.clear(); // rows kept from another tile may belong to frames since freed
     Vec3<T>* points = scratch.points.data();
     float* acc = scratch.acc.data();
@@ -138,7 +146,8 @@ private:
       // The next camera's rows are asked for while this one's are read (`shift_add`).
       const auto* ahead = &c != &table.cameras().back() && !(&c + 1)->distorted ? &c + 1 : nullptr;
       // The tile as one 2-D shift of the camera's image, when it is one.
-      if (all_even && shift_add_tile(table, c, points, rows, w, acc, weight, steps, scratch.tiles, ahead, batch))
+      if (all_even &&
+          shift_add_tile(table, c, points, rows, w, acc, weight, steps, scratch.tiles, ahead, batch, shared))
         continue;
       for (std::size_t r = 0; r < rows; ++r) {
         const std::size_t o = r * w;
@@ -154,6 +163,11 @@ private:
     if (batch != nullptr && !batch->blocks.empty()) {
       using texel_type = typename FrameTable<T, Px>::texel_type;
       detail::add_shifted_blocks(*batch, rows, w, texel_decode_table<texel_type>(), texel_type::scale, acc,
+                                 3 * static_cast<std::ptrdiff_t>(w));
+    }
+    if (shared != nullptr && !shared->blocks.empty()) {
+      using texel_type = typename FrameTable<T, Px>::texel_type;
+      detail::add_shared_weights(*shared, texel_decode_table<texel_type>(), texel_type::scale, acc,
                                  3 * static_cast<std::ptrdiff_t>(w));
     }
     add_weight_steps(steps, rows, w, weight);

@@ -166,14 +166,16 @@ public:
   }
   /// The values of the Lanes(DF) codes at p.
   HWY_INLINE hn::Vec<DF> operator()(const std::uint8_t* HWY_RESTRICT p) const noexcept {
-    const DF df;
     const hn::Rebind<std::int32_t, DF> di;
     const hn::Rebind<std::uint8_t, DF> d8;
-    const auto code = hn::PromoteTo(di, hn::LoadU(d8, p));
+    return (*this)(hn::PromoteTo(di, hn::LoadU(d8, p)));
+  }
+  /// The values of the codes (0 to 255) in the 32-bit lanes `code`.
+  HWY_INLINE hn::Vec<DF> operator()(hn::Vec<hn::Rebind<std::int32_t, DF>> code) const noexcept {
 #if MPR_LERP_ROW_HWY_CUBIC
-    if (cubic_) return decode_srgb_cubic(df, poly_, code);
+    if (cubic_) return decode_srgb_cubic(DF(), poly_, code);
 #endif
-    return hn::GatherIndex(df, table_, code);
+    return hn::GatherIndex(DF(), table_, code);
   }
   /// The value of one code.
   [[nodiscard]] float operator[](std::uint8_t c) const noexcept { return table_[c]; }
@@ -280,6 +282,8 @@ inline void sum_code_rows(Target, const std::uint8_t* const* rows, std::size_t k
   }
 }
 
+#include <mpr/lightfield/kernels/resample_row_hwy.inl> // resample_row_codes
+
 } // namespace mpr::kernels::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -349,6 +353,23 @@ inline void lerp_blend_row_hwy(const std::uint8_t* a, const std::uint16_t* lut, 
 inline void sum_code_rows_hwy(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut, float scale,
                               float* acc, std::size_t m, detail::SimdLevel level = detail::dispatch_level()) noexcept {
   hwy_visit(level, false, [&](auto t) { sum_code_rows(t, rows, k, lut, scale, acc, m); });
+}
+
+/// `detail::resample_row_portable` for 8-bit codes, the Highway kernel
+/// (kernels/resample_row_hwy.inl) compiled for `level` (`hwy_visit`). Preconditions as
+/// `resample_row_portable`'s: texels >= 2, x >= 0, s > 0.
+inline void resample_row_hwy(const std::uint8_t* row, std::size_t texels, const std::uint16_t* lut, double x, double s,
+                             float scale, float* h, std::size_t n, const std::uint8_t* ahead = nullptr,
+                             detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  hwy_visit(level, false, [&](auto t) { resample_row_codes(t, row, texels, lut, x, s, scale, h, n, ahead); });
+}
+
+/// The same for float channels (`lut` unused).
+inline void resample_row_hwy(const float* row, std::size_t texels, const std::uint16_t* lut, double x, double s,
+                             float scale, float* h, std::size_t n, const float* ahead = nullptr,
+                             detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  (void)lut;
+  hwy_visit(level, false, [&](auto t) { resample_row_floats(t, row, texels, x, s, scale, h, n, ahead); });
 }
 
 } // namespace mpr::kernels

@@ -3,12 +3,14 @@
 /// One camera row resampled at evenly spaced positions x + s i, any step s: the horizontal half
 /// of a separable bilinear shift-and-add when the output is not at the cameras' scale (a focal
 /// plane parallel to the camera plane seen at another pixel spacing, e.g. a 960x540 view of
-/// 1400x800 cameras). Plain C++ for every level, and on AVX-512 with VBMI a step that picks each
-/// group of 16 pixels' texel pairs out of a 128-byte window of 8-bit codes with byte permutes,
-/// decodes them to linear light in registers and interpolates them (no gathers).
+/// 1400x800 cameras). Plain C++ for every level, a Highway kernel per level where Highway is
+/// present (kernels/resample_row_hwy.inl, gathers), and on AVX-512 with VBMI a step that picks
+/// each group of 16 pixels' texel pairs out of a 128-byte window of 8-bit codes with byte
+/// permutes, decodes them to linear light in registers and interpolates them (no gathers).
 
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/kernels/decode_vbmi.hpp>
+#include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
 #include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
@@ -189,8 +191,10 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
 }
 #endif
 
-/// `resample_row_portable`, with the VBMI step for 8-bit codes when `level` is `avx512`, the CPU
-/// has VBMI and s <= `kResampleMaxStep`.
+/// `resample_row_portable` at `level`: for 8-bit codes, the VBMI step when `level` is
+/// `avx512vbmi` and s <= `kResampleMaxStep`; else (and for float channels) the Highway kernel of
+/// `level` (kernels/resample_row_hwy.inl) where Highway is present, the plain loop compiled for
+/// `level` where it is not.
 template <class C>
 inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* lut, double x, double s, float scale,
                          float* h, std::size_t n, const C* ahead = nullptr,
@@ -199,6 +203,10 @@ inline void resample_row(const C* row, std::size_t texels, const std::uint16_t* 
   if constexpr (std::is_same_v<C, std::uint8_t>)
     if (level >= SimdLevel::avx512vbmi && s <= kResampleMaxStep)
       return resample_row_codes_vbmi(row, texels, lut, x, s, scale, h, n, ahead);
+#endif
+#if MPR_HAVE_HWY
+  if constexpr (std::is_same_v<C, std::uint8_t> || std::is_same_v<C, float>)
+    return kernels::resample_row_hwy(row, texels, lut, x, s, scale, h, n, ahead, level);
 #endif
   run_at(level, [&]() MPR_INLINE_LAMBDA { resample_row_portable(row, texels, lut, x, s, scale, h, n, ahead); });
 }
