@@ -42,6 +42,22 @@ constexpr std::array<std::pair<char, const char*>, 9> kViews = {{{'A', "perspect
                                                                  {'H', "pencil"},
                                                                  {'I', "bilinear"}}};
 
+/// The share of a view's rays (a 64 x 48 grid over its output) whose first hit is the back of a
+/// surface: rays that start outside the room and see the outer side of a wall.
+template <class Surface, class Selector, class Sampler>
+double share_seeing_backs(const Surface& surface, const Selector& selector, const Sampler& sampler) {
+  constexpr int nx = 64, ny = 48;
+  int backs = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const mpr::Vec2<T> uv((T(i) + T(0.5)) / nx, (T(j) + T(0.5)) / ny);
+      const mpr::Ray<T> ray = selector.ray_at(mpr::Pixel{}, uv, surface.point_at(uv));
+      const mpr::scene::Hit<T> hit = sampler.bvh().closest_hit(ray);
+      if (hit.valid() && ray.direction.dot(sampler.scene().triangles()[hit.triangle].normal) > 0) ++backs;
+    }
+  return double(backs) / (nx * ny);
+}
+
 /// "A perspective", ..., "I bilinear": the labels of the contact sheets' tiles.
 std::array<std::string, 9> tile_labels() {
   std::array<std::string, 9> labels;
@@ -121,6 +137,13 @@ int main(int argc, char** argv) try {
       const mpr::glc::Rectified<T> r = mpr::glc::rectify(plane, glc, mpr::glc::target_region(plane, glc, wall));
       const mpr::Renderer rectified(r.surface, r.selector, sampler, sampling);
       rectified.render(rectified_sheet.view(), region(static_cast<int>(k)), options);
+      // Rays start on the image plane. Rectifying a steep view moves the part of the plane it
+      // uses sideways, possibly out of the room; say so where the picture shows it.
+      const double backs = share_seeing_backs(r.surface, r.selector, sampler);
+      if (backs > 0.01)
+        std::printf("view %c rectified: %.0f%% of its rays start outside the classroom (they run far sideways on "
+                    "their way to the back wall) and see the outer side of a wall there\n",
+                    kViews[k].first, 100 * backs);
     } catch (const mpr::error& e) {
       std::printf("view %c: no rectified variant (%s)\n", kViews[k].first, e.what());
     }
