@@ -74,12 +74,15 @@ CLI_TESTS = ["mpr_render_help", "mpr_render_bad_option", "mpr_render_bad_option_
              "mpr_render_print_camera"]
 
 
-def M(name, area, edits, tests, why, levels=None):
+def M(name, area, edits, tests, why, levels=None, focus=None):
     """A mutation: `edits` is a list of (file, old, new) or (file, old, new, occurrence); without
     an occurrence every occurrence of `old` is replaced, with one only that (0-based) one.
     `levels`: the SIMD levels whose code the edit changes, where it is not every level (a kernel
-    that exists only for AVX-512); with --levels the others are not run for it."""
-    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why, "levels": levels}
+    that exists only for AVX-512); with --levels the others are not run for it.
+    `focus`: test files (under tests/) added to the focused pass, for code the suite tests through
+    an umbrella header (which the pass cannot see) rather than through a direct include."""
+    return {"name": name, "area": area, "edits": edits, "tests": tests, "why": why, "levels": levels,
+            "focus": focus or []}
 
 
 SA = "include/mpr/lightfield/synthetic_aperture.hpp"
@@ -174,7 +177,8 @@ MUTATIONS = [
     M("finish_all_background_ignored", "lightfield",
       [("include/mpr/lightfield/frame_table.hpp", "if (!(weight[i] > 0)) out[i] = config_.background;",
         "if (!(weight[i] > 0)) (void)out;")],
-      ["lightfield"], "the batch and tile averages leave points nobody sees black instead of the background"),
+      ["lightfield"], "the batch and tile averages leave points nobody sees black instead of the background",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("tile_reads_pairs_past_the_edge", "lightfield",
       [("include/mpr/lightfield/frame_tiles.hpp", "right = ax == 0 && ay == 0 ? 0 : 1;", "right = 0;")],
       ["lightfield"], "a 2-D shift takes the image's last column into the block where it interpolates past it"),
@@ -217,7 +221,8 @@ MUTATIONS = [
     M("sa_background_ignored", "lightfield",
       [("include/mpr/lightfield/frame_table.hpp", "if (!(weight > 0)) return config_.background;",
         "if (!(weight > 0)) return Color::Zero();")],
-      ["lightfield"], "points nobody sees are black instead of the configured background"),
+      ["lightfield"], "points nobody sees are black instead of the configured background",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("glc_type_names_swapped", "glc",
       [("include/mpr/glc/classify.hpp", 'return "pencil";', 'return "pushbroom";')],
       ["glc"], "to_string of one GLC type wrong"),
@@ -290,14 +295,17 @@ MUTATIONS = [
       ["lightfield"], "rows are taken as one grid from three end points without checking the others"),
     M("cylinder_sight_next_row", "lightfield",
       [(CYL, "const double dq = static_cast<double>(q),", "const double dq = static_cast<double>(q + 1),")],
-      ["lightfield"], "the cylinder's runs are placed one output row off in each camera"),
+      ["lightfield"], "the cylinder's runs are placed one output row off in each camera",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("cylinder_rows_outer_last_row_skipped", "lightfield",
       [(CYL, "for (std::size_t q = 0; q < nrows; ++q)\n        for (std::size_t j = 0; j < ncam; ++j) {",
         "for (std::size_t q = 0; q + 1 < nrows; ++q)\n        for (std::size_t j = 0; j < ncam; ++j) {")],
-      ["lightfield"], "rows outer, the cylinder adds no camera to a group's last row"),
+      ["lightfield"], "rows outer, the cylinder adds no camera to a group's last row",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("cylinder_weigh_last_segment_dropped", "lightfield",
       [(CYL, "last = std::min(w, g1 * kSegment);", "last = std::min(w, (g1 - 1) * kSegment);")],
-      ["lightfield"], "the cylinder weighs a camera on every segment within reach but the last"),
+      ["lightfield"], "the cylinder weighs a camera on every segment within reach but the last",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("weighted_codes_weights_one_channel_off", "lightfield",
       [("include/mpr/lightfield/kernels/decode_vbmi.hpp", "s.index[o][l] = (16 * o + l) / 3;",
         "s.index[o][l] = (16 * o + l + 1) / 3 % 16;")],
@@ -316,7 +324,8 @@ MUTATIONS = [
       [("include/mpr/lightfield/cylinder_aperture.hpp",
         "std::span<const Vec3<T>* const>(points, rows),\n                               std::span<const detail::TileRowOut>(out, rows)",
         "std::span<const Vec3<T>* const>(points, rows - 1),\n                               std::span<const detail::TileRowOut>(out, rows - 1)")],
-      ["lightfield"], "a camera added to a tilted group's rows at once skips the last row it weighs"),
+      ["lightfield"], "a camera added to a tilted group's rows at once skips the last row it weighs",
+      focus=["lightfield/frame_sampler_test.cpp"]),
     M("frame_set_images_overlap", "lightfield",
       [("include/mpr/lightfield/frame_set.hpp", "      offsets[i] = total;", "      offsets[i] = 0;")],
       ["lightfield"], "every image is decoded into the same place of the shared buffer"),
@@ -469,7 +478,7 @@ def focus_files(mutation, most=8):
     they miss runs the full programs."""
     areas = [t for t in mutation["tests"] if t in TEST_TARGET]
     edited = sorted({e[0] for e in mutation["edits"]})
-    out = _tests_of(edited, areas)
+    out = _tests_of(edited, areas) | set(mutation["focus"])
     if not out:
         names = ["<" + e[len("include/"):] + ">" for e in edited if e.startswith("include/")]
         includers = [h.relative_to(ROOT).as_posix() for h in sorted((ROOT / "include").rglob("*.hpp"))
