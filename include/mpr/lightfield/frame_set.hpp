@@ -85,7 +85,9 @@ static_assert(sizeof(LinearTexel) == 3 * sizeof(float) && sizeof(Srgb8Texel) == 
 /// `Srgb8Texel` (3 bytes per pixel) for 8-bit frames, `LinearTexel` (12 bytes) for linear ones;
 /// this is the bulk of the memory a frame set takes. An 8-bit image that borrows its pixels
 /// (`Image::borrow`, e.g. a numpy array) is not copied at all when its memory allows: its pixels
-/// are its texels (the same 3 bytes), read in place (`shares_image`). Optionally the set carries
+/// are its texels (the same 3 bytes), read in place (`shares_image`). Below the VBMI level every
+/// 8-bit image, borrowed or not, is also held as 16-bit linear values (`linear16`, 6 bytes a
+/// pixel), which the synthetic aperture's shift tiles read. Optionally the set carries
 /// one depth map per camera (`with_depth`), read only by geometry-aware interpolations
 /// (`DepthProxy`). Images, texels and depth maps are immutable once in a set (borrowed memory
 /// must not change while a render reads it) and shared: a copy, `without(i)` and `cast<U>()`
@@ -158,7 +160,7 @@ public:
   /// (`linear16`, decoded once at construction; 6 more bytes a pixel): for `Rgb8` frames when
   /// Highway is present and `level` is below `avx512vbmi` (the level whose kernels decode codes
   /// with byte permutes, faster than reading twice the bytes). At `portable` and `avx2` a full
-  /// Chess refocus takes about 1/2 to 1/3 of the time with them (docs/lightfield.md).
+  /// Chess refocus takes about 1/2 to 1/3 of the time with them (docs/simd.md).
   [[nodiscard]] static bool holds_linear16(detail::SimdLevel level = detail::dispatch_level()) noexcept {
     return std::is_same_v<Px, Rgb8> && MPR_HAVE_HWY && level < detail::SimdLevel::avx512vbmi;
   }
