@@ -278,8 +278,12 @@ int main(int argc, char** argv) {
   }
   std::printf("%s\n", mpr_bench::machine_description().c_str());
   std::printf("shift-and-add kernels: %s; 8-bit frames sampled from their 3-byte sRGB codes, decoded to linear in "
-              "registers; tiles of %d rows\n",
-              mpr::detail::simd_level_name(), mpr::kTileRows);
+              "registers%s; tiles of %d rows\n",
+              mpr::detail::simd_level_name(),
+              mpr::CameraFrameSet<T>::holds_linear16()
+                  ? " (the shift tiles read the frames' 16-bit linear copy, decoded once at load)"
+                  : "",
+              mpr::kTileRows);
   const int repeats = repeats_option > 0 ? repeats_option : quick ? 1 : 15;
   const int nx = quick ? 4 : 10, ny = quick ? 3 : 9, cw = quick ? 160 : 640, ch = quick ? 120 : 480;
   const int size = quick ? 100 : 500;

@@ -123,12 +123,17 @@ TEST_CASE("frame sets: decoded size budget and per-image limit before decoding",
   mpr_test::write_test_png(dir / "out_00_01_1.0_7.0_.png", 4, 3, 1);
   mpr::LoadLimits limits;
   // A loaded 4x3 image takes 6 bytes a pixel (decoded image + the set's texels): 72 bytes, two
-  // take 144; at 3 bytes a pixel (the budget's old count) both would fit in 100.
-  limits.max_set_bytes = 100;
+  // take 144; at 3 bytes a pixel (the budget's old count) both would fit in 100. Where the set
+  // also holds 16-bit linear values (below the VBMI level), 12 bytes a pixel: 144 and 288.
+  const std::uint64_t one = mpr::CameraFrameSet<float>::holds_linear16() ? 144 : 72;
+  limits.max_set_bytes = one + 28;
   CHECK_THAT(error_of([&] { (void)mpr::read_stanford_light_field<float>(dir.path(), {}, limits); }),
              Catch::Contains("out_00_01_1.0_7.0_.png") && Catch::Contains("max_set_bytes"));
-  limits.max_set_bytes = 144;
+  limits.max_set_bytes = 2 * one;
   CHECK(mpr::read_stanford_light_field<float>(dir.path(), {}, limits).size() == 2);
+  limits.max_set_bytes = 2 * one - 1;
+  CHECK_THAT(error_of([&] { (void)mpr::read_stanford_light_field<float>(dir.path(), {}, limits); }),
+             Catch::Contains("max_set_bytes"));
   // A huge header in the set fails before the others are decoded.
   write_huge_header_png(dir / "out_01_00_1.0_2.0_.png", 30000, 20000);
   CHECK_THAT(error_of([&] { (void)mpr::read_stanford_light_field<float>(dir.path()); }),
@@ -138,7 +143,7 @@ TEST_CASE("frame sets: decoded size budget and per-image limit before decoding",
   // _par.txt and LFCA check the same budget.
   const std::string row = " 4 0 1.5 0 4 1 0 0 1 1 0 0 0 1 0 0 0 1 0 0 5\n";
   mpr_test::write_text(dir / "s_par.txt", "2\nout_00_00_1.0_2.0_.png" + row + "out_00_01_1.0_7.0_.png" + row);
-  limits.max_set_bytes = 100;
+  limits.max_set_bytes = one + 28;
   CHECK_THAT(error_of([&] { (void)mpr::read_par_file<double>(dir / "s_par.txt", limits); }),
              Catch::Contains("max_set_bytes"));
   CHECK(mpr::read_par_file<double>(dir / "s_par.txt").size() == 2);

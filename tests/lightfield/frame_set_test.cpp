@@ -132,6 +132,41 @@ TEST_CASE("CameraFrameSet decodes its images into one buffer, each 64-byte align
   }
 }
 
+TEST_CASE("CameraFrameSet holds 8-bit frames as 16-bit linear values below the VBMI level", "[camera_frame_set]") {
+  using Level = mpr::detail::SimdLevel;
+  using Set = mpr::CameraFrameSet<double>;
+  CHECK(Set::holds_linear16(Level::portable) == bool(MPR_HAVE_HWY));
+  CHECK(Set::holds_linear16(Level::avx2) == bool(MPR_HAVE_HWY));
+  CHECK(Set::holds_linear16(Level::avx512) == bool(MPR_HAVE_HWY));
+  CHECK_FALSE(Set::holds_linear16(Level::avx512vbmi));
+  CHECK_FALSE(mpr::CameraFrameSet<double, mpr::Color>::holds_linear16(Level::portable));
+  // Codes 0, 1, 10, 128, 200, 255: 65535 x their linear values (IEC 61966-2-1) are 0, 19.89,
+  // 198.92, 14146.42, 37851.73, 65535.
+  const std::array<std::uint8_t, 6> codes{0, 1, 10, 128, 200, 255};
+  const std::array<std::uint16_t, 6> want{0, 20, 199, 14146, 37852, 65535};
+  const auto cams = mpr_test::grid_cameras<double>(3, 1, 1.0, 7, 5, 4.0);
+  std::vector<mpr::Image<mpr::Rgb8>> images(3, mpr::Image<mpr::Rgb8>(7, 5));
+  for (std::size_t k = 0; k < 3; ++k)
+    for (int i = 0; i < 35; ++i) {
+      const std::size_t c = (k + static_cast<std::size_t>(i)) % 6;
+      images[k](i % 7, i / 7) = mpr::Rgb8{codes[c], codes[(c + 1) % 6], codes[(c + 2) % 6]};
+    }
+  const Set frames(cams, images);
+  REQUIRE((frames.linear16(0) != nullptr) == Set::holds_linear16());
+  if (!Set::holds_linear16()) return;
+  int wrong = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(reinterpret_cast<std::uintptr_t>(frames.linear16(k)) % 64 == 0);
+    if (k > 0) CHECK(frames.linear16(k) >= frames.linear16(k - 1) + 3 * 35 + 32); // values after each
+    for (std::size_t i = 0; i < 35; ++i)
+      for (std::size_t ch = 0; ch < 3; ++ch) wrong += frames.linear16(k)[3 * i + ch] != want[(k + i + ch) % 6] ? 1 : 0;
+  }
+  CHECK(wrong == 0);
+  // Copies share the values.
+  CHECK(frames.without(0).linear16(1) == frames.linear16(2));
+  CHECK(frames.cast<float>().linear16(2) == frames.linear16(2));
+}
+
 TEST_CASE("CameraFrameSet::on_plane declares the array plane, checked against the centres", "[camera_frame_set]") {
   // grid_cameras puts the centres on z = 0.
   const auto cams = mpr_test::grid_cameras<double>(3, 2, 1.0, 4, 3, 4.0);

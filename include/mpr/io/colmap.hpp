@@ -84,7 +84,7 @@ template <std::floating_point T = double>
                                                 ", its camera in cameras.txt is " + std::to_string(c.width()) + "x" +
                                                 std::to_string(c.height()));
   }
-  check_set_budget(paths, infos, limits);
+  check_set_budget(paths, infos, limits, CameraFrameSet<T, Rgb8>::holds_linear16());
   std::vector<Image<Rgb8>> frames;
   for (std::size_t i = 0; i < paths.size(); ++i) {
     frames.push_back(read_rgb8(paths[i], limits));

@@ -170,7 +170,7 @@ template <std::floating_point T = double>
     throw io_error(cfg.string(), "image resolution " + std::to_string(lf.parameters->width) + "x" +
                                      std::to_string(lf.parameters->height) + " disagrees with the views (" +
                                      std::to_string(width) + "x" + std::to_string(height) + ")");
-  check_set_budget(paths, infos, limits);
+  check_set_budget(paths, infos, limits, CameraFrameSet<T, Rgb8>::holds_linear16());
   const std::filesystem::path gt_path = folder / "gt_disp_lowres.pfm";
   if (std::filesystem::exists(gt_path, ec)) {
     Image<float> gt = read_pfm(gt_path, limits);

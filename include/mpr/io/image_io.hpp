@@ -266,15 +266,20 @@ struct ImageInfo {
 /// the set's texel buffer (`CameraFrameSet`, lightfield/frame_set.hpp).
 inline constexpr std::uint64_t kSetBytesPerPixel = 6;
 
+/// Bytes a pixel takes in addition where the set also holds its frames as 16-bit linear values
+/// (`CameraFrameSet::holds_linear16`: 3 channels of 2 bytes).
+inline constexpr std::uint64_t kLinear16BytesPerPixel = 6;
+
 /// Throws `io_error` naming the first of `paths` above the budget when the images (sizes
 /// `infos`, in the same order) take more than `limits.max_set_bytes` bytes once loaded into a
-/// frame set (`kSetBytesPerPixel` a pixel).
+/// frame set (`kSetBytesPerPixel` a pixel, and `kLinear16BytesPerPixel` more with `linear16`: the
+/// set's `holds_linear16()`).
 inline void check_set_budget(std::span<const std::filesystem::path> paths, std::span<const ImageInfo> infos,
-                             const LoadLimits& limits) {
+                             const LoadLimits& limits, bool linear16 = false) {
+  const std::uint64_t per_pixel = kSetBytesPerPixel + (linear16 ? kLinear16BytesPerPixel : 0);
   std::uint64_t bytes = 0;
   for (std::size_t i = 0; i < infos.size() && i < paths.size(); ++i) {
-    bytes +=
-        kSetBytesPerPixel * static_cast<std::uint64_t>(infos[i].width) * static_cast<std::uint64_t>(infos[i].height);
+    bytes += per_pixel * static_cast<std::uint64_t>(infos[i].width) * static_cast<std::uint64_t>(infos[i].height);
     if (bytes > limits.max_set_bytes)
       throw io_error(paths[i].string(),
                      "the " + std::to_string(infos.size()) + " images of this set take more than the limit of " +

@@ -145,7 +145,7 @@ template <std::floating_point T = double>
                                                       std::to_string(infos[0].width) + "x" +
                                                       std::to_string(infos[0].height));
   }
-  check_set_budget(image_paths, infos, limits);
+  check_set_budget(image_paths, infos, limits, CameraFrameSet<T, Rgb8>::holds_linear16());
   std::vector<PinholeCamera<T>> cameras;
   std::vector<Image<Rgb8>> images;
   for (std::size_t i = 0; i < ids.size(); ++i) {

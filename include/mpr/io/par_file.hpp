@@ -111,7 +111,7 @@ template <std::floating_point T = double>
                                                 std::to_string(infos.back().height) + ", the first image is " +
                                                 std::to_string(infos[0].width) + "x" + std::to_string(infos[0].height));
   }
-  check_set_budget(paths, infos, limits);
+  check_set_budget(paths, infos, limits, CameraFrameSet<T, Rgb8>::holds_linear16());
   std::vector<PinholeCamera<T>> cameras;
   std::vector<Image<Rgb8>> images;
   std::vector<std::string> names;

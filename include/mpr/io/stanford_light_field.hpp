@@ -117,7 +117,7 @@ template <std::floating_point T = double>
                                           entries[0].path.filename().string() + " is " +
                                           std::to_string(infos[0].width) + "x" + std::to_string(infos[0].height));
   }
-  check_set_budget(paths, infos, limits);
+  check_set_budget(paths, infos, limits, CameraFrameSet<T, Rgb8>::holds_linear16());
   std::vector<Vec2<double>> positions;
   for (const Entry& e : entries) positions.emplace_back(e.view.x, e.view.y);
   const std::vector<Vec3<T>> centres = planar_array_centres<T>(positions, options);

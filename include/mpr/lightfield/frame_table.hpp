@@ -68,6 +68,8 @@ public:
     int width = 0, height = 0;
     /// Row-major `width * height` linear texels.
     const texel_type* texels = nullptr;
+    /// Their channels as 16-bit linear values (`CameraFrameSet::linear16`), or nullptr.
+    const std::uint16_t* linear = nullptr;
     const PinholeCamera<T>* camera = nullptr;
   };
 
@@ -94,6 +96,7 @@ public:
       d.width = c.width();
       d.height = c.height();
       d.texels = frames_->texels(i).data();
+      d.linear = frames_->linear16(i);
       d.camera = &c;
       cameras_.push_back(d);
     }

@@ -206,12 +206,15 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
       }
     return true;
   }
-  const auto* texels = c.texels[(iy + b.r_begin) * c.width + ix + b.first].c;
+  const std::ptrdiff_t first_texel = (iy + b.r_begin) * c.width + ix + b.first;
+  const auto* texels = c.texels[first_texel].c;
+  // The same channels in the frames' 16-bit linear copy, when they hold one.
+  const std::uint16_t* linear = c.linear != nullptr ? c.linear + 3 * first_texel : nullptr;
   if constexpr (std::is_same_v<typename texel_type::channel_type, std::uint8_t>) {
     if (batch != nullptr && ax == 0 && ay == 0 && b.first == 0 && b.last == static_cast<long>(n) &&
         batch->blocks.size() < batch->blocks.capacity()) {
       batch->blocks.push_back({texels, 3 * static_cast<std::ptrdiff_t>(c.width), static_cast<std::size_t>(b.r_begin),
-                               static_cast<std::size_t>(b.r_end)});
+                               static_cast<std::size_t>(b.r_end), linear});
       return true;
     }
   }
@@ -226,9 +229,13 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
   tile.lut = texel_decode_table<texel_type>();
   tile.acc = block_acc;
   tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
+  tile.linear = linear;
   const auto next = detail::ahead_rows<T, Px>(
       ahead, points[static_cast<std::size_t>(b.r_begin) * n + static_cast<std::size_t>(b.first)]);
-  detail::shift_tile(tile, work.h.data(), next[0], next[1] - next[0]);
+  const std::uint16_t* next_linear = nullptr; // the ahead camera's rows in its 16-bit copy
+  if constexpr (std::is_same_v<typename texel_type::channel_type, std::uint8_t>)
+    if (next[0] != nullptr && ahead->linear != nullptr) next_linear = ahead->linear + (next[0] - ahead->texels->c);
+  detail::shift_tile(tile, work.h.data(), next[0], next[1] - next[0], next_linear);
   return true;
 }
 

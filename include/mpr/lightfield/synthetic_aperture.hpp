@@ -121,6 +121,7 @@ private:
     try {
       batch->blocks.reserve(table.size());
       if (batch->rows.size() < table.size()) batch->rows.resize(table.size());
+      if (batch->rows16.size() < table.size()) batch->rows16.resize(table.size());
     } catch (...) {
       batch = nullptr; // each camera's shift added by itself
     }

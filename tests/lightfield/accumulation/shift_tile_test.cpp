@@ -2,7 +2,8 @@
 // level against a long-double reference: every output row gets its two camera rows' bilinear
 // blend (or, at a vertical offset of 0, its one row; at offsets of 0 both ways, its texels),
 // nothing outside the block is written (accumulators beside each row, the rows' ends, the working
-// memory's end), whatever the accumulators' alignment.
+// memory's end), whatever the accumulators' alignment. 8-bit codes also with their 16-bit linear
+// copy (`ShiftTile::linear`: read instead of the codes below the VBMI level).
 
 #include "lightfield/channel_values.hpp"
 #include "simd_levels.hpp"
@@ -24,7 +25,7 @@ namespace {
 using LD = long double;
 
 template <class C>
-void check_shift_tile() {
+void check_shift_tile(bool linear = false) {
   std::mt19937_64 rng(2004 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
   const mpr_test::ChannelValues<C> channels;
@@ -64,10 +65,16 @@ void check_shift_tile() {
         t.lut = channels.lut;
         t.acc = acc.data() + offset;
         t.acc_stride = acc_stride;
+        std::vector<std::uint16_t> values; // the 16-bit linear copy: each code's table entry
+        if constexpr (std::is_same_v<C, std::uint8_t>)
+          if (linear) {
+            for (const C c : texels) values.push_back(channels.lut[c]);
+            t.linear = values.data() + (t.texels - texels.data());
+          }
         std::vector<float> work(mpr::detail::shift_tile_work(m) + kGuard, kSentinel);
         // Every other case asks for a camera ahead (prefetched only).
         const C* ahead = cases % 2 == 1 ? texels.data() : nullptr;
-        mpr::detail::shift_tile(t, work.data(), ahead, stride, level);
+        mpr::detail::shift_tile(t, work.data(), ahead, stride, ahead != nullptr ? t.linear : nullptr, level);
         ++cases;
         for (std::size_t j = mpr::detail::shift_tile_work(m); j < work.size(); ++j)
           failures += work[j] != kSentinel ? 1 : 0;
@@ -104,6 +111,7 @@ void check_shift_tile() {
 TEST_CASE("shift_tile: every level adds each row's bilinear blend of its two camera rows, nothing else",
           "[shift_tile]") {
   SECTION("8-bit sRGB codes") { check_shift_tile<std::uint8_t>(); }
+  SECTION("8-bit sRGB codes with their 16-bit linear values") { check_shift_tile<std::uint8_t>(true); }
   SECTION("16-bit channels") { check_shift_tile<std::uint16_t>(); }
   SECTION("float channels") { check_shift_tile<float>(); }
 }

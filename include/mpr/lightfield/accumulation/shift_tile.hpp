@@ -37,6 +37,9 @@ struct ShiftTile {
   const std::uint16_t* lut = nullptr; ///< decode table of 8-bit codes (unused otherwise)
   float* acc = nullptr;               ///< the output rows' accumulators (flat r g b)
   std::ptrdiff_t acc_stride = 0;      ///< channels from one output row's accumulators to the next
+  /// `texels` as 16-bit linear values (8-bit codes replaced by their `lut` entries: the frames'
+  /// `CameraFrameSet::linear16`, same stride), or nullptr when the frames hold none.
+  const std::uint16_t* linear = nullptr;
 };
 
 /// One camera row added at a horizontal offset alone (a vertical offset of 0), in one pass:
@@ -68,17 +71,61 @@ template <class C>
 /// Floats of working memory `shift_tile` needs for rows of m channels.
 [[nodiscard]] constexpr std::size_t shift_tile_work(std::size_t m) noexcept { return 2 * (m + 32); }
 
+#if MPR_HAVE_HWY
+/// `shift_tile` reading the block's 16-bit linear values (`t.linear`, non-null) with the Highway
+/// rows of kernels/linear_rows_hwy.inl: the same sums as the 8-bit rows below the VBMI level
+/// over the same values, without a decode. `ahead` (nullptr: none): the 16-bit values of the
+/// next camera's block, `ahead_stride` apart.
+template <class C>
+void shift_tile_linear(const ShiftTile<C>& t, float* work, const std::uint16_t* ahead, std::ptrdiff_t ahead_stride,
+                       SimdLevel level) noexcept {
+  const auto next_ahead = [&](std::size_t k) noexcept -> const std::uint16_t* {
+    return ahead != nullptr ? ahead + static_cast<std::ptrdiff_t>(k) * ahead_stride : nullptr;
+  };
+  const auto row_of = [&](std::size_t k) noexcept { return t.linear + static_cast<std::ptrdiff_t>(k) * t.stride; };
+  float *const h0 = work, *const h1 = work + t.m + 16;
+  if (t.ay == 0) { // each output row reads one camera row
+    for (std::size_t r = 0; r < t.rows; ++r) {
+      float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
+      const std::uint16_t* row = row_of(r);
+      if (t.ax == 0) {
+        kernels::sum_linear_rows_hwy(&row, 1, t.scale, acc, t.m, level);
+        continue;
+      }
+      kernels::lerp_row_linear_hwy(row, t.ax, t.scale, h0, t.m, next_ahead(r), level);
+      blend_rows(h0, h0, 1.0f, 0.0f, nullptr, acc, t.m / 3, level);
+    }
+    return;
+  }
+  float *hp = h0, *h = h1;
+  kernels::lerp_row_linear_hwy(row_of(0), t.ax, t.scale, hp, t.m, next_ahead(0), level);
+  for (std::size_t r = 0; r < t.rows; ++r) {
+    float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride;
+    kernels::lerp_blend_row_linear_hwy(row_of(r + 1), t.ax, t.scale, h, t.m, next_ahead(r + 1), hp, 1 - t.ay, t.ay, acc,
+                                       level);
+    std::swap(hp, h);
+  }
+}
+#endif
+
 /// Adds the block `t` (see `ShiftTile`) to its accumulators at `level`. `work` holds
 /// `shift_tile_work(t.m)` floats (working rows, overwritten; they must not overlap the
 /// accumulators). `ahead` (nullptr: none): the texels of the block's first row in the camera to
 /// be added next, and `ahead_stride` its row stride in channels, prefetched along the way
 /// (`lerp_row`). The working rows are placed so that each row's accumulators and the row
 /// written beside them share their alignment: the AVX-512 pass then splits a row into a head of
-/// up to 15 channels and a body whose 64-byte accesses do not straddle cache lines.
+/// up to 15 channels and a body whose 64-byte accesses do not straddle cache lines. Below the
+/// VBMI level, a block with its 16-bit linear values (`t.linear`) is added from those
+/// (`shift_tile_linear`, `ahead_linear` the next camera's, prefetched in place of `ahead`).
 template <class C>
 void shift_tile(const ShiftTile<C>& t, float* work, const C* ahead = nullptr, std::ptrdiff_t ahead_stride = 0,
-                SimdLevel level = dispatch_level()) noexcept {
+                const std::uint16_t* ahead_linear = nullptr, SimdLevel level = dispatch_level()) noexcept {
   if (t.rows == 0 || t.m == 0) return;
+#if MPR_HAVE_HWY
+  if (t.linear != nullptr && level < SimdLevel::avx512vbmi)
+    return shift_tile_linear(t, work, ahead_linear, ahead_stride, level);
+#endif
+  (void)ahead_linear;
   const auto next_ahead = [&](std::size_t k) noexcept -> const C* {
     return ahead != nullptr ? ahead + static_cast<std::ptrdiff_t>(k) * ahead_stride : nullptr;
   };

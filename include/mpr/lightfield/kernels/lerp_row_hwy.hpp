@@ -282,6 +282,7 @@ inline void sum_code_rows(Target, const std::uint8_t* const* rows, std::size_t k
   }
 }
 
+#include <mpr/lightfield/kernels/linear_rows_hwy.inl>  // sum_linear_rows, lerp_row_linear
 #include <mpr/lightfield/kernels/resample_row_hwy.inl> // resample_row_codes
 
 } // namespace mpr::kernels::HWY_NAMESPACE
@@ -353,6 +354,31 @@ inline void lerp_blend_row_hwy(const std::uint8_t* a, const std::uint16_t* lut, 
 inline void sum_code_rows_hwy(const std::uint8_t* const* rows, std::size_t k, const std::uint16_t* lut, float scale,
                               float* acc, std::size_t m, detail::SimdLevel level = detail::dispatch_level()) noexcept {
   hwy_visit(level, false, [&](auto t) { sum_code_rows(t, rows, k, lut, scale, acc, m); });
+}
+
+/// acc[j] += scale sum_c rows[c][j] for j in [0, m), c in [0, k): k camera rows of 16-bit linear
+/// values (`CameraFrameSet::linear16`) summed in registers and added once, the Highway kernel
+/// (kernels/linear_rows_hwy.inl) compiled for `level`: `sum_code_rows_hwy`'s result for the
+/// codes whose table values they hold. Reads rows[c][0, m) and prefetches past them.
+inline void sum_linear_rows_hwy(const std::uint16_t* const* rows, std::size_t k, float scale, float* acc, std::size_t m,
+                                detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  hwy_visit(level, false, [&](auto t) { sum_linear_rows(t, rows, k, scale, acc, m); });
+}
+
+/// `lerp_row_hwy` on 16-bit linear values (the codes' table values), compiled for `level`;
+/// `ahead` (16-bit values, nullptr: none) is prefetched along the row.
+inline void lerp_row_linear_hwy(const std::uint16_t* a, float ax, float scale, float* h, std::size_t m,
+                                const std::uint16_t* ahead = nullptr,
+                                detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  hwy_visit(level, false, [&](auto t) { lerp_row_linear(t, a, ax, scale, h, m, ahead); });
+}
+
+/// `lerp_blend_row_hwy` on 16-bit linear values, compiled for `level`. acc must not overlap a, h
+/// or hp.
+inline void lerp_blend_row_linear_hwy(const std::uint16_t* a, float ax, float scale, float* h, std::size_t m,
+                                      const std::uint16_t* ahead, const float* hp, float wy0, float wy1, float* acc,
+                                      detail::SimdLevel level = detail::dispatch_level()) noexcept {
+  hwy_visit(level, false, [&](auto t) { lerp_row_linear(t, a, ax, scale, h, m, ahead, hp, wy0, wy1, acc); });
 }
 
 /// `detail::resample_row_portable` for 8-bit codes, the Highway kernel

@@ -30,12 +30,16 @@ struct ShiftedBlock {
   const std::uint8_t* texels = nullptr;
   std::ptrdiff_t stride = 0;
   std::size_t r_begin = 0, r_end = 0;
+  /// The same channels as 16-bit linear values (`CameraFrameSet::linear16`, same stride), or
+  /// nullptr when the frames hold none.
+  const std::uint16_t* linear = nullptr;
 };
 
 /// The blocks of one tile, to be added together (`add_shifted_blocks`), and working memory.
 struct ShiftBatch {
   std::vector<ShiftedBlock> blocks;
-  std::vector<const std::uint8_t*> rows; // per output row: the cameras' codes
+  std::vector<const std::uint8_t*> rows;    // per output row: the cameras' codes
+  std::vector<const std::uint16_t*> rows16; // or their 16-bit linear values
 };
 
 /// Cameras summed in one register pass: the decoded values are below 2^24 and multiples of 2^8,
@@ -100,11 +104,28 @@ inline void add_code_rows(const std::uint8_t* const* rows, std::size_t k, const 
 
 /// Adds every block of `batch` to the tile's accumulators, `rows` output rows of n pixels
 /// (output row r's at acc + r `acc_stride`, pixel i's channels at 3 i): per row, one
-/// `add_code_rows` over the cameras whose blocks cover it. `batch.rows` holds at least one entry
-/// per block.
+/// `add_code_rows` over the cameras whose blocks cover it; below the VBMI level, when every
+/// block has its 16-bit linear values (and Highway is present), one
+/// `kernels::sum_linear_rows_hwy` over those instead (the same result, without a decode).
+/// `batch.rows` (and `batch.rows16` for the linear values) holds at least one entry per block.
 inline void add_shifted_blocks(ShiftBatch& batch, std::size_t rows, std::size_t n, const std::uint16_t* lut,
                                float scale, float* acc, std::ptrdiff_t acc_stride,
                                SimdLevel level = dispatch_level()) noexcept {
+#if MPR_HAVE_HWY
+  if (level < SimdLevel::avx512vbmi && batch.rows16.size() >= batch.blocks.size() &&
+      std::all_of(batch.blocks.begin(), batch.blocks.end(),
+                  [](const ShiftedBlock& b) { return b.linear != nullptr; })) {
+    const std::uint16_t** at = batch.rows16.data();
+    for (std::size_t r = 0; r < rows; ++r) {
+      std::size_t k = 0;
+      for (const ShiftedBlock& b : batch.blocks)
+        if (r >= b.r_begin && r < b.r_end) at[k++] = b.linear + static_cast<std::ptrdiff_t>(r - b.r_begin) * b.stride;
+      if (k > 0)
+        kernels::sum_linear_rows_hwy(at, k, scale, acc + static_cast<std::ptrdiff_t>(r) * acc_stride, 3 * n, level);
+    }
+    return;
+  }
+#endif
   const std::uint8_t** ptr = batch.rows.data();
   for (std::size_t r = 0; r < rows; ++r) {
     std::size_t k = 0;
