@@ -182,3 +182,23 @@ TEST_CASE("weighted median: random windows against the sorted-window oracle, eve
       CHECK(checked > w * h / 2);
     }
 }
+
+TEST_CASE("weighted median: views with padded rows give what packed images give", "[depth_median]") {
+  // The values and confidence as the 9 x 7 corner of wider images (rows 13 apart).
+  Step s;
+  for (int y = 0; y < 7; ++y) s.values(4, y) = 10.0f;
+  s.confidence(6, 2) = 0.3f;
+  mpr::Image<float> wide_values(13, 7, -1.0f), wide_confidence(13, 7, 0.5f);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x) {
+      wide_values(x + 4, y) = s.values(x, y);
+      wide_confidence(x + 4, y) = s.confidence(x, y);
+    }
+  const mpr::ImageView<const float> values = wide_values.view().subview(4, 0, 9, 7);
+  const mpr::ImageView<const float> confidence = wide_confidence.view().subview(4, 0, 9, 7);
+  const mpr::Image<float> packed = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {2});
+  const mpr::Image<float> padded = mpr::weighted_median(values, s.guide.view(), confidence, {2});
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x) CHECK(padded(x, y) == packed(x, y));
+  CHECK(padded(4, 3) == 0.0f);
+}

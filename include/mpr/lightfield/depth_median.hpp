@@ -73,23 +73,32 @@ inline void validate(const WeightedMedianConfig& c) {
     coarse[k] = static_cast<float>(std::exp(-static_cast<double>(32 * k) / 255.0 / c.range));
     fine[k] = static_cast<float>(std::exp(-static_cast<double>(k) / 255.0 / c.range));
   }
-  // Tightly packed inputs for the row kernel (kernels/depth_median_lanes.hpp): the values, the
-  // confidence, and the guide as planar channels.
+  // Tightly packed inputs for the row kernel (kernels/depth_median_lanes.hpp): the values and
+  // the confidence as they are where their rows are packed (else copied), the guide as planar
+  // channels.
   const std::size_t size = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<float> packed(2 * size);
+  std::vector<float> copies;
+  const auto packed = [&](ImageView<const float> image, std::size_t slot) {
+    if (image.stride() == w) return image.data();
+    if (copies.empty()) copies.resize(2 * size);
+    float* to = copies.data() + slot * size;
+    for (int y = 0; y < h; ++y)
+      std::copy_n(image.row(y), w, to + static_cast<std::size_t>(y) * static_cast<std::size_t>(w));
+    return static_cast<const float*>(to);
+  };
+  const float* value_rows = packed(values, 0);
+  const float* confidence_rows = packed(confidence, 1);
   std::vector<std::int32_t> planes(3 * size);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      packed[k] = values(x, y);
-      packed[size + k] = confidence(x, y);
       const Rgb8 g = guide(x, y);
       planes[k] = g.r;
       planes[size + k] = g.g;
       planes[2 * size + k] = g.b;
     }
-  const detail::MedianRowInputs in{packed.data(),
-                                   packed.data() + size,
+  const detail::MedianRowInputs in{value_rows,
+                                   confidence_rows,
                                    {planes.data(), planes.data() + size, planes.data() + 2 * size},
                                    coarse.data(),
                                    fine.data(),
