@@ -73,40 +73,42 @@ inline void validate(const WeightedMedianConfig& c) {
     coarse[k] = static_cast<float>(std::exp(-static_cast<double>(32 * k) / 255.0 / c.range));
     fine[k] = static_cast<float>(std::exp(-static_cast<double>(k) / 255.0 / c.range));
   }
-  // Tightly packed inputs for the row kernel (kernels/depth_median_lanes.hpp): the values and
-  // the confidence as they are where their rows are packed (else copied), the guide as planar
-  // channels.
-  const std::size_t size = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<float> copies;
-  const auto packed = [&](ImageView<const float> image, std::size_t slot) {
-    if (image.stride() == w) return image.data();
-    if (copies.empty()) copies.resize(2 * size);
-    float* to = copies.data() + slot * size;
-    for (int y = 0; y < h; ++y)
-      std::copy_n(image.row(y), w, to + static_cast<std::size_t>(y) * static_cast<std::size_t>(w));
-    return static_cast<const float*>(to);
-  };
-  const float* value_rows = packed(values, 0);
-  const float* confidence_rows = packed(confidence, 1);
-  std::vector<std::int32_t> planes(3 * size);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+  // The planes of the row kernel (kernels/depth_median_lanes.hpp), padded by r on every side
+  // and on the right to whole chunks: values repeating the nearest pixel's, confidence -1
+  // outside the image, the guide as planar channels.
+  const int r = c.radius, chunked = (w + detail::kMedianChunk - 1) / detail::kMedianChunk * detail::kMedianChunk;
+  const std::ptrdiff_t stride = chunked + 2 * r;
+  const std::size_t size = static_cast<std::size_t>(stride) * static_cast<std::size_t>(h + 2 * r);
+  const std::ptrdiff_t origin = r * stride + r;
+  std::vector<float> planes(2 * size);
+  std::vector<std::int32_t> channels(3 * size);
+  for (int v = -r; v < h + r; ++v) {
+    const int y = std::clamp(v, 0, h - 1);
+    const bool row_inside = v == y;
+    const std::ptrdiff_t at = origin + v * stride;
+    for (int u = -r; u < chunked + r; ++u) {
+      const int x = std::clamp(u, 0, w - 1);
+      const std::size_t k = static_cast<std::size_t>(at + u);
       const Rgb8 g = guide(x, y);
-      planes[k] = g.r;
-      planes[size + k] = g.g;
-      planes[2 * size + k] = g.b;
+      planes[k] = values(x, y);
+      planes[size + k] = row_inside && u == x ? confidence(x, y) : -1.0f;
+      channels[k] = g.r;
+      channels[size + k] = g.g;
+      channels[2 * size + k] = g.b;
     }
-  const detail::MedianRowInputs in{value_rows,
-                                   confidence_rows,
-                                   {planes.data(), planes.data() + size, planes.data() + 2 * size},
-                                   coarse.data(),
-                                   fine.data(),
-                                   w,
-                                   h,
-                                   c.radius,
-                                   static_cast<float>(c.flat),
-                                   static_cast<float>(c.min_confidence)};
+  }
+  const detail::MedianRowInputs in{
+      planes.data() + origin,
+      planes.data() + size + origin,
+      {channels.data() + origin, channels.data() + size + origin, channels.data() + 2 * size + origin},
+      coarse.data(),
+      fine.data(),
+      w,
+      h,
+      r,
+      stride,
+      static_cast<float>(c.flat),
+      static_cast<float>(c.min_confidence)};
   const detail::SimdLevel level = detail::dispatch_level();
   detail::parallel_rows(0, h, detail::resolve_thread_count(threads, h),
                         [&](int y) noexcept { detail::weighted_median_row(in, y, &out(0, y), level); });

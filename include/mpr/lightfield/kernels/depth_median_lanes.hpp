@@ -33,12 +33,15 @@
 
 namespace mpr::detail {
 
-/// The inputs of `weighted_median_row`: all images `width` x `height`, row-major, tightly
-/// packed. The guide as three planar channels of sRGB codes (as 32-bit integers: lanes load
-/// them as they are). The colour weight of the colour distance d (sum over channels of |code
-/// difference|, 0..765) is coarse[d / 32] x fine[d % 32], each the float nearest
-/// exp(-(its part of d) / 255 / range): two 32-entry tables, which AVX-512 reads with register
-/// permutes instead of a gather.
+/// The inputs of `weighted_median_row`: planes of `width` x `height` pixels, rows `stride`
+/// elements apart, each pointer at pixel (0, 0) of a plane padded by `radius` pixels on every
+/// side and on the right to a whole number of kMedianChunk chunks (every tap of every chunk
+/// is readable): padding values repeat the nearest pixel's (a value of the clipped window) and
+/// padding confidences are -1 (weight 0, the tap left out). The guide as three planar channels
+/// of sRGB codes (as 32-bit integers: lanes load them as they are). The colour weight of the
+/// colour distance d (sum over channels of |code difference|, 0..765) is coarse[d / 32] x
+/// fine[d % 32], each the float nearest exp(-(its part of d) / 255 / range): two 32-entry
+/// tables, which AVX-512 reads with register permutes instead of a gather.
 struct MedianRowInputs {
   const float* values;
   const float* confidence;
@@ -46,6 +49,7 @@ struct MedianRowInputs {
   const float* coarse; ///< 32 floats (24 used)
   const float* fine;   ///< 32 floats
   int width, height, radius;
+  std::ptrdiff_t stride;
   float flat;  ///< windows whose values span no more than this keep the centre value
   float floor; ///< the least confidence a neighbour counts with
 };
@@ -205,72 +209,46 @@ MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int
   }
 }
 
-/// The tap values of the chunk at (x0, y) and their smallest and largest per lane; taps outside
-/// the image read the nearest pixel inside (a value of the clipped window).
-MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, bool inside, MedianTaps& taps,
-                                     MedianLanes& lo, MedianLanes& hi) noexcept {
-  const int r = in.radius, w = in.width;
+/// The tap values of the chunk at (x0, y) and their smallest and largest per lane.
+MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, MedianLanes& lo,
+                                     MedianLanes& hi) noexcept {
+  const int r = in.radius;
   int t = 0;
   for (int dy = -r; dy <= r; ++dy) {
-    const float* row = in.values + static_cast<std::ptrdiff_t>(std::clamp(y + dy, 0, in.height - 1)) * w;
+    const float* row = in.values + static_cast<std::ptrdiff_t>(y + dy) * in.stride + x0;
     for (int dx = -r; dx <= r; ++dx, ++t) {
-      if (inside) {
-        median_load(taps.value[t], row + x0 + dx);
-      } else {
-        for (int l = 0; l < kMedianChunk; ++l)
-          set_median_lane(taps.value[t], l, row[std::clamp(x0 + l + dx, 0, w - 1)]);
-      }
+      median_load(taps.value[t], row + dx);
       lo = t == 0 ? taps.value[t] : (taps.value[t] < lo ? taps.value[t] : lo);
       hi = t == 0 ? taps.value[t] : (taps.value[t] > hi ? taps.value[t] : hi);
     }
   }
 }
 
-/// The tap weights of the chunk at (x0, y): the colour weight of the distance to the lane's pixel x
-/// max(confidence, floor), 0 for taps outside the image.
+/// The tap weights of the chunk at (x0, y): the colour weight of the distance to the lane's
+/// pixel x max(confidence, floor); 0 for taps outside the image (confidence < 0).
 template <class Tag>
-MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, bool inside, MedianTaps& taps,
-                                      Tag tag) noexcept {
-  const int r = in.radius, w = in.width;
-  const std::ptrdiff_t centre = static_cast<std::ptrdiff_t>(y) * w;
+MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, Tag tag) noexcept {
+  const int r = in.radius;
+  const std::ptrdiff_t centre = static_cast<std::ptrdiff_t>(y) * in.stride + x0;
   MedianLaneInts p[3];
-  for (int c = 0; c < 3; ++c)
-    for (int l = 0; l < kMedianChunk; ++l)
-      set_median_lane(p[c], l, static_cast<int>(in.channel[c][centre + std::min(x0 + l, w - 1)]));
-  const MedianLanes floor = MedianLanes{} + in.floor;
+  for (int c = 0; c < 3; ++c) median_load(p[c], in.channel[c] + centre);
+  const MedianLanes floor = MedianLanes{} + in.floor, zero = MedianLanes{} + 0.0f;
   int t = 0;
   for (int dy = -r; dy <= r; ++dy) {
-    const int v = y + dy;
-    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(std::clamp(v, 0, in.height - 1)) * w;
+    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y + dy) * in.stride + x0;
     for (int dx = -r; dx <= r; ++dx, ++t) {
       MedianLaneInts d{};
-      MedianLanes conf;
-      if (inside) {
-        for (int c = 0; c < 3; ++c) {
-          MedianLaneInts q;
-          median_load(q, in.channel[c] + at + x0 + dx);
-          q -= p[c];
-          d += q < 0 ? -q : q;
-        }
-        median_load(conf, in.confidence + at + x0 + dx);
-      } else {
-        for (int l = 0; l < kMedianChunk; ++l) {
-          const int u = x0 + l + dx;
-          const std::ptrdiff_t k = at + std::clamp(u, 0, w - 1);
-          int s = 0;
-          for (int c = 0; c < 3; ++c) {
-            const int q = static_cast<int>(in.channel[c][k]) - median_lane(p[c], l);
-            s += q < 0 ? -q : q;
-          }
-          set_median_lane(d, l, s);
-          const bool out = u < 0 || u >= w || v < 0 || v >= in.height;
-          set_median_lane(conf, l, out ? -1.0f : in.confidence[k]);
-        }
+      for (int c = 0; c < 3; ++c) {
+        MedianLaneInts q;
+        median_load(q, in.channel[c] + at + dx);
+        q -= p[c];
+        d += q < 0 ? -q : q;
       }
-      MedianLanes g;
+      MedianLanes conf, g;
+      median_load(conf, in.confidence + at + dx);
       median_colour_weight(g, in, d, tag);
       const MedianLanes weight = g * (conf > floor ? conf : floor);
-      taps.weight[t] = conf < 0.0f ? MedianLanes{} + 0.0f : weight;
+      taps.weight[t] = conf < zero ? zero : weight;
     }
   }
 }
@@ -279,19 +257,17 @@ MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, 
 template <class Tag>
 MPR_ALWAYS_INLINE void weighted_median_row_body(const MedianRowInputs& in, int y, float* out, Tag tag) noexcept {
   const int r = in.radius, w = in.width, n = (2 * r + 1) * (2 * r + 1);
-  const bool rows_inside = y >= r && y + r < in.height;
   MedianTaps taps;
-  const float* centre = in.values + static_cast<std::ptrdiff_t>(y) * w;
+  const float* centre = in.values + static_cast<std::ptrdiff_t>(y) * in.stride;
   for (int x0 = 0; x0 < w; x0 += kMedianChunk) {
     const int lanes = std::min(kMedianChunk, w - x0);
     for (int l = 0; l < lanes; ++l) out[x0 + l] = centre[x0 + l];
-    const bool inside = rows_inside && x0 >= r && x0 + kMedianChunk + r <= w;
     MedianLanes lo{}, hi{};
-    median_values(in, x0, y, inside, taps, lo, hi);
+    median_values(in, x0, y, taps, lo, hi);
     auto open = hi - lo > MedianLanes{} + in.flat;
     for (int l = lanes; l < kMedianChunk; ++l) set_median_lane(open, l, 0);
     if (!median_any(open)) continue;
-    median_weights(in, x0, y, inside, taps, tag);
+    median_weights(in, x0, y, taps, tag);
     MedianLanes m;
     median_search(m, taps, n, lo, hi, open);
     for (int l = 0; l < lanes; ++l)
