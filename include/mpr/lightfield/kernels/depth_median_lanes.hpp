@@ -161,35 +161,40 @@ struct MedianCount {
 };
 MPR_ALWAYS_INLINE void median_count(MedianCount& out, const MedianTaps& taps, int n, const MedianLanes& p) noexcept {
   const MedianLanes zero = MedianLanes{} + 0.0f, inf = MedianLanes{} + std::numeric_limits<float>::infinity();
-  MedianLanes s[4] = {zero, zero, zero, zero}, lo[2] = {-inf, -inf}, hi[2] = {inf, inf};
-  const auto tap = [&](int t, MedianLanes& sum, MedianLanes& below, MedianLanes& above) MPR_INLINE_LAMBDA {
+  // Four of each running sum, max and min: short dependency chains (a max or min, not a
+  // compare and a blend, on the chain).
+  MedianLanes s[4] = {zero, zero, zero, zero}, lo[4] = {-inf, -inf, -inf, -inf}, hi[4] = {inf, inf, inf, inf};
+  const auto tap = [&](int t, int k) MPR_INLINE_LAMBDA {
     const MedianLanes v = taps.value[t];
-    const auto in = v <= p, out = v > p;
-    sum += in ? taps.weight[t] : zero;
-    below = (in & (v > below)) ? v : below;
-    above = (out & (v < above)) ? v : above;
+    const auto in = v <= p;
+    const MedianLanes below = in ? v : -inf, above = in ? inf : v;
+    s[k] += in ? taps.weight[t] : zero;
+    lo[k] = below > lo[k] ? below : lo[k];
+    hi[k] = above < hi[k] ? above : hi[k];
   };
   int t = 0;
   for (; t + 4 <= n; t += 4) {
-    tap(t, s[0], lo[0], hi[0]);
-    tap(t + 1, s[1], lo[1], hi[1]);
-    tap(t + 2, s[2], lo[0], hi[0]);
-    tap(t + 3, s[3], lo[1], hi[1]);
+    tap(t, 0);
+    tap(t + 1, 1);
+    tap(t + 2, 2);
+    tap(t + 3, 3);
   }
-  for (int k = 0; t < n; ++t, ++k) tap(t, s[k], lo[k & 1], hi[k & 1]);
+  for (int k = 0; t < n; ++t, ++k) tap(t, k);
   out.weight = (s[0] + s[1]) + (s[2] + s[3]);
-  out.below = lo[0] > lo[1] ? lo[0] : lo[1];
-  out.above = hi[0] < hi[1] ? hi[0] : hi[1];
+  const MedianLanes l01 = lo[0] > lo[1] ? lo[0] : lo[1], l23 = lo[2] > lo[3] ? lo[2] : lo[3];
+  const MedianLanes h01 = hi[0] < hi[1] ? hi[0] : hi[1], h23 = hi[2] < hi[3] ? hi[2] : hi[3];
+  out.below = l01 > l23 ? l01 : l23;
+  out.above = h01 < h23 ? h01 : h23;
 }
 
 /// b = the weighted median of every lane (see the file comment) given the lanes' smallest and
-/// largest values; lanes with `open` clear are left as they are in the result (hi).
+/// largest values and total weight (W(hi), `median_weights`); lanes with `open` clear are left
+/// as they are in the result (hi).
 MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int n, const MedianLanes& lo,
-                                     const MedianLanes& hi, decltype(MedianLanes{} < MedianLanes{}) open) noexcept {
+                                     const MedianLanes& hi, const MedianLanes& total,
+                                     decltype(MedianLanes{} < MedianLanes{}) open) noexcept {
   // a < answer <= b with W(a) < half <= W(b); u: the smallest tap value > a.
   MedianCount c;
-  median_count(c, taps, n, hi);
-  const MedianLanes total = c.weight;
   const MedianLanes half = total * 0.5f;
   MedianLanes u = lo, wa = MedianLanes{} + 0.0f, wb = total;
   b = hi;
@@ -212,22 +217,36 @@ MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int
 /// The tap values of the chunk at (x0, y) and their smallest and largest per lane.
 MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, MedianLanes& lo,
                                      MedianLanes& hi) noexcept {
-  const int r = in.radius;
+  const int r = in.radius, n = (2 * r + 1) * (2 * r + 1);
   int t = 0;
   for (int dy = -r; dy <= r; ++dy) {
     const float* row = in.values + static_cast<std::ptrdiff_t>(y + dy) * in.stride + x0;
-    for (int dx = -r; dx <= r; ++dx, ++t) {
-      median_load(taps.value[t], row + dx);
-      lo = t == 0 ? taps.value[t] : (taps.value[t] < lo ? taps.value[t] : lo);
-      hi = t == 0 ? taps.value[t] : (taps.value[t] > hi ? taps.value[t] : hi);
-    }
+    for (int dx = -r; dx <= r; ++dx, ++t) median_load(taps.value[t], row + dx);
   }
+  // Two running minima and maxima (short dependency chains).
+  MedianLanes a0 = taps.value[0], a1 = a0, b0 = a0, b1 = a0;
+  for (t = 1; t + 2 <= n; t += 2) {
+    const MedianLanes u = taps.value[t], v = taps.value[t + 1];
+    a0 = u < a0 ? u : a0;
+    b0 = u > b0 ? u : b0;
+    a1 = v < a1 ? v : a1;
+    b1 = v > b1 ? v : b1;
+  }
+  if (t < n) {
+    const MedianLanes u = taps.value[t];
+    a0 = u < a0 ? u : a0;
+    b0 = u > b0 ? u : b0;
+  }
+  lo = a0 < a1 ? a0 : a1;
+  hi = b0 > b1 ? b0 : b1;
 }
 
 /// The tap weights of the chunk at (x0, y): the colour weight of the distance to the lane's
-/// pixel x max(confidence, floor); 0 for taps outside the image (confidence < 0).
+/// pixel x max(confidence, floor); 0 for taps outside the image (confidence < 0). total: their
+/// sum in the order of `median_count`, which it equals at any p >= every value.
 template <class Tag>
-MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, Tag tag) noexcept {
+MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, MedianLanes& total,
+                                      Tag tag) noexcept {
   const int r = in.radius;
   const std::ptrdiff_t centre = static_cast<std::ptrdiff_t>(y) * in.stride + x0;
   MedianLaneInts p[3];
@@ -251,6 +270,19 @@ MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, 
       taps.weight[t] = conf < zero ? zero : weight;
     }
   }
+  // Tap t into sum t mod 4, as `median_count`.
+  const int n = t;
+  MedianLanes s0 = zero, s1 = zero, s2 = zero, s3 = zero;
+  for (t = 0; t + 4 <= n; t += 4) {
+    s0 += taps.weight[t];
+    s1 += taps.weight[t + 1];
+    s2 += taps.weight[t + 2];
+    s3 += taps.weight[t + 3];
+  }
+  if (t < n) s0 += taps.weight[t++];
+  if (t < n) s1 += taps.weight[t++];
+  if (t < n) s2 += taps.weight[t++];
+  total = (s0 + s1) + (s2 + s3);
 }
 
 /// Row y of the filter into out[0, width).
@@ -267,9 +299,9 @@ MPR_ALWAYS_INLINE void weighted_median_row_body(const MedianRowInputs& in, int y
     auto open = hi - lo > MedianLanes{} + in.flat;
     for (int l = lanes; l < kMedianChunk; ++l) set_median_lane(open, l, 0);
     if (!median_any(open)) continue;
-    median_weights(in, x0, y, taps, tag);
-    MedianLanes m;
-    median_search(m, taps, n, lo, hi, open);
+    MedianLanes total, m;
+    median_weights(in, x0, y, taps, total, tag);
+    median_search(m, taps, n, lo, hi, total, open);
     for (int l = 0; l < lanes; ++l)
       if (median_lane(open, l)) out[x0 + l] = median_lane(m, l);
   }
