@@ -71,6 +71,9 @@ using MedianLaneInts = int;
 inline constexpr int kMedianChunk = 1;
 #endif
 
+/// A comparison's result: per lane all bits set or none (a bool with one lane).
+using MedianLaneMask = decltype(MedianLanes{} < MedianLanes{});
+
 /// Lane l of a lane vector (or the scalar itself), read and written.
 template <class V>
 MPR_ALWAYS_INLINE auto median_lane(const V& v, int l) noexcept {
@@ -188,12 +191,13 @@ MPR_ALWAYS_INLINE void median_count(MedianCount& out, const MedianTaps& taps, in
 }
 
 /// b = the weighted median of every lane (see the file comment) given the lanes' smallest and
-/// largest values and total weight (W(hi), `median_weights`); lanes with `open` clear are left
+/// largest values and total weight (W(hi), `median_weights`); lanes clear in `lanes` are left
 /// as they are in the result (hi).
 MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int n, const MedianLanes& lo,
                                      const MedianLanes& hi, const MedianLanes& total,
-                                     decltype(MedianLanes{} < MedianLanes{}) open) noexcept {
+                                     const MedianLaneMask& lanes) noexcept {
   // a < answer <= b with W(a) < half <= W(b); u: the smallest tap value > a.
+  MedianLaneMask open = lanes;
   MedianCount c;
   const MedianLanes half = total * 0.5f;
   MedianLanes u = lo, wa = MedianLanes{} + 0.0f, wb = total;
