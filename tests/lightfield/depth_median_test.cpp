@@ -2,6 +2,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
+#include <utility>
+#include <vector>
+
 namespace {
 
 // A 9x7 image split at x = 4.5: black with value 0 on the left, white with value 10 on the right.
@@ -92,4 +100,105 @@ TEST_CASE("weighted median: close values, ranked within one another (hand-worked
   const mpr::Image<mpr::Rgb8> guide(3, 3, mpr::Rgb8{40, 50, 60});
   const mpr::Image<float> out = mpr::weighted_median(values.view(), guide.view(), confidence.view(), {1, 0.16});
   CHECK(out(1, 1) == 10.4f);
+}
+
+namespace {
+
+// The weighted median of the file comment worked out the plain way, in double: the clipped
+// window's values sorted with their weights, summed in ascending order up to half the total.
+// `margin`: how far (relative to the total) the sum just below the answer and the sum at it lie
+// from half; a float computation may pick the neighbouring value only where that is tiny.
+struct Oracle {
+  float value;
+  double margin;
+};
+Oracle oracle_median(const mpr::Image<float>& values, const mpr::Image<mpr::Rgb8>& guide,
+                     const mpr::Image<float>& confidence, int x, int y, int r, double range, double floor) {
+  std::vector<std::pair<float, double>> window;
+  const mpr::Rgb8 p = guide(x, y);
+  for (int v = std::max(0, y - r); v <= std::min(values.height() - 1, y + r); ++v)
+    for (int u = std::max(0, x - r); u <= std::min(values.width() - 1, x + r); ++u) {
+      const mpr::Rgb8 q = guide(u, v);
+      const int d = std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
+      const double w = static_cast<float>(std::exp(-d / 255.0 / range)) * std::max<double>(confidence(u, v), floor);
+      window.emplace_back(values(u, v), w);
+    }
+  std::sort(window.begin(), window.end());
+  double total = 0;
+  for (const auto& e : window) total += e.second;
+  double below = 0;
+  for (std::size_t i = 0; i < window.size();) {
+    const float v = window[i].first;
+    const double before = below;
+    for (; i < window.size() && window[i].first == v; ++i) below += window[i].second;
+    if (below >= 0.5 * total) return {v, std::min(0.5 * total - before, below - 0.5 * total) / total};
+  }
+  return {window.back().first, 0};
+}
+
+} // namespace
+
+TEST_CASE("weighted median: random windows against the sorted-window oracle, every radius and the image edges",
+          "[depth_median]") {
+  // 37 x 23: chunks of pixels that end past the right edge, windows clipped on every side, and
+  // values on a coarse grid (many equal values) or continuous.
+  std::mt19937 rng(46);
+  for (const int r : {1, 2, 3, 5, 7})
+    for (const bool coarse : {true, false}) {
+      const int w = 37, h = 23;
+      mpr::Image<float> values(w, h), confidence(w, h);
+      mpr::Image<mpr::Rgb8> guide(w, h);
+      std::uniform_real_distribution<float> value(0.0f, 20.0f), conf(0.0f, 1.0f);
+      std::uniform_int_distribution<int> code(0, 2); // three colours, far apart and alike
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          values(x, y) = coarse ? std::floor(value(rng) / 4) : value(rng);
+          confidence(x, y) = conf(rng) < 0.1f ? 0.0f : conf(rng);
+          const auto c = static_cast<std::uint8_t>(40 + 60 * code(rng));
+          guide(x, y) = {c, static_cast<std::uint8_t>(c / 2), static_cast<std::uint8_t>(255 - c)};
+        }
+      mpr::WeightedMedianConfig c{r, 0.16};
+      c.flat = 0.5;
+      const mpr::Image<float> out = mpr::weighted_median(values.view(), guide.view(), confidence.view(), c);
+      int checked = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          float lo = values(x, y), hi = lo;
+          for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v)
+            for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u) {
+              lo = std::min(lo, values(u, v));
+              hi = std::max(hi, values(u, v));
+            }
+          if (hi - lo <= 0.5f) {
+            CHECK(out(x, y) == values(x, y));
+            continue;
+          }
+          const Oracle o = oracle_median(values, guide, confidence, x, y, r, 0.16, 0.02);
+          if (o.margin < 1e-5) continue; // a tie within float rounding: either neighbour will do
+          INFO("r " << r << " coarse " << coarse << " at " << x << ", " << y);
+          CHECK(out(x, y) == o.value);
+          ++checked;
+        }
+      CHECK(checked > w * h / 2);
+    }
+}
+
+TEST_CASE("weighted median: views with padded rows give what packed images give", "[depth_median]") {
+  // The values and confidence as the 9 x 7 corner of wider images (rows 13 apart).
+  Step s;
+  for (int y = 0; y < 7; ++y) s.values(4, y) = 10.0f;
+  s.confidence(6, 2) = 0.3f;
+  mpr::Image<float> wide_values(13, 7, -1.0f), wide_confidence(13, 7, 0.5f);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x) {
+      wide_values(x + 4, y) = s.values(x, y);
+      wide_confidence(x + 4, y) = s.confidence(x, y);
+    }
+  const mpr::ImageView<const float> values = wide_values.view().subview(4, 0, 9, 7);
+  const mpr::ImageView<const float> confidence = wide_confidence.view().subview(4, 0, 9, 7);
+  const mpr::Image<float> packed = mpr::weighted_median(s.values.view(), s.guide.view(), s.confidence.view(), {2});
+  const mpr::Image<float> padded = mpr::weighted_median(values, s.guide.view(), confidence, {2});
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x) CHECK(padded(x, y) == packed(x, y));
+  CHECK(padded(4, 3) == 0.0f);
 }
