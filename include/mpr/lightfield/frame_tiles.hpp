@@ -172,7 +172,7 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
   if (!shift) {
     if constexpr (std::is_same_v<typename texel_type::channel_type, std::uint8_t>) {
       if (shared != nullptr &&
-          detail::defer_shared_weights(*shared, c.texels->c, static_cast<std::size_t>(c.width),
+          detail::defer_shared_weights(*shared, c.texels->c, c.linear, static_cast<std::size_t>(c.width),
                                        static_cast<std::size_t>(c.height), static_cast<double>(x0),
                                        static_cast<double>(y0), static_cast<double>(sx), static_cast<double>(sy),
                                        static_cast<std::size_t>(b.first), static_cast<std::size_t>(b.last),

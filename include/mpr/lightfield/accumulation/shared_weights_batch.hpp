@@ -21,6 +21,7 @@
 #include <mpr/lightfield/kernels/resample_tile.hpp>
 #include <mpr/lightfield/kernels/shift_batch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -32,9 +33,12 @@ namespace mpr::detail {
 /// (sized when the first block is taken, so that adding them cannot fail). `blocks` has the
 /// capacity its owner reserves (one per camera); a block is taken only while there is room.
 struct SharedWeightsBatch {
-  /// One camera's block: its texel (jx_c, jy_c) (flat 8-bit codes) and its image's row stride.
+  /// One camera's block: its texel (jx_c, jy_c) (flat 8-bit codes), the same texel's 16-bit
+  /// linear values (`CameraFrameSet::linear16`, laid out as the codes) or nullptr, and its
+  /// image's row stride (in channels).
   struct Block {
     const std::uint8_t* texels = nullptr;
+    const std::uint16_t* linear = nullptr;
     std::ptrdiff_t stride = 0;
   };
   std::vector<Block> blocks;
@@ -46,6 +50,7 @@ struct SharedWeightsBatch {
   std::size_t lines = 0;                    ///< rows of the footprint
   std::vector<float> grid;                  ///< the summed footprint (lines rows of 3 columns channels)
   std::vector<const std::uint8_t*> rows_of; ///< per footprint row: the cameras' codes
+  std::vector<const std::uint16_t*> rows16; ///< ... or their 16-bit linear values
   std::vector<int> iy;                      ///< per block row: its upper footprint row
   std::vector<float> ay;                    ///< ... and its vertical fraction
   ResampleTileWork work;                    ///< of `resample_tile_any`
@@ -58,16 +63,16 @@ inline constexpr double kSharedWeightsTolerance = 1e-3;
 
 /// Takes a camera's block of a tile into `batch` when it shares the batch's weights: the tile's
 /// pixel (i, r) at camera pixel (x0 + sx i, y0 + sy r) of an image of `width` x `height` texels
-/// (flat 8-bit codes at `texels`), the block its pixels [first, last) of rows [r_begin, r_end),
-/// every one of whose texel pairs lies inside the image. The first block taken sets the
+/// (flat 8-bit codes at `texels`; their 16-bit linear values at `linear`, or nullptr), the block its pixels [first,
+/// last) of rows [r_begin, r_end), every one of whose texel pairs lies inside the image. The first block taken sets the
 /// geometry; later ones must cover the same pixels and rows, with the same steps and fractional
 /// offsets (within `kSharedWeightsTolerance` over the block) and the same footprint. False
 /// (nothing taken) otherwise, or when the batch is full or its working memory cannot grow.
 /// Preconditions: first < last, r_begin < r_end, |x0|, |y0| < 1e8.
-[[nodiscard]] inline bool defer_shared_weights(SharedWeightsBatch& batch, const std::uint8_t* texels, std::size_t width,
-                                               std::size_t height, double x0, double y0, double sx, double sy,
-                                               std::size_t first, std::size_t last, std::size_t r_begin,
-                                               std::size_t r_end) noexcept {
+[[nodiscard]] inline bool defer_shared_weights(SharedWeightsBatch& batch, const std::uint8_t* texels,
+                                               const std::uint16_t* linear, std::size_t width, std::size_t height,
+                                               double x0, double y0, double sx, double sy, std::size_t first,
+                                               std::size_t last, std::size_t r_begin, std::size_t r_end) noexcept {
   if (batch.blocks.size() >= batch.blocks.capacity() || !(sx > 0 && sy > 0)) return false;
   // The block's first texel and fractional offsets, snapped to a whole texel within 1e-4.
   const auto split = [](double v, long& j, double& f) noexcept {
@@ -91,6 +96,7 @@ inline constexpr double kSharedWeightsTolerance = 1e-3;
     try {
       if (batch.grid.size() < 3 * columns * lines) batch.grid.resize(3 * columns * lines);
       if (batch.rows_of.size() < batch.blocks.capacity()) batch.rows_of.resize(batch.blocks.capacity());
+      if (batch.rows16.size() < batch.blocks.capacity()) batch.rows16.resize(batch.blocks.capacity());
       if (batch.iy.size() < rows) {
         batch.iy.resize(rows);
         batch.ay.resize(rows);
@@ -110,13 +116,16 @@ inline constexpr double kSharedWeightsTolerance = 1e-3;
     if (!same) return false;
   }
   const std::ptrdiff_t stride = 3 * static_cast<std::ptrdiff_t>(width);
-  batch.blocks.push_back({texels + stride * jy + 3 * jx, stride});
+  const std::ptrdiff_t at = stride * jy + 3 * jx;
+  batch.blocks.push_back({texels + at, linear != nullptr ? linear + at : nullptr, stride});
   return true;
 }
 
 /// Adds the blocks of `batch` to the tile's accumulators (tile row r's at acc + r `acc_stride`,
 /// pixel i's channels at 3 i), `scale` and `lut` those of the texel type, and empties it: the
-/// cameras' decoded codes summed over the footprint (`add_code_rows`), the sums resampled at
+/// cameras' decoded codes summed over the footprint (`add_code_rows`; below the VBMI level, when
+/// every block has its 16-bit linear values, those summed by `kernels::sum_linear_rows_hwy`: the
+/// same sums without a decode), the sums resampled at
 /// (fx + sx i, fy + sy r) over the block and blended into its rows (`resample_tile_any`).
 inline void add_shared_weights(SharedWeightsBatch& batch, const std::uint16_t* lut, float scale, float* acc,
                                std::ptrdiff_t acc_stride, SimdLevel level = dispatch_level()) noexcept {
@@ -125,9 +134,21 @@ inline void add_shared_weights(SharedWeightsBatch& batch, const std::uint16_t* l
   const std::size_t m = 3 * batch.columns, rows = batch.r_end - batch.r_begin;
   float* grid = batch.grid.data();
   std::fill(grid, grid + m * batch.lines, 0.0f);
+  bool linear = false;
+#if MPR_HAVE_HWY
+  linear = level < SimdLevel::avx512vbmi && std::all_of(batch.blocks.begin(), batch.blocks.end(),
+                                                        [](const SharedWeightsBatch::Block& b) { return b.linear; });
+#endif
   for (std::size_t g = 0; g < batch.lines; ++g) {
-    for (std::size_t c = 0; c < k; ++c)
-      batch.rows_of[c] = batch.blocks[c].texels + static_cast<std::ptrdiff_t>(g) * batch.blocks[c].stride;
+    const std::ptrdiff_t down = static_cast<std::ptrdiff_t>(g);
+#if MPR_HAVE_HWY
+    if (linear) {
+      for (std::size_t c = 0; c < k; ++c) batch.rows16[c] = batch.blocks[c].linear + down * batch.blocks[c].stride;
+      kernels::sum_linear_rows_hwy(batch.rows16.data(), k, scale, grid + g * m, m, level);
+      continue;
+    }
+#endif
+    for (std::size_t c = 0; c < k; ++c) batch.rows_of[c] = batch.blocks[c].texels + down * batch.blocks[c].stride;
     add_code_rows(batch.rows_of.data(), k, lut, scale, grid + g * m, m, level);
   }
   for (std::size_t r = 0; r < rows; ++r) {
