@@ -165,7 +165,7 @@ template <std::floating_point T, class Px>
   ws.carry.resize(static_cast<std::size_t>(kSweepTrackPlanes) * static_cast<std::size_t>(width));
   const std::size_t w = static_cast<std::size_t>(width);
   // What a row's cost at a depth reads (`sweep_cost_row`).
-  const SweepRowInputs inputs{&rt, nt.data(), M.data(), A.data(), m, best, tau, level};
+  const SweepRowInputs inputs{&rt, nt.data(), M.data(), A.data(), m, best, tau, level, config.integer_costs};
   // One worker: the blocks in order, each row pulled towards the one above (the forward
   // vertical pass) while in cache; more: blocks in parallel, the forward pass down strips.
   const bool in_order = resolve_thread_count(threads, blocks) == 1;
@@ -294,7 +294,7 @@ template <std::floating_point T, class Px>
 }
 
 /// The working memory, in bytes, of sweeping camera `camera` of `frames` with `config`: its
-/// buffers and its neighbours' images as planar floats (`detail::SweepWorkspace`) plus the
+/// buffers and its neighbours' images as planar floats and codes (`detail::SweepWorkspace`) plus the
 /// returned depth and confidence maps. Bounded by `config.memory_limit`. Throws as
 /// `estimate_depth`.
 template <std::floating_point T, class Px>
@@ -328,7 +328,7 @@ template <std::floating_point T, class Px>
 
 /// The estimated depth maps of every camera of `frames` (see `estimate_depth`), in camera order,
 /// for `CameraFrameSet::with_depth`. The cameras are shared among the `config.threads` workers
-/// (each worker's buffers take about 90 + 12 x neighbours bytes per pixel of a camera, 265 MB for Chess, and no
+/// (each worker's buffers take about 96 + 18 x neighbours bytes per pixel of a camera, 350 MB for Chess, and no
 /// more workers run at once than `config.memory_limit` holds); with fewer cameras than workers,
 /// each camera's rows are shared too. Throws as `estimate_depth`, before any work.
 template <std::floating_point T, class Px>

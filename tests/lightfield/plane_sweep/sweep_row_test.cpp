@@ -71,7 +71,7 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
   // best. Every row of the reference, at every SIMD level.
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  int fused_partial = 0, chunked = 0, cases = 0;
+  int fused_partial = 0, chunked = 0, cases = 0, codes = 0;
   for (int trial = 0; trial < 320; ++trial) {
     const int width = 1 + static_cast<int>(unit(rng) * 60), height = 2 + static_cast<int>(unit(rng) * 5);
     mpr::detail::SweepPlanes reference;
@@ -98,21 +98,31 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
     const int best = 1 + static_cast<int>(unit(rng) * static_cast<float>(m));
     const float tau = 0.2f + unit(rng);
     mpr_test::for_each_simd_level([&](SimdLevel level) {
-      const mpr::detail::SweepRowInputs in{&reference, neighbours.data(), M.data(), A.data(), m, best, tau, level};
+      mpr::detail::SweepRowInputs in{&reference, neighbours.data(), M.data(), A.data(), m, best, tau, level};
       for (int y = 0; y < height; ++y) {
+        in.codes = false;
         const std::vector<float> expected = per_neighbour(in, y, d);
         std::vector<float> keep(static_cast<std::size_t>(best * width), -7.0f), value(static_cast<std::size_t>(width));
-        std::vector<float> out(static_cast<std::size_t>(width) + 1, -1.0f);
+        std::vector<float> out(static_cast<std::size_t>(width) + 1, -1.0f), coded(out);
         float* k[32];
         for (int i = 0; i < best; ++i) k[i] = keep.data() + static_cast<std::size_t>(i * width);
         mpr::detail::sweep_cost_row(in, y, d, out.data(), k, value.data());
         INFO("trial " << trial << " width " << width << " m " << m << " best " << best << " y " << y);
         // Bit for bit, but where the chunked kernel drops the worst m - best (< best) costs from
         // the sum instead of summing the best: the same value up to the sums' rounding.
-        float worst = 0;
+        float worst = 0, worst_coded = 0;
         for (std::size_t x = 0; x < expected.size(); ++x) worst = std::max(worst, std::abs(out[x] - expected[x]));
         CHECK(worst <= 1e-5f);
         CHECK(out.back() == -1.0f); // nothing past the row
+        // On 16-bit codes where the chunked kernel takes the row: within the weights' rounding to
+        // 1/256 (kernels/sweep_code_kernels_test.cpp) of the float values.
+        in.codes = true;
+        mpr::detail::sweep_cost_row(in, y, d, coded.data(), k, value.data());
+        for (std::size_t x = 0; x < expected.size(); ++x)
+          worst_coded = std::max(worst_coded, std::abs(coded[x] - expected[x]));
+        CHECK(worst_coded <= 3 * 2.0f / 256 + 3.0f / 8160);
+        CHECK(coded.back() == -1.0f);
+        codes += worst_coded > 1e-5f;
         ++cases;
         if (level == SimdLevel::portable && m > mpr::detail::kSweepShiftMeanNeighbours &&
             best <= mpr::detail::kSweepSeenBest) {
@@ -140,6 +150,7 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
   CHECK(cases > 500);
   CHECK(fused_partial > 20); // the split into edge segments and fused core was exercised
   CHECK(chunked > 50);       // the chunked kernel of many translated rows was exercised
+  CHECK(codes > 50);         // and its 16-bit twin
 }
 
 TEST_CASE("a neighbour row at extreme depths and offsets reads inside both images", "[sweep_row]") {

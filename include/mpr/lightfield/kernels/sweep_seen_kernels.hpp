@@ -90,24 +90,28 @@ MPR_ALWAYS_INLINE void sweep_shift_drop_seen_body(const float* const ref[3], con
     SweepLanes q[3] = {};
     if (len == W)
       for (int c = 0; c < 3; ++c) sweep_lanes(q[c], 1.0f, ref[c] + x0);
-    SweepLanes drop[K > 0 ? K : 1];
-    for (int i = 0; i < K; ++i) drop[i] = SweepLanes{}; // costs are >= 0
+    // The costs are >= 0 and not NaN, so their bits order as unsigned integers as the floats
+    // do: the largest are kept by integer min and max (one instruction each, on the integer
+    // units, where a float select takes a compare and two blends).
+    SweepLaneBits drop[K > 0 ? K : 1];
+    for (int i = 0; i < K; ++i) drop[i] = SweepLaneBits{}; // the bits of 0.0f
     SweepLanes sum{};
     for (int j = 0; j < m; ++j) {
       const SweepSeenRow& r = rows[j];
       const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
-      SweepLanes v = t;
-      if (lo < hi) sweep_seen_cost(v, q, ref, r, tau, x0, lo, hi);
-      sum += v;
+      SweepLanes c = t;
+      if (lo < hi) sweep_seen_cost(c, q, ref, r, tau, x0, lo, hi);
+      sum += c;
+      SweepLaneBits v = (SweepLaneBits)c;
 #pragma GCC unroll 16
       for (int i = 0; i < K; ++i) {
-        const SweepLanes k = drop[i];
+        const SweepLaneBits k = drop[i];
         drop[i] = v < k ? k : v;
         v = v < k ? v : k;
       }
     }
 #pragma GCC unroll 16
-    for (int i = 0; i < K; ++i) sum -= drop[i];
+    for (int i = 0; i < K; ++i) sum -= (SweepLanes)drop[i];
     SweepLanes s = sum / static_cast<float>(m - K);
     s = s < 0 ? SweepLanes{} : s;
     if (len == W)

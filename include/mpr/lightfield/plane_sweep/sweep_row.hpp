@@ -7,20 +7,24 @@
 
 #include <mpr/core/simd.hpp>
 #include <mpr/core/vec.hpp>
+#include <mpr/lightfield/kernels/sweep_code_kernels.hpp>
 #include <mpr/lightfield/kernels/sweep_kernels.hpp>
 #include <mpr/lightfield/kernels/sweep_seen_kernels.hpp>
 #include <mpr/lightfield/plane_sweep/sweep_workspace.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 namespace mpr::detail {
 
 /// What `sweep_cost_row` reads: the reference image, the neighbours' images and the maps from
 /// reference pixels to neighbour pixels (neighbour j sees reference pixel p at depth d at the
 /// homogeneous point A[j] + d M[j] p), the neighbours (1..32) and kept costs (1..m), the
-/// truncation and the kernels' instruction set.
+/// truncation and the kernels' instruction set; `codes`: rows of many translated neighbours take
+/// the 16-bit kernel (kernels/sweep_code_kernels.hpp) where it fits, else the float one.
 struct SweepRowInputs {
   const SweepPlanes* reference;
   const SweepPlanes* neighbours;
@@ -29,6 +33,7 @@ struct SweepRowInputs {
   int m, best;
   float tau;
   SimdLevel level;
+  bool codes = true;
 };
 
 /// How neighbour j sees reference row y at depth d: not at all, as a translated row over the
@@ -39,6 +44,20 @@ struct SweepNeighbourRow {
   int xb = 0, xe = 0, s = 0, v0 = 0, v1 = 0;
   float fu = 0, fv = 0;
   SweepProjectiveRow row{};
+
+  /// The translated row on 16-bit codes from reference pixel xb on (kind shift).
+  [[nodiscard]] SweepCodeRow coded(const SweepPlanes& image) const noexcept {
+    SweepCodeRow r{};
+    const std::array<std::uint16_t, 4> w = sweep_code_weights(fu, fv);
+    for (int i = 0; i < 4; ++i) r.w[i] = w[static_cast<std::size_t>(i)];
+    for (int c = 0; c < 3; ++c) {
+      r.top[c] = image.channel_words(c) + static_cast<std::ptrdiff_t>(v0) * image.stride + s + xb;
+      r.bottom[c] = image.channel_words(c) + static_cast<std::ptrdiff_t>(v1) * image.stride + s + xb;
+    }
+    r.xb = xb;
+    r.xe = xe;
+    return r;
+  }
 
   /// The translated row from reference pixel `from` on (kind shift, from in [xb, xe)).
   [[nodiscard]] SweepShiftRow shifted(const SweepPlanes& image, int from) const noexcept {
@@ -124,8 +143,10 @@ struct SweepNeighbourRow {
 /// pixels all of them see take the fused kernel (`sweep_shift_mean`: the same values in one
 /// pass), the others the kernels neighbour by neighbour; where no neighbour is projective
 /// otherwise (more neighbours, as the row-and-column selection gives), the whole row takes the
-/// chunked kernel `sweep_shift_mean_seen` (the same values again); projective rows go neighbour
-/// by neighbour.
+/// chunked kernel `sweep_shift_mean_seen` (the same values again), or with `in.codes` where its
+/// sums fit (`sweep_code_fits`: the defaults, up to 26 neighbours at truncation 0.3) its 16-bit
+/// twin `sweep_code_mean_seen` (the weights rounded to 1/256, the costs to 1/32 code: within
+/// about 1e-3 of the float values); projective rows go neighbour by neighbour.
 inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out, float* const* keep,
                            float* value) noexcept {
   const int width = in.reference->width, best = in.best;
@@ -149,7 +170,18 @@ inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out,
   }
   if (!any_projective && best <= kSweepSeenBest && !(all_shift && cb < ce)) {
     // Translated rows or unseen ones, more than the fused kernel of the common pixels takes (or
-    // no pixel seen by all): the whole row in chunks, each neighbour over the pixels it sees.
+    // no pixel seen by all): the whole row in chunks, each neighbour over the pixels it sees, on
+    // 16-bit codes where their sums fit.
+    if (in.codes && sweep_code_fits(in.m, best, tau)) {
+      SweepCodeRow coded[32];
+      int count = 0;
+      for (int j = 0; j < in.m; ++j)
+        if (plan[j].kind == SweepNeighbourRow::shift) coded[count++] = plan[j].coded(in.neighbours[j]);
+      const std::uint16_t* ref_words[3];
+      for (int c = 0; c < 3; ++c)
+        ref_words[c] = in.reference->channel_words(c) + static_cast<std::ptrdiff_t>(y) * in.reference->stride;
+      return sweep_code_mean_seen(ref_words, coded, count, best, tau, out, width, level);
+    }
     SweepSeenRow seen[32];
     int count = 0;
     for (int j = 0; j < in.m; ++j)

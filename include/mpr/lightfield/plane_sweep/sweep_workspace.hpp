@@ -1,17 +1,19 @@
 #pragma once
 /// \file
 /// The working memory of the plane sweep of `estimate_depth` (lightfield/depth_estimation.hpp):
-/// images as planar float channels, the buffers one worker reuses from camera to camera, and
+/// images as planar float channels and 16-bit codes, the buffers one worker reuses from camera to camera, and
 /// their size in bytes (which `PlaneSweepConfig::memory_limit` bounds).
 
 #include <mpr/core/color.hpp>
 #include <mpr/core/error.hpp>
 #include <mpr/core/image.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/kernels/sweep_code_kernels.hpp>
 #include <mpr/lightfield/kernels/sweep_kernels.hpp>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <type_traits>
@@ -36,10 +38,16 @@ inline constexpr std::ptrdiff_t kSweepPad = 16;
 struct SweepPlanes {
   std::vector<float> data;
   std::vector<Rgb8> codes;
+  /// The same channels as 16-bit codes (`stride` apart, kSweepCodePad zeros before the first
+  /// and after the last), for the 16-bit kernel (kernels/sweep_code_kernels.hpp).
+  std::vector<std::uint16_t> words;
   std::ptrdiff_t stride = 0;
   int width = 0, height = 0;
   [[nodiscard]] const float* channel(int c) const noexcept {
     return data.data() + kSweepPad + static_cast<std::ptrdiff_t>(c) * stride * height;
+  }
+  [[nodiscard]] const std::uint16_t* channel_words(int c) const noexcept {
+    return words.data() + kSweepCodePad + static_cast<std::ptrdiff_t>(c) * stride * height;
   }
   [[nodiscard]] SweepImage view() const noexcept {
     return {{channel(0), channel(1), channel(2)}, stride, width, height};
@@ -54,7 +62,9 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
   p.width = image.width();
   p.height = image.height();
   p.stride = sweep_stride(p.width);
-  p.data.assign(3 * static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height) + kSweepPad, 0.0f);
+  const std::size_t plane = static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height);
+  p.data.assign(3 * plane + kSweepPad, 0.0f);
+  p.words.assign(3 * plane + 2 * kSweepCodePad, 0);
   if (keep_codes) p.codes.resize(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height));
   float* out[3] = {p.data.data() + kSweepPad, p.data.data() + kSweepPad + p.stride * p.height,
                    p.data.data() + kSweepPad + 2 * p.stride * p.height};
@@ -69,6 +79,10 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
       out[0][k] = unit[c.r];
       out[1][k] = unit[c.g];
       out[2][k] = unit[c.b];
+      std::uint16_t* words = p.words.data() + kSweepCodePad + k;
+      words[0] = c.r;
+      words[plane] = c.g;
+      words[2 * plane] = c.b;
       if (keep_codes)
         p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
     }
@@ -76,8 +90,9 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
 
 /// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
 /// are not page-faulted in again for every camera), all sized before the parallel parts start
-/// (nothing is allocated inside a worker): about 130 bytes per pixel with four neighbours
-/// (planar float images 60, costs of 8 planes 32, argmin state 24, feedback 8); see
+/// (nothing is allocated inside a worker): about 160 bytes per pixel with four neighbours
+/// (planar float images 60, the same as 16-bit codes 30, costs of 8 planes 32, argmin state 24,
+/// feedback 8); see
 /// `sweep_workspace_bytes`.
 struct SweepWorkspace {
   SweepPlanes rt;
@@ -94,8 +109,9 @@ struct SweepWorkspace {
 [[nodiscard]] inline double sweep_workspace_bytes(int width, int height,
                                                   const std::vector<std::pair<int, int>>& neighbour_pixels,
                                                   int best) noexcept {
-  const auto planes = [](int w, int h) {
-    return 4.0 * (3.0 * static_cast<double>(sweep_stride(w)) * h + static_cast<double>(kSweepPad));
+  const auto planes = [](int w, int h) { // float channels and 16-bit codes
+    const double plane = 3.0 * static_cast<double>(sweep_stride(w)) * h;
+    return 4.0 * (plane + static_cast<double>(kSweepPad)) + 2.0 * (plane + 2.0 * static_cast<double>(kSweepCodePad));
   };
   const double n = static_cast<double>(width) * height, w = width;
   const int blocks = (height + kSweepLockstepRows - 1) / kSweepLockstepRows;
