@@ -10,6 +10,7 @@
 #include <mpr/core/image.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/geometry/plane.hpp>
+#include <mpr/lightfield/frame_linear16.hpp>
 
 #include <algorithm>
 #include <array>
@@ -437,39 +438,17 @@ private:
     return out;
   }
 
-  using linear16_vector = std::vector<std::uint16_t, detail::HugePageAllocator<std::uint16_t>>;
+  using linear16_vector = detail::Linear16Vector;
 
-  // Every image's channels as 16-bit linear values (`linear16`), from its texels `at`, in one
-  // buffer, each image from a multiple of 32 values (64 bytes) and followed by at least 32;
-  // `out[i]` receives image i's first value. Null (and `out` empty) for linear frames.
+  // `detail::linear16_copy` of 8-bit frames; null (and `out` empty) for linear frames.
   [[nodiscard]] static std::shared_ptr<const linear16_vector>
   decode_linear16(const std::vector<std::shared_ptr<const Image<Px>>>& images, const std::vector<const texel_type*>& at,
                   std::vector<const std::uint16_t*>& out) {
     out.clear();
-    if constexpr (!std::is_same_v<Px, Rgb8>) {
+    if constexpr (std::is_same_v<Px, Rgb8>)
+      return detail::linear16_copy(images, at, Srgb8Texel::linear16(), out);
+    else
       return nullptr;
-    } else {
-      constexpr std::size_t kAlign = 32;
-      std::vector<std::size_t> offsets(images.size(), 0);
-      std::size_t total = 0;
-      for (std::size_t i = 0; i < images.size(); ++i) {
-        offsets[i] = total;
-        const std::size_t n =
-            3 * static_cast<std::size_t>(images[i]->width()) * static_cast<std::size_t>(images[i]->height());
-        total += (n + kAlign) / kAlign * kAlign + kAlign;
-      }
-      auto buffer = std::make_shared<linear16_vector>(total);
-      const std::uint16_t* lut = Srgb8Texel::linear16();
-      for (std::size_t i = 0; i < images.size(); ++i) {
-        std::uint16_t* v = buffer->data() + offsets[i];
-        const std::uint8_t* codes = at[i]->c;
-        const std::size_t n =
-            3 * static_cast<std::size_t>(images[i]->width()) * static_cast<std::size_t>(images[i]->height());
-        for (std::size_t k = 0; k < n; ++k) v[k] = lut[codes[k]];
-        out.push_back(v);
-      }
-      return buffer;
-    }
   }
 
   std::vector<camera_type> cameras_;
