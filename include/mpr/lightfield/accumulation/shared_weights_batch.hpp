@@ -134,10 +134,10 @@ inline void add_shared_weights(SharedWeightsBatch& batch, const std::uint16_t* l
   const std::size_t m = 3 * batch.columns, rows = batch.r_end - batch.r_begin;
   float* grid = batch.grid.data();
   std::fill(grid, grid + m * batch.lines, 0.0f);
-  bool linear = false;
 #if MPR_HAVE_HWY
-  linear = level < SimdLevel::avx512vbmi && std::all_of(batch.blocks.begin(), batch.blocks.end(),
-                                                        [](const SharedWeightsBatch::Block& b) { return b.linear; });
+  const bool linear =
+      level < SimdLevel::avx512vbmi && std::all_of(batch.blocks.begin(), batch.blocks.end(),
+                                                   [](const SharedWeightsBatch::Block& b) { return b.linear; });
 #endif
   for (std::size_t g = 0; g < batch.lines; ++g) {
     const std::ptrdiff_t down = static_cast<std::ptrdiff_t>(g);
