@@ -32,13 +32,14 @@ int main(int argc, char** argv) try {
   const mpr::PlanarSurface<T> plane = centre.image_plane(zf);
   const int w = centre.width(), h = centre.height();
 
-  const auto save = [&](const char* name, const mpr::PlanarSurface<T>& surface, const mpr::GlcSelector<T>& glc,
-                        int width, int height) {
+  // `dir`: clang before 16 does not capture a structured binding (C++20 allows it).
+  const auto save = [&, &dir = out](const char* name, const mpr::PlanarSurface<T>& surface,
+                                    const mpr::GlcSelector<T>& glc, int width, int height) {
     const mpr::Renderer renderer(surface, glc, sampler);
     mpr::Image<mpr::Rgb8> image(width, height);
     renderer.render(image.view(), mpr::Region(0, 0, width, height));
-    mpr::write_png(out / name, image);
-    report(out / name);
+    mpr::write_png(dir / name, image);
+    report(dir / name);
   };
 
   const mpr::Vec3<T> o = mpr::Vec3<T>::Zero();

@@ -48,10 +48,11 @@ int main(int argc, char** argv) try {
     const mpr::GlcSelector<T> glc = mpr::pinhole_glc(centre, plane);
     const mpr::Region region(0, 0, w, h);
     mpr::Image<mpr::Rgb8> image(w, h);
-    const auto save = [&](const char* name, const auto& sampler) {
+    // `dir`: clang before 16 does not capture a structured binding (C++20 allows it).
+    const auto save = [&, &dir = out](const char* name, const auto& sampler) {
       const mpr::Renderer renderer(plane, glc, sampler);
       const double s = seconds([&] { renderer.render(image.view(), region); });
-      const auto path = out / ("refocus_" + std::string(name) + "_" + std::to_string(static_cast<int>(depth)) + ".png");
+      const auto path = dir / ("refocus_" + std::string(name) + "_" + std::to_string(static_cast<int>(depth)) + ".png");
       mpr::write_png(path, image);
       std::printf("%-18s depth %5.0f: %7.1f ms  ", name, static_cast<double>(depth), 1e3 * s);
       report(path);
