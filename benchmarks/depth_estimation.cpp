@@ -98,7 +98,7 @@ void classroom_accuracy(bool quick, std::vector<std::pair<std::string, mpr::Plan
     if (quick) sweep.planes = 16;
     sweep.threads = 2;
     mpr::DepthEstimate e;
-    const double s = seconds([&] { e = mpr::estimate_depth(array.frames, camera, sweep); });
+    const double s = seconds([&, &config = sweep] { e = mpr::estimate_depth(array.frames, camera, config); });
     std::vector<double> all, textured, signed_textured;
     int within1 = 0, within5 = 0;
     for (int y = 0; y < h; ++y)

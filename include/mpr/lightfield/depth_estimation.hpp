@@ -118,8 +118,8 @@ template <std::floating_point T, class Px>
   // over channels of |code difference|, 0..765, through a table).
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   std::vector<float>&ax = ws.ax, &ay = ws.ay;
-  ax.assign(n, 0.0f);
-  ay.assign(n, 0.0f);
+  ax.resize(n);
+  ay.resize(n);
   {
     const double sigma = std::max(config.spatial, 1e-6);
     const double base = std::exp(-std::sqrt(2.0) / sigma), ratio = sigma / config.range;
@@ -132,10 +132,11 @@ template <std::floating_point T, class Px>
       const Rgb8 p = rt.codes[a], q = rt.codes[b];
       return std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
     };
+    // No link into the first column (ax) or the first row (ay).
     for (std::size_t k = 0, y = 0; y < static_cast<std::size_t>(height); ++y)
       for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x, ++k) {
-        if (x > 0) ax[k] = table[diff(k, k - 1)];
-        if (y > 0) ay[k] = table[diff(k, k - static_cast<std::size_t>(width))];
+        ax[k] = x > 0 ? table[diff(k, k - 1)] : 0.0f;
+        ay[k] = y > 0 ? table[diff(k, k - static_cast<std::size_t>(width))] : 0.0f;
       }
   }
 
@@ -145,10 +146,10 @@ template <std::floating_point T, class Px>
   std::vector<float>&costs = ws.costs, &best_cost = ws.best_cost, &sum = ws.sum, &left = ws.left, &right = ws.right,
   &previous = ws.previous;
   costs.resize(static_cast<std::size_t>(batch) * n);
-  best_cost.assign(n, std::numeric_limits<float>::infinity());
-  for (std::vector<float>* v : {&sum, &left, &right, &previous}) v->assign(n, 0.0f);
+  // Not cleared: the first batch's `sweep_track` writes the argmin state without reading it.
+  for (std::vector<float>* v : {&best_cost, &sum, &left, &right, &previous}) v->resize(n);
   std::vector<int>& best_plane = ws.best_plane;
-  best_plane.assign(n, 0);
+  best_plane.resize(n);
   const double inv_near = 1 / config.near, inv_far = 1 / config.far;
   const auto depth_of = [&](double index) {
     return 1 / (inv_near + (inv_far - inv_near) * index / static_cast<double>(config.planes - 1));

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -325,8 +326,10 @@ TEST_CASE("the argmin bookkeeping tracks the cheapest plane and its neighbours' 
     }
   CHECK(best_plane[3] == 2);
   mpr_test::for_each_simd_level([&](SimdLevel level) {
-    std::vector<float> bc(n, INFINITY), l(n, 0), r(n, 0), pr(n, 0), s(n, 0);
-    std::vector<int> bp(n, 0);
+    // The state starts as garbage: the first batch (plane 0) writes it without reading it.
+    const float garbage = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> bc(n, garbage), l(n, garbage), r(n, garbage), pr(n, garbage), s(n, garbage);
+    std::vector<int> bp(n, -7);
     // The planes in batches of 8, 4, 3, 1 and 1 (counts the kernel takes), `stride` apart.
     const std::size_t stride = n + 3;
     int p = 0;

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 
 namespace mpr::detail {
 
@@ -293,15 +294,26 @@ struct SweepTrackRow {
 inline constexpr int kSweepTrackPlanes = 8;
 
 /// The argmin bookkeeping of one row segment of n pixels for the K planes plane0, plane0 + 1,
-/// ... (plane i's costs at c + i stride), in plane order: the state is read and written once.
+/// ... (plane i's costs at c + i stride), in plane order: the state is read and written once;
+/// for plane0 = 0 it is only written (the start: no best cost yet, sums 0), so the caller need
+/// not clear it.
 template <int K>
 MPR_ALWAYS_INLINE void
 sweep_track_body(const float* MPR_RESTRICT c, std::ptrdiff_t stride, float* MPR_RESTRICT best_cost,
                  int* MPR_RESTRICT best_plane, float* MPR_RESTRICT left, float* MPR_RESTRICT right,
                  float* MPR_RESTRICT previous, float* MPR_RESTRICT sum, int plane0, std::size_t n) noexcept {
+  const bool start = plane0 == 0;
   for (std::size_t x = 0; x < n; ++x) {
-    float bc = best_cost[x], l = left[x], r = right[x], p = previous[x], s = sum[x];
-    int b = best_plane[x];
+    float bc = std::numeric_limits<float>::infinity(), l = 0, r = 0, p = 0, s = 0;
+    int b = 0;
+    if (!start) {
+      bc = best_cost[x];
+      l = left[x];
+      r = right[x];
+      p = previous[x];
+      s = sum[x];
+      b = best_plane[x];
+    }
 #pragma GCC unroll 8
     for (int i = 0; i < K; ++i) {
       const int plane = plane0 + i;
