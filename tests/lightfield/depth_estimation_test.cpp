@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <vector>
 
 namespace {
@@ -379,6 +380,42 @@ TEMPLATE_TEST_CASE("a plane sweep recovers the depth of a tilted plane pixel by 
   CHECK(farthest - nearest > 2.0); // a constant map would be off by 20% at the ends
   CHECK(median < 0.005);
   CHECK(p90 < 0.01);
+}
+
+TEST_CASE("a workspace reused from camera to camera keeps the neighbours it holds and gives a fresh one's maps",
+          "[depth_estimation]") {
+  const mpr::CameraFrameSet<float> frames = textured_plane_grid<float>(48, 36);
+  const mpr::PlaneSweepConfig config = sweep_2_to_20(16, 1);
+  mpr::detail::SweepWorkspace reused;
+  std::map<std::size_t, const float*> held; // camera -> its planes' buffer after the last sweep
+  int moved = 0;
+  for (const std::size_t camera : {4, 3, 5, 0, 8, 4, 1}) {
+    INFO("camera " << camera);
+    const std::vector<std::size_t> order = mpr::detail::sweep_neighbours(frames, camera, config);
+    const mpr::DepthEstimate a = mpr::detail::plane_sweep(frames, camera, order, config, 1, reused);
+    mpr::detail::SweepWorkspace fresh;
+    const mpr::DepthEstimate b = mpr::detail::plane_sweep(frames, camera, order, config, 1, fresh);
+    REQUIRE(reused.nt.size() == order.size());
+    REQUIRE(reused.nt_camera.size() == order.size());
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      CHECK(reused.nt_camera[j] == order[j]);
+      CHECK(reused.nt[j].data == fresh.nt[j].data);
+      CHECK(reused.nt[j].words == fresh.nt[j].words);
+      // A camera held before keeps its buffer (moved, not converted again).
+      const auto before = held.find(order[j]);
+      if (before != held.end()) {
+        CHECK(reused.nt[j].data.data() == before->second);
+        moved += reused.nt[j].data.data() == before->second;
+      }
+    }
+    held.clear();
+    for (std::size_t j = 0; j < order.size(); ++j) held[order[j]] = reused.nt[j].data.data();
+    int differ = 0;
+    for (int y = 0; y < 36; ++y)
+      for (int x = 0; x < 48; ++x) differ += a.depth(x, y) != b.depth(x, y);
+    CHECK(differ == 0);
+  }
+  CHECK(moved >= 6);
 }
 
 TEST_CASE("extreme plane sweep settings stay finite: a huge truncation acts as 3, a tiny range cuts every "

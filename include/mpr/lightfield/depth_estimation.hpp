@@ -87,6 +87,36 @@ template <std::floating_point T, class Px>
   return order;
 }
 
+/// `ws.nt[j]` = the planes of camera order[j] (`sweep_planes`), for j < order.size(): a camera
+/// the workspace already holds from the previous sweep is moved into place, not converted again
+/// (neighbouring cameras of an array share most of their neighbours).
+template <std::floating_point T, class Px>
+void sweep_neighbour_planes(const CameraFrameSet<T, Px>& frames, const std::vector<std::size_t>& order,
+                            SweepWorkspace& ws) {
+  const std::size_t m = order.size(), none = std::numeric_limits<std::size_t>::max();
+  ws.nt.resize(std::max(ws.nt.size(), m));
+  ws.nt_camera.resize(ws.nt.size(), none);
+  // First every camera already held into its slot, then the others converted: a slot's old
+  // camera stays findable until every held camera is placed.
+  std::vector<bool> placed(ws.nt.size(), false);
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t i = 0; i < ws.nt.size(); ++i)
+      if (!placed[i] && ws.nt_camera[i] == order[j]) {
+        std::swap(ws.nt[i], ws.nt[j]);
+        std::swap(ws.nt_camera[i], ws.nt_camera[j]);
+        placed[j] = true; // slot j was not placed before (nor is slot i, now holding j's old camera)
+        break;
+      }
+  for (std::size_t j = 0; j < m; ++j)
+    if (!placed[j]) {
+      ws.nt_camera[j] = none; // until converted (an exception leaves no stale name)
+      sweep_planes(frames.image(order[j]), false, ws.nt[j]);
+      ws.nt_camera[j] = order[j];
+    }
+  ws.nt.resize(m);
+  ws.nt_camera.resize(m);
+}
+
 /// The plane sweep of `estimate_depth` for a checked config and neighbour list, on `threads`
 /// workers (rows of a plane, then column strips).
 template <std::floating_point T, class Px>
@@ -101,8 +131,7 @@ template <std::floating_point T, class Px>
   // bright), as planar float channels, for the camera and its neighbours.
   const SweepPlanes& rt = ws.rt;
   sweep_planes(frames.image(camera), true, ws.rt);
-  ws.nt.resize(order.size());
-  for (std::size_t j = 0; j < order.size(); ++j) sweep_planes(frames.image(order[j]), false, ws.nt[j]);
+  sweep_neighbour_planes(frames, order, ws);
   const std::vector<SweepPlanes>& nt = ws.nt;
 
   // Neighbour j sees pixel p of the reference at depth d at h = A_j + d M_j p (homogeneous).

@@ -97,6 +97,7 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
 struct SweepWorkspace {
   SweepPlanes rt;
   std::vector<SweepPlanes> nt;
+  std::vector<std::size_t> nt_camera; // the camera each of `nt` holds (`sweep_neighbour_planes`)
   std::vector<float> ax, ay, costs, best_cost, sum, left, right, previous;
   std::vector<int> best_plane;
   std::vector<float> keep;  // per block of rows: best + 1 cost rows (`plane_sweep`)
