@@ -45,7 +45,10 @@ struct Rng {
   }
   template <class T>
   mpr::Vec3<T> vec(double lo, double hi) {
-    return mpr::Vec3<T>(T(uniform(lo, hi)), T(uniform(lo, hi)), T(uniform(lo, hi)));
+    // The draws in statements of their own: the order of a call's arguments is unspecified and
+    // differs between compilers (GCC: last first), which would give each compiler other samples.
+    const double z = uniform(lo, hi), y = uniform(lo, hi), x = uniform(lo, hi);
+    return mpr::Vec3<T>(T(x), T(y), T(z));
   }
 };
 
@@ -79,11 +82,15 @@ Camera<T> random_camera(mpr::glc::Type type, Rng& rng) {
     const V r = rng.vec<T>(-1, 1);
     return V(r - r.dot(n) * n);
   };
-  const auto depth = [&]() { return T(rng.uniform(1, 5)) * (rng.uniform(0, 1) < 0.3 ? 1 : -1); };
+  const auto depth = [&]() {
+    const double magnitude = rng.uniform(1, 5);
+    return T(magnitude) * (rng.uniform(0, 1) < 0.3 ? 1 : -1);
+  };
   const auto slit = [&](T z) { return mpr::glc::Line<T>{V(c + in_plane() + z * n), in_plane().normalized()}; };
   switch (type) {
   case Type::pinhole: {
-    const V centre = c + in_plane() + depth() * n;
+    const T z = depth();
+    const V centre = c + in_plane() + z * n;
     return {plane, mpr::glc::perspective(plane, centre), centre};
   }
   case Type::orthographic: {
@@ -108,12 +115,16 @@ Camera<T> random_camera(mpr::glc::Type type, Rng& rng) {
     const auto s = slit(z);
     return {plane, mpr::glc::pencil(plane, s, T(rng.uniform(0.3, 1)) / std::abs(z)), V::Zero(), V::Zero(), {s, {}}};
   }
-  case Type::twisted_orthographic:
-    return {plane,
-            mpr::glc::twisted_orthographic(plane, V(n + T(0.5) * in_plane()), in_plane(), T(rng.uniform(0.3, 1)))};
-  case Type::bilinear:
-    return {plane,
-            mpr::glc::bilinear(plane, V(n + T(0.5) * in_plane()), T(rng.uniform(-1, 1)), T(rng.uniform(0.3, 1)))};
+  case Type::twisted_orthographic: {
+    const T twist = T(rng.uniform(0.3, 1));
+    const V axis = in_plane(), tilt = in_plane();
+    return {plane, mpr::glc::twisted_orthographic(plane, V(n + T(0.5) * tilt), axis, twist)};
+  }
+  case Type::bilinear: {
+    const T b = T(rng.uniform(0.3, 1)), a = T(rng.uniform(-1, 1));
+    const V tilt = in_plane();
+    return {plane, mpr::glc::bilinear(plane, V(n + T(0.5) * tilt), a, b)};
+  }
   case Type::epi:
     break;
   }

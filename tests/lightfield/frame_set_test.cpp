@@ -293,10 +293,14 @@ TEST_CASE("CameraFrameSet reads borrowed 8-bit images in place when 64 bytes aft
     for (std::size_t b = 0; b < kBytes; ++b) start[b] = static_cast<std::uint8_t>(b + 40 * k);
     images.push_back(mpr::Image<mpr::Rgb8>::borrow(reinterpret_cast<mpr::Rgb8*>(start), 7, 5, memory));
   }
-  CHECK(mpr::CameraFrameSet<double>::can_share(images[0]));
-  CHECK(mpr::CameraFrameSet<double>::can_share(images[1]));
   CHECK(!mpr::CameraFrameSet<double>::can_share(images[2]));
   CHECK(!mpr::CameraFrameSet<double>::can_share(mpr::Image<mpr::Rgb8>(7, 5))); // owned
+  if constexpr (MPR_ADDRESS_SANITIZER) { // never shared there (a read past an allocation is reported)
+    CHECK(!mpr::CameraFrameSet<double>::can_share(images[0]));
+    return;
+  }
+  CHECK(mpr::CameraFrameSet<double>::can_share(images[0]));
+  CHECK(mpr::CameraFrameSet<double>::can_share(images[1]));
   CHECK(memory.use_count() == 4);
 
   const mpr::CameraFrameSet<double> frames(cams, std::move(images)); // moved: a copy would own its pixels

@@ -23,6 +23,8 @@
 /// |-----------------------|-----------------------------------------------------------------|
 /// | `MPR_PARALLEL_OPENMP` | 1 when compiled with OpenMP and `MPR_NO_OPENMP` is undefined,   |
 /// |                       | else 0                                                          |
+/// | `MPR_ADDRESS_SANITIZER` | 1 when compiled with AddressSanitizer, else 0: frame sets then |
+/// |                       | copy borrowed images (`CameraFrameSet::can_share`)              |
 /// | `MPR_SIMD_X86`        | 1 on x86 with GCC or Clang (kernels also built for AVX2+FMA and |
 /// |                       | AVX-512, chosen at run time, core/simd.hpp); else undefined     |
 /// | `MPR_TARGET_AVX2`     | `target("avx2,fma")` attribute (only with `MPR_SIMD_X86`)       |
@@ -55,6 +57,19 @@
 /// The environment variable `MPR_SIMD` (`portable`, `avx2`, `avx512`, `avx512vbmi`; `neon` on
 /// AArch64) lowers the kernel level chosen at run time (core/simd.hpp); it is read once, not a
 /// macro.
+
+// --- Sanitizers ----------------------------------------------------------------------------
+
+#if defined(__SANITIZE_ADDRESS__)
+#define MPR_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MPR_ADDRESS_SANITIZER 1
+#endif
+#endif
+#if !defined(MPR_ADDRESS_SANITIZER)
+#define MPR_ADDRESS_SANITIZER 0
+#endif
 
 // --- Threads -------------------------------------------------------------------------------
 

@@ -179,9 +179,11 @@ public:
   /// words from a texel and may read that far past the last one; the bytes are known readable
   /// when they lie in the 4 KiB block of the last pixel (memory is mapped in pages of 4 KiB or
   /// multiples), so an image is shared unless its end lies in the last 64 bytes of such a block
-  /// (1 image in 64 at random addresses), and then decoded like an owned one.
+  /// (1 image in 64 at random addresses), and then decoded like an owned one. Never under
+  /// AddressSanitizer (`MPR_ADDRESS_SANITIZER`), which reports reads past an allocation even
+  /// within its page.
   [[nodiscard]] static bool can_share(const Image<Px>& image) noexcept {
-    if constexpr (!std::is_same_v<Px, Rgb8>) {
+    if constexpr (!std::is_same_v<Px, Rgb8> || MPR_ADDRESS_SANITIZER) {
       return false;
     } else {
       if (!image.borrowed() || image.empty()) return false;
