@@ -295,18 +295,17 @@ inline constexpr int kSweepTrackPlanes = 8;
 
 /// The argmin bookkeeping of one row segment of n pixels for the K planes plane0, plane0 + 1,
 /// ... (plane i's costs at c + i stride), in plane order: the state is read and written once;
-/// for plane0 = 0 it is only written (the start: no best cost yet, sums 0), so the caller need
-/// not clear it.
-template <int K>
+/// `Start` (plane0 = 0): it is only written (no best cost yet, sums 0), so the caller need not
+/// clear it.
+template <int K, bool Start>
 MPR_ALWAYS_INLINE void
 sweep_track_body(const float* MPR_RESTRICT c, std::ptrdiff_t stride, float* MPR_RESTRICT best_cost,
                  int* MPR_RESTRICT best_plane, float* MPR_RESTRICT left, float* MPR_RESTRICT right,
                  float* MPR_RESTRICT previous, float* MPR_RESTRICT sum, int plane0, std::size_t n) noexcept {
-  const bool start = plane0 == 0;
   for (std::size_t x = 0; x < n; ++x) {
     float bc = std::numeric_limits<float>::infinity(), l = 0, r = 0, p = 0, s = 0;
     int b = 0;
-    if (!start) {
+    if constexpr (!Start) {
       bc = best_cost[x];
       l = left[x];
       r = right[x];
@@ -417,7 +416,10 @@ MPR_ALWAYS_INLINE void sweep_track_count(const float* c, std::ptrdiff_t stride, 
                                          int plane0, std::size_t n) noexcept {
   if constexpr (K > 1)
     if (count < K) return sweep_track_count<K - 1>(c, stride, count, t, plane0, n);
-  sweep_track_body<K>(c, stride, t.best_cost, t.best_plane, t.left, t.right, t.previous, t.sum, plane0, n);
+  if (plane0 == 0)
+    sweep_track_body<K, true>(c, stride, t.best_cost, t.best_plane, t.left, t.right, t.previous, t.sum, plane0, n);
+  else
+    sweep_track_body<K, false>(c, stride, t.best_cost, t.best_plane, t.left, t.right, t.previous, t.sum, plane0, n);
 }
 
 /// `sweep_track_body` for `count` (1..kSweepTrackPlanes) planes.
