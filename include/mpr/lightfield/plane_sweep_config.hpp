@@ -82,7 +82,7 @@ struct PlaneSweepConfig {
   int threads = 0;
   /// Where a row's neighbours are all translations of it (a rectified array; more than four of
   /// them), their costs on 16-bit integers (kernels/sweep_code_kernels.hpp: the weights rounded
-  /// to 1/256, the costs to 1/32 code; about twice as fast) when the sums fit (up to 26
+  /// to 1/128, the costs to 1/32 code; about twice as fast) when the sums fit (up to 26
   /// neighbours at truncation 0.3); false: in float (the per-pixel sweep's values, up to
   /// rounding).
   bool integer_costs = true;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The working memory of the plane sweep of `estimate_depth` (lightfield/depth_estimation.hpp):
-/// images as planar float channels and 16-bit codes, the buffers one worker reuses from camera to camera, and
+/// images as planar float channels and 16-bit pair words of codes, the buffers one worker reuses from camera to camera, and
 /// their size in bytes (which `PlaneSweepConfig::memory_limit` bounds).
 
 #include <mpr/core/color.hpp>
@@ -38,8 +38,9 @@ inline constexpr std::ptrdiff_t kSweepPad = 16;
 struct SweepPlanes {
   std::vector<float> data;
   std::vector<Rgb8> codes;
-  /// The same channels as 16-bit codes (`stride` apart, kSweepCodePad zeros before the first
-  /// and after the last), for the 16-bit kernel (kernels/sweep_code_kernels.hpp).
+  /// The same channels as pair words, each code with the next one's in its high byte
+  /// (`sweep_code_pair_words`; `stride` apart, kSweepCodePad zero codes before the first and
+  /// after the last), for the 16-bit kernel (kernels/sweep_code_kernels.hpp).
   std::vector<std::uint16_t> words;
   std::ptrdiff_t stride = 0;
   int width = 0, height = 0;
@@ -86,12 +87,13 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
       if (keep_codes)
         p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
     }
+  sweep_code_pair_words(p.words.data(), p.words.size());
 }
 
 /// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
 /// are not page-faulted in again for every camera), all sized before the parallel parts start
 /// (nothing is allocated inside a worker): about 160 bytes per pixel with four neighbours
-/// (planar float images 60, the same as 16-bit codes 30, costs of 8 planes 32, argmin state 24,
+/// (planar float images 60, the same as 16-bit pair words 30, costs of 8 planes 32, argmin state 24,
 /// feedback 8); see
 /// `sweep_workspace_bytes`.
 struct SweepWorkspace {
@@ -109,7 +111,7 @@ struct SweepWorkspace {
 [[nodiscard]] inline double sweep_workspace_bytes(int width, int height,
                                                   const std::vector<std::pair<int, int>>& neighbour_pixels,
                                                   int best) noexcept {
-  const auto planes = [](int w, int h) { // float channels and 16-bit codes
+  const auto planes = [](int w, int h) { // float channels and 16-bit pair words
     const double plane = 3.0 * static_cast<double>(sweep_stride(w)) * h;
     return 4.0 * (plane + static_cast<double>(kSweepPad)) + 2.0 * (plane + 2.0 * static_cast<double>(kSweepCodePad));
   };
