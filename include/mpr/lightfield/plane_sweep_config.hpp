@@ -86,8 +86,8 @@ struct PlaneSweepConfig {
   /// neighbours at truncation 0.3); false: in float (the per-pixel sweep's values, up to
   /// rounding).
   bool integer_costs = true;
-  /// Working memory of the sweep, bytes, > 0: each worker holds about 96 bytes per pixel of the
-  /// camera it sweeps plus 18 per neighbour (`plane_sweep_bytes`; 350 MB for a Chess view of
+  /// Working memory of the sweep, bytes, > 0: each worker holds about 94 bytes per pixel of the
+  /// camera it sweeps plus 15 per neighbour (`plane_sweep_bytes`; 310 MB for a Chess view of
   /// 1400x800 with its 12 neighbours of row and column), so
   /// `estimate_depth_maps` runs no more workers at once than fit (at least one), and a camera
   /// that alone needs more is refused. Default 2 GiB.

@@ -17,34 +17,25 @@ namespace {
 using mpr::detail::SimdLevel;
 
 // Planar channels of random codes, `stride` = width + 5 per row, kSweepCodePad codes of noise
-// before the first row and after the last (what the kernel may read and must mask), as pair
-// words: each code with the next one's in the high byte.
+// before the first row and after the last (what the kernel may read and must mask).
 struct CodeImage {
   int width, height;
   std::ptrdiff_t stride;
-  std::vector<std::uint16_t> data;
+  std::vector<std::uint8_t> data;
   CodeImage(int w, int h, unsigned seed)
       : width(w), height(h), stride(w + 5),
         data(static_cast<std::size_t>(3 * (w + 5) * h + 2 * mpr::detail::kSweepCodePad)) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> code(0, 255);
-    for (std::uint16_t& v : data) v = static_cast<std::uint16_t>(code(rng));
-    mpr::detail::sweep_code_pair_words(data.data(), data.size());
+    for (std::uint8_t& v : data) v = static_cast<std::uint8_t>(code(rng));
   }
-  [[nodiscard]] const std::uint16_t* channel(int c) const {
+  [[nodiscard]] const std::uint8_t* channel(int c) const {
     return data.data() + mpr::detail::kSweepCodePad + static_cast<std::ptrdiff_t>(c) * height * stride;
   }
-  [[nodiscard]] int at(int c, int x, int y) const { return channel(c)[y * stride + x] & 0xff; }
+  [[nodiscard]] int at(int c, int x, int y) const { return channel(c)[y * stride + x]; }
 };
 
 } // namespace
-
-TEST_CASE("the 16-bit kernel's images are pair words of codes", "[sweep_code_kernels]") {
-  std::vector<std::uint16_t> words{3, 200, 0, 255, 17};
-  mpr::detail::sweep_code_pair_words(words.data(), words.size());
-  // code[i] | code[i + 1] << 8: 3 + 200 x 256, 200 + 0, 0 + 255 x 256, 255 + 17 x 256, 17.
-  CHECK(words == std::vector<std::uint16_t>{51203, 200, 65280, 4607, 17});
-}
 
 TEST_CASE("the 16-bit kernel's weights are the bilinear weights in 1/128, summing to 128", "[sweep_code_kernels]") {
   using W = std::array<std::uint16_t, 4>;
@@ -62,7 +53,7 @@ TEST_CASE("the 16-bit kernel's weights are the bilinear weights in 1/128, summin
 
 TEST_CASE("a weight of 128 becomes 64 + 64 on one row, which the byte multiply-add takes", "[sweep_code_kernels]") {
   using W = std::array<std::uint16_t, 4>;
-  const std::uint16_t top[3] = {1, 2, 3}, bottom[3] = {4, 5, 6};
+  const std::uint8_t top[3] = {1, 2, 3}, bottom[3] = {4, 5, 6};
   const auto set = [&](const W& w) {
     mpr::detail::SweepCodeRow r{};
     for (int c = 0; c < 3; ++c) {
@@ -111,22 +102,21 @@ TEST_CASE("the 16-bit kernel's cost of one pixel, worked by hand", "[sweep_code_
   // 2568 units, 2448 at truncation 0.3 (2448 units), 2568 at 0.45 (3672).
   constexpr std::ptrdiff_t pad = mpr::detail::kSweepCodePad;
   const int codes[3][5] = {{11, 20, 30, 40, 14}, {0, 255, 255, 0, 0}, {7, 7, 7, 7, 7}};
-  std::vector<std::uint16_t> top[3], bottom[3], ref_words[3];
-  const std::uint16_t* ref[3];
+  std::vector<std::uint8_t> top[3], bottom[3], ref_codes[3];
+  const std::uint8_t* ref[3];
   mpr::detail::SweepCodeRow r{};
   for (int c = 0; c < 3; ++c) {
-    const auto words = [&](std::vector<std::uint16_t>& v, std::initializer_list<int> row) {
+    const auto row = [&](std::vector<std::uint8_t>& v, std::initializer_list<int> values) {
       v.assign(static_cast<std::size_t>(2 * pad + 2), 0);
       std::size_t i = static_cast<std::size_t>(pad);
-      for (const int code : row) v[i++] = static_cast<std::uint16_t>(code);
-      mpr::detail::sweep_code_pair_words(v.data(), v.size());
+      for (const int code : values) v[i++] = static_cast<std::uint8_t>(code);
     };
-    words(top[c], {codes[c][0], codes[c][1]});
-    words(bottom[c], {codes[c][2], codes[c][3]});
-    words(ref_words[c], {codes[c][4]});
+    row(top[c], {codes[c][0], codes[c][1]});
+    row(bottom[c], {codes[c][2], codes[c][3]});
+    row(ref_codes[c], {codes[c][4]});
     r.top[c] = top[c].data() + pad;
     r.bottom[c] = bottom[c].data() + pad;
-    ref[c] = ref_words[c].data() + pad;
+    ref[c] = ref_codes[c].data() + pad;
   }
   mpr::detail::sweep_code_set_weights(r, mpr::detail::sweep_code_weights(0.3f, 0.05f));
   r.xb = 0;
@@ -145,8 +135,9 @@ TEST_CASE("the 16-bit kernel's cost of one pixel, worked by hand", "[sweep_code_
 
 TEST_CASE("the 16-bit kernel averages the best integer costs of the neighbours that see each pixel",
           "[sweep_code_kernels]") {
-  // Twelve neighbours' rows over a row of 77 pixels (two chunks of 32 and a remainder of 13), each
-  // seen over its own span: whole, from or up to inside a chunk, one pixel, none; four of them
+  // Twelve neighbours' rows over a row of 77 pixels (whole chunks of 64, 32 or 16 pixels by level
+  // and a remainder of 13, each as even and odd pixels), each seen over its own span: whole, from
+  // or up to inside a chunk, one even pixel, one odd pixel, none; four of them
   // whole-pixel shifts (a weight of 128 on each of the four taps in turn). The expected value
   // per pixel, from the documented integer costs: per channel |sum of weight x code - 128 x
   // reference code| / 4 (remainder dropped), summed, at most tau; tau for a neighbour that does
@@ -154,12 +145,12 @@ TEST_CASE("the 16-bit kernel averages the best integer costs of the neighbours t
   // the float cost of the same blend (code / 255).
   const CodeImage image(120, 12, 31), ref_image(77, 1, 37);
   const int width = 77, m = 12;
-  const std::uint16_t* ref[3] = {ref_image.channel(0), ref_image.channel(1), ref_image.channel(2)};
+  const std::uint8_t* ref[3] = {ref_image.channel(0), ref_image.channel(1), ref_image.channel(2)};
   const float tau = 0.45f;
   const unsigned tau_units = 3672; // 0.45 x 8160
   const int shifts[m] = {0, 3, 17, 9, 20, 1, 5, 12, 7, 2, 14, 11}, rows[m] = {0, 4, 7, 2, 9, 1, 3, 5, 8, 6, 10, 0};
-  const int xbs[m] = {0, 5, 32, 0, 20, 31, 0, 70, 76, 10, 3, 0},
-            xes[m] = {77, 77, 64, 33, 21, 50, 64, 77, 77, 10, 40, 77};
+  const int xbs[m] = {0, 5, 32, 0, 21, 31, 0, 70, 76, 10, 3, 0},
+            xes[m] = {77, 77, 64, 33, 22, 50, 64, 77, 77, 10, 40, 77};
   const float fus[m] = {0.25f, 0.0f, 0.8f, 1.0f, 0.5f, 0.1f, 0.9f, 1.0f, 0.6f, 0.2f, 0.75f, 0.0f};
   const float fvs[m] = {0.4f, 1.0f, 0.0f, 1.0f, 0.3f, 0.7f, 0.15f, 0.0f, 0.95f, 0.2f, 0.45f, 0.0f};
   mpr::detail::SweepCodeRow coded[m];
@@ -194,10 +185,10 @@ TEST_CASE("the 16-bit kernel averages the best integer costs of the neighbours t
           for (int ch = 0; ch < 3; ++ch) {
             const int blend = w[0] * image.at(ch, u, v) + w[1] * image.at(ch, u + 1, v) +
                               w[2] * image.at(ch, u, v + 1) + w[3] * image.at(ch, u + 1, v + 1);
-            s += static_cast<unsigned>(std::abs(blend - 128 * (ref[ch][x] & 0xff))) / 4;
+            s += static_cast<unsigned>(std::abs(blend - 128 * ref[ch][x])) / 4;
             const float a = (1 - fus[j]) * image.at(ch, u, v) + fus[j] * image.at(ch, u + 1, v);
             const float b = (1 - fus[j]) * image.at(ch, u, v + 1) + fus[j] * image.at(ch, u + 1, v + 1);
-            fs += std::abs((1 - fvs[j]) * a + fvs[j] * b - static_cast<float>(ref[ch][x] & 0xff)) / 255.0f;
+            fs += std::abs((1 - fvs[j]) * a + fvs[j] * b - static_cast<float>(ref[ch][x])) / 255.0f;
           }
           c.push_back(std::min(s, tau_units));
           f.push_back(std::min(fs, tau));

@@ -2,19 +2,22 @@
 /// \file
 /// The plane sweep's chunked row kernel for many translated neighbours on 16-bit integers: what
 /// `sweep_shift_mean_seen` (kernels/sweep_seen_kernels.hpp) computes in float, here on the
-/// images' 8-bit sRGB codes with bilinear weights in 1/128 and costs in 1/32 of a code, a
-/// register of 16-bit lanes a chunk (32 pixels at AVX-512): half the loads and twice the lanes of
-/// the float kernel. The images are held as *pair words* (`sweep_code_pair_words`: each code
-/// with its right neighbour's in the high byte), so that at the x86 levels a row's two taps are
-/// one load and one byte multiply-add (kernels/sweep_code_pairs.hpp). A blend is at most 255 x
-/// 128 = 32640 and a cost at most tau <= 3 x 8160: both fit *signed* 16-bit lanes, so the
-/// differences, the truncation and the selection of the best costs are signed min / max (single
-/// instructions from SSE2 on); only the sum of up to 26 costs is unsigned. Every sum is exact
+/// images' 8-bit sRGB codes with bilinear weights in 1/128 and costs in 1/32 of a code, two
+/// registers of 16-bit lanes a chunk (64 pixels at AVX-512): a quarter of the bytes and twice the
+/// lanes of the float kernel. The images are held as 8-bit codes: a load of 16-bit words at x holds
+/// the *pair words* code[x + 2i] | code[x + 2i + 1] << 8, both taps of the even pixels' blends,
+/// and at x + 1 those of the odd ones, so that a chunk of 2N pixels is two vectors of N lanes
+/// (even and odd pixels, interleaved again when stored) and at the x86 levels a row's two taps
+/// are one byte multiply-add (kernels/sweep_code_pairs.hpp). A blend is at most 255 x
+/// 128 = 32640 and a cost at most tau <= 3 x 8160: both fit *signed* 16-bit lanes, so |blend -
+/// reference| is a signed abs (SSSE3 on), the truncation and the selection signed min / max (SSE2
+/// on); only the sum of up to 26 costs is unsigned. Every sum is exact
 /// (no saturation, no rounding), so the values are the same at every level; they differ from the
 /// float kernel's by the weights' rounding to 1/128 (a shift of at most about 1/128 pixel) and
 /// the costs' to 1/32 code. Written once as plain C++ with the compiler's vector type and
 /// compiled for every level of core/simd.hpp through `run_at`.
 
+#include <mpr/core/detail/prefetch.hpp>
 #include <mpr/core/simd.hpp>
 #include <mpr/lightfield/kernels/sweep_code_pairs.hpp>
 
@@ -24,11 +27,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 namespace mpr::detail {
 
-/// The most pixels the 16-bit kernel takes together (`sweep_code_lanes`).
-inline constexpr int kSweepCodeChunk = 32;
+/// The most pixels the 16-bit kernel takes together: twice its lanes (`sweep_code_lanes`).
+inline constexpr int kSweepCodeChunk = 64;
 
 /// The most kept costs the 16-bit kernel takes (as `kSweepSeenBest`).
 inline constexpr int kSweepCodeBest = 16;
@@ -36,25 +40,18 @@ inline constexpr int kSweepCodeBest = 16;
 /// Cost units per 1.0 of the float costs (channel values code / 255): 32 units a code.
 inline constexpr int kSweepCodeUnit = 255 * 32;
 
-/// Words an image of pair words holds past both ends of its channels (`SweepPlanes::words`):
-/// the kernel reads whole chunks, up to kSweepCodeChunk + 1 words past a row's seen pixels on
-/// either side, and masks what it does not see.
+/// Codes an image of 8-bit codes holds past both ends of its channels
+/// (`SweepPlanes::code_planes`): the kernel reads whole chunks, up to kSweepCodeChunk + 1 codes
+/// past a row's seen pixels on either side, and masks what it does not see.
 inline constexpr std::ptrdiff_t kSweepCodePad = 2 * kSweepCodeChunk + 16;
 
-/// Codes (0..255, one a word) into pair words in place: words[i] = code[i] | code[i + 1] << 8,
-/// the last word's high byte 0. The kernel's images (`SweepPlanes::words`): the right tap of a
-/// pixel's blend is the high byte of its word, the code itself the low byte.
-inline void sweep_code_pair_words(std::uint16_t* words, std::size_t n) noexcept {
-  for (std::size_t i = 0; i + 1 < n; ++i) words[i] = static_cast<std::uint16_t>(words[i] | words[i + 1] << 8);
-}
-
-/// A neighbour's translated row on pair words: per channel the texel rows v0 (`top`) and v0 + 1
+/// A neighbour's translated row on 8-bit codes: per channel the texel rows v0 (`top`) and v0 + 1
 /// (`bottom`), element 0 the texel reference pixel xb blends from (as `SweepSeenRow`), the
 /// bilinear weights w00, w10, w01, w11 in 1/128 (`sweep_code_weights`), each at most 127
 /// (`sweep_code_set_weights`), and the reference pixels it sees, [xb, xe).
 struct SweepCodeRow {
-  const std::uint16_t* top[3];
-  const std::uint16_t* bottom[3];
+  const std::uint8_t* top[3];
+  const std::uint8_t* bottom[3];
   std::uint16_t w[4];
   int xb, xe;
 };
@@ -110,18 +107,17 @@ inline void sweep_code_set_weights(SweepCodeRow& r, const std::array<std::uint16
 }
 
 /// The cost of reference pixel x of row r (seen: x in [xb, xe)) in units: per channel the blend
-/// of the four codes (the low bytes of the pair words) in 1/128, |blend - 128 ref|, divided by 4
+/// of the four codes in 1/128, |blend - 128 ref|, divided by 4
 /// (dropping the remainder), summed, then at most tau. What the vector body computes lane by
 /// lane (the same unit as |blend in 1/256 - 256 ref| / 8 with even weights: 1/32 code).
-[[nodiscard]] inline unsigned sweep_code_cost_at(const std::uint16_t* const ref[3], const SweepCodeRow& r, unsigned tau,
+[[nodiscard]] inline unsigned sweep_code_cost_at(const std::uint8_t* const ref[3], const SweepCodeRow& r, unsigned tau,
                                                  int x) noexcept {
   const std::ptrdiff_t at = x - r.xb;
-  const auto code = [](std::uint16_t word) { return static_cast<int>(word & 0xff); };
   unsigned s = 0;
   for (int c = 0; c < 3; ++c) {
-    const int p = r.w[0] * code(r.top[c][at]) + r.w[1] * code(r.top[c][at + 1]) + r.w[2] * code(r.bottom[c][at]) +
-                  r.w[3] * code(r.bottom[c][at + 1]);
-    const int q = 128 * code(ref[c][x]);
+    const int p =
+        r.w[0] * r.top[c][at] + r.w[1] * r.top[c][at + 1] + r.w[2] * r.bottom[c][at] + r.w[3] * r.bottom[c][at + 1];
+    const int q = 128 * ref[c][x];
     s += static_cast<unsigned>(p > q ? p - q : q - p) >> 2;
   }
   return std::min(s, tau);
@@ -138,16 +134,16 @@ struct SweepCodeVectors {
   typedef float Floats __attribute__((vector_size(N * sizeof(float))));
 };
 
-/// The pixels a chunk of the 16-bit kernel takes at `level`: one register of 16-bit lanes (32
-/// at AVX-512, 16 at AVX2, 8 in the 16-byte registers of the portable level).
+/// The 16-bit lanes of a register at `level` (32 at AVX-512, 16 at AVX2, 8 in the 16-byte
+/// registers of the portable level); a chunk of the kernel is twice as many pixels.
 [[nodiscard]] constexpr int sweep_code_lanes(SimdLevel level) noexcept {
   return level >= SimdLevel::avx512 ? 32 : level == SimdLevel::avx2 ? 16 : 8;
 }
 
-/// N words from p (any alignment), through a reference (a vector return value would change the
-/// ABI between levels).
+/// N words (2N codes) from p (any alignment), through a reference (a vector return value would
+/// change the ABI between levels).
 template <class V>
-MPR_ALWAYS_INLINE void sweep_code_load(V& v, const std::uint16_t* p) noexcept {
+MPR_ALWAYS_INLINE void sweep_code_load(V& v, const std::uint8_t* p) noexcept {
   std::memcpy(&v, p, sizeof v);
 }
 
@@ -182,9 +178,10 @@ MPR_ALWAYS_INLINE void sweep_code_row_weights(SweepCodeWeights<N>& k, const Swee
   }
 }
 
-/// p = the blends (in 1/128 code) of the N pixels whose pair words start at `top` and `bottom`.
+/// p = the blends (in 1/128 code) of the N pixels 2 apart whose left taps are top[2i] and
+/// bottom[2i] (the pair words of a load from `top` and `bottom`).
 template <SimdLevel L, int N, class S = typename SweepCodeVectors<N>::Signed>
-MPR_ALWAYS_INLINE void sweep_code_blend(S& p, const std::uint16_t* top, const std::uint16_t* bottom,
+MPR_ALWAYS_INLINE void sweep_code_blend(S& p, const std::uint8_t* top, const std::uint8_t* bottom,
                                         const SweepCodeWeights<N>& k) noexcept {
   using U = typename SweepCodeVectors<N>::Lanes;
 #if defined(MPR_SIMD_X86)
@@ -216,43 +213,49 @@ MPR_ALWAYS_INLINE void sweep_code_blend(S& p, const std::uint16_t* top, const st
   p = __builtin_bit_cast(S, blend);
 }
 
-/// v = row r's costs (`sweep_code_cost_at`) of the chunk of N pixels from x0, of which it sees
-/// [lo, hi) (non-empty), tau for the others; q: 128 x the reference's codes at the chunk's
-/// pixels.
+/// v = row r's costs (`sweep_code_cost_at`) of the N pixels x0 + 2i + odd of the chunk of 2N
+/// pixels from x0, of which it sees [lo, hi) (non-empty), tau for the others; q: 128 x the
+/// reference's codes at those pixels.
 template <SimdLevel L, int N, class S = typename SweepCodeVectors<N>::Signed>
-MPR_ALWAYS_INLINE void sweep_code_cost(S& v, const S q[3], const SweepCodeRow& r, const S& tau, int x0, int lo,
+MPR_ALWAYS_INLINE void sweep_code_cost(S& v, const S q[3], const SweepCodeRow& r, const S& tau, int x0, int odd, int lo,
                                        int hi) noexcept {
   using U = typename SweepCodeVectors<N>::Lanes;
-  const std::ptrdiff_t at = x0 - r.xb;
+  const std::ptrdiff_t at = x0 + odd - r.xb;
   SweepCodeWeights<N> k;
   sweep_code_row_weights<L, N>(k, r);
   S s{};
   for (int c = 0; c < 3; ++c) {
+    if (odd == 0) {
+      // The codes two chunks on, into the first-level cache: a row reads 6 streams a neighbour,
+      // more than the hardware prefetchers follow (about 1.15x the kernel's speed on Chess).
+      prefetch_l1(r.top[c] + at, 4 * N);
+      prefetch_l1(r.bottom[c] + at, 4 * N);
+    }
     S p;
     sweep_code_blend<L, N>(p, r.top[c] + at, r.bottom[c] + at, k);
-    const S big = p > q[c] ? p : q[c], small = p > q[c] ? q[c] : p;
-    s += (big - small) >> 2;
+    const S d = p - q[c]; // in [-32640, 32640]
+    s += (d < 0 ? -d : d) >> 2;
   }
   v = s < tau ? s : tau;
-  if (hi - lo < N) {
-    // The lanes outside [lo, hi) read words the row does not see (inside the padded buffers):
+  if (hi - lo < 2 * N) {
+    // The lanes outside [lo, hi) read codes the row does not see (inside the padded buffers):
     // tau there.
     U lane;
-    for (int i = 0; i < N; ++i) lane[i] = static_cast<std::uint16_t>(i);
-    const U from = lane - static_cast<std::uint16_t>(lo - x0);
+    for (int i = 0; i < N; ++i) lane[i] = static_cast<std::uint16_t>(2 * i);
+    const U from = lane - static_cast<std::uint16_t>(lo - x0 - odd);
     v = from < static_cast<std::uint16_t>(hi - lo) ? v : tau;
   }
 }
 
-/// v = row r's costs of the chunk of len pixels from x0 (`sweep_code_cost`), tau where it sees
-/// none of them; returns whether it sees one.
+/// v = row r's costs of the even or odd pixels of the chunk of len pixels from x0
+/// (`sweep_code_cost`), tau where it sees none of the chunk; returns whether it sees one.
 template <SimdLevel L, int N, class S = typename SweepCodeVectors<N>::Signed>
-MPR_ALWAYS_INLINE bool sweep_code_chunk(S& v, const S q[3], const SweepCodeRow& r, const S& tau, int x0,
+MPR_ALWAYS_INLINE bool sweep_code_chunk(S& v, const S q[3], const SweepCodeRow& r, const S& tau, int x0, int odd,
                                         int len) noexcept {
   const int lo = std::max(r.xb, x0), hi = std::min(r.xe, x0 + len);
   v = tau;
   if (lo >= hi) return false;
-  sweep_code_cost<L, N>(v, q, r, tau, x0, lo, hi);
+  sweep_code_cost<L, N>(v, q, r, tau, x0, odd, lo, hi);
   return true;
 }
 
@@ -274,69 +277,97 @@ MPR_ALWAYS_INLINE void sweep_code_insert(V* sel, V& v, int n) noexcept {
   }
 }
 
-/// out[x] = sum / (best kSweepCodeUnit) for the chunk's len pixels from x0.
-template <int N, class U = typename SweepCodeVectors<N>::Lanes>
-MPR_ALWAYS_INLINE void sweep_code_store(const U& sum, int best, float* MPR_RESTRICT out, int x0, int len) noexcept {
-  using F = typename SweepCodeVectors<N>::Floats;
-  const F s = __builtin_convertvector(sum, F) / static_cast<float>(best * kSweepCodeUnit);
-  if (len == N)
-    std::memcpy(out + x0, &s, sizeof s);
-  else
-    for (int w = 0; w < len; ++w) out[x0 + w] = s[w];
+/// v = lanes From / 2 .. From / 2 + N / 2 of a and b interleaved (a's first).
+template <int From, class U, std::size_t... I>
+MPR_ALWAYS_INLINE void sweep_code_interleave(U& v, const U& a, const U& b, std::index_sequence<I...>) noexcept {
+  constexpr int N = static_cast<int>(sizeof...(I));
+  v = __builtin_shufflevector(a, b, (static_cast<int>(I % 2) * N + From / 2 + static_cast<int>(I / 2))...);
 }
 
-/// Drop or keep bodies in chunks of N pixels: the mean of the `best` smallest of the m costs
-/// per pixel, as the sum of all m less the S = m - best largest (Drop, S < best), or the sum of
-/// the S = best smallest kept from tau (unseen neighbours beyond rows[0..m) count as tau). The
-/// selection starts full of zeros (Drop) or tau, which the first S neighbours' costs cannot
-/// pass: neighbour j < S is compared with the j already in and lands at place j.
+/// out[x] = sum / (best kSweepCodeUnit) for the chunk's len pixels from x0, the sums of its even
+/// pixels in `even`, of its odd ones in `odd`.
+template <int N, class U = typename SweepCodeVectors<N>::Lanes>
+MPR_ALWAYS_INLINE void sweep_code_store(const U& even, const U& odd, int best, float* MPR_RESTRICT out, int x0,
+                                        int len) noexcept {
+  using F = typename SweepCodeVectors<N>::Floats;
+  const float scale = static_cast<float>(best * kSweepCodeUnit);
+  U first, second;
+  sweep_code_interleave<0>(first, even, odd, std::make_index_sequence<N>{});
+  sweep_code_interleave<N>(second, even, odd, std::make_index_sequence<N>{});
+  const F lo = __builtin_convertvector(first, F) / scale, hi = __builtin_convertvector(second, F) / scale;
+  if (len == 2 * N) {
+    std::memcpy(out + x0, &lo, sizeof lo);
+    std::memcpy(out + x0 + N, &hi, sizeof hi);
+  } else {
+    for (int w = 0; w < len; ++w) out[x0 + w] = w < N ? lo[w] : hi[w - N];
+  }
+}
+
+/// The sum of the `best` smallest of the m costs of each of the N pixels x0 + 2i + odd of the
+/// chunk of len pixels from x0 (q: 128 x their reference codes): the sum of all m less the S =
+/// m - best largest (Drop, S < best), or the sum of the S = best smallest kept from tau (unseen
+/// neighbours beyond rows[0..m) count as tau). The selection starts full of zeros (Drop) or
+/// tau, which the first S neighbours' costs cannot pass: neighbour j < S is compared with the j
+/// already in and lands at place j.
+template <SimdLevel L, int N, bool Drop, int S, class U = typename SweepCodeVectors<N>::Lanes,
+          class V = typename SweepCodeVectors<N>::Signed>
+MPR_ALWAYS_INLINE void sweep_code_sum(U& sum, const V q[3], const SweepCodeRow* rows, int m, const V& t, int x0,
+                                      int odd, int len) noexcept {
+  V sel[S > 0 ? S : 1];
+  sum = U{};
+  for (int i = 0; i < S; ++i) sel[i] = Drop ? V{} : t;
+#pragma GCC unroll 16
+  for (int j = 0; j < S; ++j) {
+    if (j >= m) break;
+    V v;
+    sweep_code_chunk<L, N>(v, q, rows[j], t, x0, odd, len);
+    if (Drop) sum += __builtin_bit_cast(U, v);
+    sweep_code_insert<Drop, S>(sel, v, j);
+    sel[j] = v;
+  }
+  for (int j = S; j < m; ++j) {
+    V v;
+    if (!sweep_code_chunk<L, N>(v, q, rows[j], t, x0, odd, len) && !Drop) continue; // tau changes no kept cost
+    if (Drop) sum += __builtin_bit_cast(U, v);
+    sweep_code_insert<Drop, S>(sel, v, S);
+  }
+#pragma GCC unroll 16
+  for (int i = 0; i < S; ++i) {
+    if (Drop)
+      sum -= __builtin_bit_cast(U, sel[i]);
+    else
+      sum += __builtin_bit_cast(U, sel[i]);
+  }
+}
+
+/// Drop or keep bodies (`sweep_code_sum`) in chunks of 2N pixels, the even ones, then the odd
+/// ones (whose codes the even pass left in the first-level cache).
 template <SimdLevel L, int N, bool Drop, int S>
-MPR_ALWAYS_INLINE void sweep_code_mean_body(const std::uint16_t* const ref[3], const SweepCodeRow* rows, int m,
-                                            int best, unsigned tau, float* MPR_RESTRICT out, int width) noexcept {
+MPR_ALWAYS_INLINE void sweep_code_mean_body(const std::uint8_t* const ref[3], const SweepCodeRow* rows, int m, int best,
+                                            unsigned tau, float* MPR_RESTRICT out, int width) noexcept {
   using U = typename SweepCodeVectors<N>::Lanes;
   using V = typename SweepCodeVectors<N>::Signed;
   const V t = V{} + static_cast<std::int16_t>(tau);
-  for (int x0 = 0; x0 < width; x0 += N) {
-    const int len = std::min(N, width - x0);
-    V q[3];
+  for (int x0 = 0; x0 < width; x0 += 2 * N) {
+    const int len = std::min(2 * N, width - x0);
+    V even[3], odd[3];
     for (int c = 0; c < 3; ++c) {
       U w;
       sweep_code_load(w, ref[c] + x0);
-      q[c] = __builtin_bit_cast(V, (w << 8) >> 1); // 128 x the low byte
+      even[c] = __builtin_bit_cast(V, (w << 8) >> 1); // 128 x the low bytes
+      odd[c] = __builtin_bit_cast(V, (w >> 8) << 7);  // and the high ones
     }
-    V sel[S > 0 ? S : 1];
-    U sum{};
-    for (int i = 0; i < S; ++i) sel[i] = Drop ? V{} : t;
-#pragma GCC unroll 16
-    for (int j = 0; j < S; ++j) {
-      if (j >= m) break;
-      V v;
-      sweep_code_chunk<L, N>(v, q, rows[j], t, x0, len);
-      if (Drop) sum += __builtin_bit_cast(U, v);
-      sweep_code_insert<Drop, S>(sel, v, j);
-      sel[j] = v;
-    }
-    for (int j = S; j < m; ++j) {
-      V v;
-      if (!sweep_code_chunk<L, N>(v, q, rows[j], t, x0, len) && !Drop) continue; // tau changes no kept cost
-      if (Drop) sum += __builtin_bit_cast(U, v);
-      sweep_code_insert<Drop, S>(sel, v, S);
-    }
-#pragma GCC unroll 16
-    for (int i = 0; i < S; ++i) {
-      if (Drop)
-        sum -= __builtin_bit_cast(U, sel[i]);
-      else
-        sum += __builtin_bit_cast(U, sel[i]);
-    }
-    sweep_code_store<N>(sum, best, out, x0, len);
+    U sum_even, sum_odd;
+    sweep_code_sum<L, N, Drop, S>(sum_even, even, rows, m, t, x0, 0, len);
+    sweep_code_sum<L, N, Drop, S>(sum_odd, odd, rows, m, t, x0, 1, len);
+    sweep_code_store<N>(sum_even, sum_odd, best, out, x0, len);
   }
 }
 
 /// `sweep_code_mean_body<L, N, Drop, S>` for a run-time count `n` (drop m - best or keep best)
 /// in [S, kSweepCodeBest].
 template <SimdLevel L, int N, bool Drop, int S>
-MPR_ALWAYS_INLINE void sweep_code_mean_count(const std::uint16_t* const ref[3], const SweepCodeRow* rows, int m,
+MPR_ALWAYS_INLINE void sweep_code_mean_count(const std::uint8_t* const ref[3], const SweepCodeRow* rows, int m,
                                              int best, int n, unsigned tau, float* out, int width) noexcept {
   if constexpr (S < kSweepCodeBest)
     if (n > S) return sweep_code_mean_count<L, N, Drop, S + 1>(ref, rows, m, best, n, tau, out, width);
@@ -346,10 +377,10 @@ MPR_ALWAYS_INLINE void sweep_code_mean_count(const std::uint16_t* const ref[3], 
 
 /// out[x] = the mean of the `best` smallest costs (`sweep_code_cost_at`, in units) of pixel x
 /// among the m neighbours rows[0..m) that see it, tau for the others, over kSweepCodeUnit, for x
-/// in [0, width); `ref`: the reference row's pair words. Preconditions: `sweep_code_fits(m,
-/// best, tau)`; every weight at most 127 (`sweep_code_set_weights`); rows and `ref` pair words
-/// (`sweep_code_pair_words`) readable kSweepCodePad words past their ends (`SweepPlanes::words`).
-inline void sweep_code_mean_seen(const std::uint16_t* const ref[3], const SweepCodeRow* rows, int m, int best,
+/// in [0, width); `ref`: the reference row's codes. Preconditions: `sweep_code_fits(m, best,
+/// tau)`; every weight at most 127 (`sweep_code_set_weights`); rows and `ref` readable
+/// kSweepCodePad codes past their ends (`SweepPlanes::code_planes`).
+inline void sweep_code_mean_seen(const std::uint8_t* const ref[3], const SweepCodeRow* rows, int m, int best,
                                  float truncation, float* out, int width, SimdLevel level = dispatch_level()) noexcept {
   const unsigned tau = static_cast<unsigned>(sweep_code_tau(truncation));
 #if defined(__GNUC__)
