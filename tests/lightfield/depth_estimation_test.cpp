@@ -254,10 +254,10 @@ TEST_CASE("a plane sweep's working memory is counted, and bounded by memory_limi
     const auto add = [&](const auto& v) { held += static_cast<double>(v.size() * sizeof(v[0])); };
     add(ws.rt.data);
     add(ws.rt.codes);
-    add(ws.rt.words);
+    add(ws.rt.code_planes);
     for (const auto& p : ws.nt) {
       add(p.data);
-      add(p.words);
+      add(p.code_planes);
     }
     for (const auto* v :
          {&ws.ax, &ws.ay, &ws.costs, &ws.best_cost, &ws.sum, &ws.left, &ws.right, &ws.previous, &ws.keep, &ws.carry})

@@ -82,12 +82,12 @@ struct PlaneSweepConfig {
   int threads = 0;
   /// Where a row's neighbours are all translations of it (a rectified array; more than four of
   /// them), their costs on 16-bit integers (kernels/sweep_code_kernels.hpp: the weights rounded
-  /// to 1/256, the costs to 1/32 code; about twice as fast) when the sums fit (up to 26
+  /// to 1/128, the costs to 1/32 code; about twice as fast) when the sums fit (up to 26
   /// neighbours at truncation 0.3); false: in float (the per-pixel sweep's values, up to
   /// rounding).
   bool integer_costs = true;
-  /// Working memory of the sweep, bytes, > 0: each worker holds about 96 bytes per pixel of the
-  /// camera it sweeps plus 18 per neighbour (`plane_sweep_bytes`; 350 MB for a Chess view of
+  /// Working memory of the sweep, bytes, > 0: each worker holds about 94 bytes per pixel of the
+  /// camera it sweeps plus 15 per neighbour (`plane_sweep_bytes`; 310 MB for a Chess view of
   /// 1400x800 with its 12 neighbours of row and column), so
   /// `estimate_depth_maps` runs no more workers at once than fit (at least one), and a camera
   /// that alone needs more is refused. Default 2 GiB.

@@ -115,12 +115,12 @@ TEST_CASE("a row's cost is the same with the fused kernel as neighbour by neighb
         CHECK(worst <= 1e-5f);
         CHECK(out.back() == -1.0f); // nothing past the row
         // On 16-bit codes where the chunked kernel takes the row: within the weights' rounding to
-        // 1/256 (kernels/sweep_code_kernels_test.cpp) of the float values.
+        // 1/128 (kernels/sweep_code_kernels_test.cpp) of the float values.
         in.codes = true;
         mpr::detail::sweep_cost_row(in, y, d, coded.data(), k, value.data());
         for (std::size_t x = 0; x < expected.size(); ++x)
           worst_coded = std::max(worst_coded, std::abs(coded[x] - expected[x]));
-        CHECK(worst_coded <= 3 * 2.0f / 256 + 3.0f / 8160);
+        CHECK(worst_coded <= 3 * 2.0f / 128 + 3.0f / 8160);
         CHECK(coded.back() == -1.0f);
         codes += worst_coded > 1e-5f;
         ++cases;

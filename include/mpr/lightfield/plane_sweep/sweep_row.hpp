@@ -45,15 +45,16 @@ struct SweepNeighbourRow {
   float fu = 0, fv = 0;
   SweepProjectiveRow row{};
 
-  /// The translated row on 16-bit codes from reference pixel xb on (kind shift).
+  /// The translated row on 8-bit codes from reference pixel xb on (kind shift), its weights in
+  /// 1/128, each at most 127 (a whole-pixel shift: 64 + 64 on one tap of a single row,
+  /// `sweep_code_set_weights`).
   [[nodiscard]] SweepCodeRow coded(const SweepPlanes& image) const noexcept {
     SweepCodeRow r{};
-    const std::array<std::uint16_t, 4> w = sweep_code_weights(fu, fv);
-    for (int i = 0; i < 4; ++i) r.w[i] = w[static_cast<std::size_t>(i)];
     for (int c = 0; c < 3; ++c) {
-      r.top[c] = image.channel_words(c) + static_cast<std::ptrdiff_t>(v0) * image.stride + s + xb;
-      r.bottom[c] = image.channel_words(c) + static_cast<std::ptrdiff_t>(v1) * image.stride + s + xb;
+      r.top[c] = image.channel_codes(c) + static_cast<std::ptrdiff_t>(v0) * image.stride + s + xb;
+      r.bottom[c] = image.channel_codes(c) + static_cast<std::ptrdiff_t>(v1) * image.stride + s + xb;
     }
+    sweep_code_set_weights(r, sweep_code_weights(fu, fv));
     r.xb = xb;
     r.xe = xe;
     return r;
@@ -145,8 +146,8 @@ struct SweepNeighbourRow {
 /// otherwise (more neighbours, as the row-and-column selection gives), the whole row takes the
 /// chunked kernel `sweep_shift_mean_seen` (the same values again), or with `in.codes` where its
 /// sums fit (`sweep_code_fits`: the defaults, up to 26 neighbours at truncation 0.3) its 16-bit
-/// twin `sweep_code_mean_seen` (the weights rounded to 1/256, the costs to 1/32 code: within
-/// about 1e-3 of the float values); projective rows go neighbour by neighbour.
+/// twin `sweep_code_mean_seen` (the weights rounded to 1/128, the costs to 1/32 code: within
+/// about 2e-3 of the float values); projective rows go neighbour by neighbour.
 inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out, float* const* keep,
                            float* value) noexcept {
   const int width = in.reference->width, best = in.best;
@@ -171,16 +172,16 @@ inline void sweep_cost_row(const SweepRowInputs& in, int y, float d, float* out,
   if (!any_projective && best <= kSweepSeenBest && !(all_shift && cb < ce)) {
     // Translated rows or unseen ones, more than the fused kernel of the common pixels takes (or
     // no pixel seen by all): the whole row in chunks, each neighbour over the pixels it sees, on
-    // 16-bit codes where their sums fit.
+    // 8-bit codes in 16-bit lanes where their sums fit.
     if (in.codes && sweep_code_fits(in.m, best, tau)) {
       SweepCodeRow coded[32];
       int count = 0;
       for (int j = 0; j < in.m; ++j)
         if (plan[j].kind == SweepNeighbourRow::shift) coded[count++] = plan[j].coded(in.neighbours[j]);
-      const std::uint16_t* ref_words[3];
+      const std::uint8_t* ref_codes[3];
       for (int c = 0; c < 3; ++c)
-        ref_words[c] = in.reference->channel_words(c) + static_cast<std::ptrdiff_t>(y) * in.reference->stride;
-      return sweep_code_mean_seen(ref_words, coded, count, best, tau, out, width, level);
+        ref_codes[c] = in.reference->channel_codes(c) + static_cast<std::ptrdiff_t>(y) * in.reference->stride;
+      return sweep_code_mean_seen(ref_codes, coded, count, best, tau, out, width, level);
     }
     SweepSeenRow seen[32];
     int count = 0;

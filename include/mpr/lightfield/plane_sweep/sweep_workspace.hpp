@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The working memory of the plane sweep of `estimate_depth` (lightfield/depth_estimation.hpp):
-/// images as planar float channels and 16-bit codes, the buffers one worker reuses from camera to camera, and
+/// images as planar float channels and 8-bit codes, the buffers one worker reuses from camera to camera, and
 /// their size in bytes (which `PlaneSweepConfig::memory_limit` bounds).
 
 #include <mpr/core/color.hpp>
@@ -38,16 +38,16 @@ inline constexpr std::ptrdiff_t kSweepPad = 16;
 struct SweepPlanes {
   std::vector<float> data;
   std::vector<Rgb8> codes;
-  /// The same channels as 16-bit codes (`stride` apart, kSweepCodePad zeros before the first
-  /// and after the last), for the 16-bit kernel (kernels/sweep_code_kernels.hpp).
-  std::vector<std::uint16_t> words;
+  /// The same channels as planar 8-bit codes (`stride` apart, kSweepCodePad zeros before the
+  /// first and after the last), for the 16-bit kernel (kernels/sweep_code_kernels.hpp).
+  std::vector<std::uint8_t> code_planes;
   std::ptrdiff_t stride = 0;
   int width = 0, height = 0;
   [[nodiscard]] const float* channel(int c) const noexcept {
     return data.data() + kSweepPad + static_cast<std::ptrdiff_t>(c) * stride * height;
   }
-  [[nodiscard]] const std::uint16_t* channel_words(int c) const noexcept {
-    return words.data() + kSweepCodePad + static_cast<std::ptrdiff_t>(c) * stride * height;
+  [[nodiscard]] const std::uint8_t* channel_codes(int c) const noexcept {
+    return code_planes.data() + kSweepCodePad + static_cast<std::ptrdiff_t>(c) * stride * height;
   }
   [[nodiscard]] SweepImage view() const noexcept {
     return {{channel(0), channel(1), channel(2)}, stride, width, height};
@@ -64,7 +64,7 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
   p.stride = sweep_stride(p.width);
   const std::size_t plane = static_cast<std::size_t>(p.stride) * static_cast<std::size_t>(p.height);
   p.data.assign(3 * plane + kSweepPad, 0.0f);
-  p.words.assign(3 * plane + 2 * kSweepCodePad, 0);
+  p.code_planes.assign(3 * plane + 2 * kSweepCodePad, 0);
   if (keep_codes) p.codes.resize(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height));
   float* out[3] = {p.data.data() + kSweepPad, p.data.data() + kSweepPad + p.stride * p.height,
                    p.data.data() + kSweepPad + 2 * p.stride * p.height};
@@ -79,10 +79,10 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
       out[0][k] = unit[c.r];
       out[1][k] = unit[c.g];
       out[2][k] = unit[c.b];
-      std::uint16_t* words = p.words.data() + kSweepCodePad + k;
-      words[0] = c.r;
-      words[plane] = c.g;
-      words[2 * plane] = c.b;
+      std::uint8_t* codes = p.code_planes.data() + kSweepCodePad + k;
+      codes[0] = c.r;
+      codes[plane] = c.g;
+      codes[2 * plane] = c.b;
       if (keep_codes)
         p.codes[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) + static_cast<std::size_t>(x)] = c;
     }
@@ -91,7 +91,7 @@ void sweep_planes(const Image<Px>& image, bool keep_codes, SweepPlanes& p) {
 /// The buffers of one camera's sweep, reused by the next camera a worker sweeps (so that they
 /// are not page-faulted in again for every camera), all sized before the parallel parts start
 /// (nothing is allocated inside a worker): about 160 bytes per pixel with four neighbours
-/// (planar float images 60, the same as 16-bit codes 30, costs of 8 planes 32, argmin state 24,
+/// (planar float images 60, the same as 8-bit codes 15, costs of 8 planes 32, argmin state 24,
 /// feedback 8); see
 /// `sweep_workspace_bytes`.
 struct SweepWorkspace {
@@ -110,9 +110,9 @@ struct SweepWorkspace {
 [[nodiscard]] inline double sweep_workspace_bytes(int width, int height,
                                                   const std::vector<std::pair<int, int>>& neighbour_pixels,
                                                   int best) noexcept {
-  const auto planes = [](int w, int h) { // float channels and 16-bit codes
+  const auto planes = [](int w, int h) { // float channels and 8-bit codes
     const double plane = 3.0 * static_cast<double>(sweep_stride(w)) * h;
-    return 4.0 * (plane + static_cast<double>(kSweepPad)) + 2.0 * (plane + 2.0 * static_cast<double>(kSweepCodePad));
+    return 4.0 * (plane + static_cast<double>(kSweepPad)) + (plane + 2.0 * static_cast<double>(kSweepCodePad));
   };
   const double n = static_cast<double>(width) * height, w = width;
   const int blocks = (height + kSweepLockstepRows - 1) / kSweepLockstepRows;
