@@ -400,7 +400,7 @@ TEST_CASE("a workspace reused from camera to camera keeps the neighbours it hold
     for (std::size_t j = 0; j < order.size(); ++j) {
       CHECK(reused.nt_camera[j] == order[j]);
       CHECK(reused.nt[j].data == fresh.nt[j].data);
-      CHECK(reused.nt[j].words == fresh.nt[j].words);
+      CHECK(reused.nt[j].code_planes == fresh.nt[j].code_planes);
       // A camera held before keeps its buffer (moved, not converted again).
       const auto before = held.find(order[j]);
       if (before != held.end()) {

@@ -358,7 +358,7 @@ template <std::floating_point T, class Px>
 
 /// The estimated depth maps of every camera of `frames` (see `estimate_depth`), in camera order,
 /// for `CameraFrameSet::with_depth`. The cameras are shared among the `config.threads` workers
-/// (each worker's buffers take about 96 + 18 x neighbours bytes per pixel of a camera, 350 MB for Chess, and no
+/// (each worker's buffers take about 94 + 15 x neighbours bytes per pixel of a camera, 310 MB for Chess, and no
 /// more workers run at once than `config.memory_limit` holds); with fewer cameras than workers,
 /// each camera's rows are shared too. Throws as `estimate_depth`, before any work.
 template <std::floating_point T, class Px>

@@ -65,7 +65,10 @@ struct SweepCodeRow {
   std::array<int, 4> w{};
   int sum = 0, largest = 0;
   for (int i = 0; i < 4; ++i) {
-    w[static_cast<std::size_t>(i)] = static_cast<int>(std::lround(128.0f * f[i]));
+    // Rounded half up, as std::lround for these non-negative values (x - floor(x) is exact).
+    const float x = 128.0f * f[i];
+    const int whole = static_cast<int>(x);
+    w[static_cast<std::size_t>(i)] = whole + (x - static_cast<float>(whole) >= 0.5f ? 1 : 0);
     sum += w[static_cast<std::size_t>(i)];
     if (f[i] > f[largest]) largest = i;
   }
