@@ -89,7 +89,8 @@ template <std::floating_point T, class Px>
 
 /// `ws.nt[j]` = the planes of camera order[j] (`sweep_planes`), for j < order.size(): a camera
 /// the workspace already holds from the previous sweep is moved into place, not converted again
-/// (neighbouring cameras of an array share most of their neighbours).
+/// (neighbouring cameras of an array share most of their neighbours). Precondition: `ws` has only
+/// swept cameras of `frames` (a workspace serves one frame set; the camera index is the key).
 template <std::floating_point T, class Px>
 void sweep_neighbour_planes(const CameraFrameSet<T, Px>& frames, const std::vector<std::size_t>& order,
                             SweepWorkspace& ws) {
