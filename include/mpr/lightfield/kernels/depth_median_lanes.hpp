@@ -1,11 +1,11 @@
 #pragma once
 /// \file
 /// The joint weighted median of lightfield/depth_median.hpp for a row of pixels, a chunk of
-/// kMedianLanes neighbouring pixels at a time, one pixel per vector lane: every lane walks the
-/// same window taps, so the loads, the weights and the counting are vector operations and no
-/// lane waits on another's data-dependent branches. Written once as plain C++ with the
-/// compiler's vector type and compiled for every level of core/simd.hpp through `run_at`, like
-/// kernels/sweep_seen_kernels.hpp.
+/// `median_lanes(level)` neighbouring pixels at a time (one register), one pixel per lane:
+/// every lane walks the same window taps, so the loads, the weights and the counting are vector
+/// operations and no lane waits on another's data-dependent branches. Written once as plain C++
+/// with the compiler's vector type and compiled for every level of core/simd.hpp through
+/// `run_at`, like kernels/sweep_code_kernels.hpp.
 ///
 /// The median of a lane: the smallest window value v whose weight sum W(v) (the weights of the
 /// values <= v, summed in a fixed order of the taps, the same for every pixel and level) reaches
@@ -54,25 +54,38 @@ struct MedianRowInputs {
   float floor; ///< the least confidence a neighbour counts with
 };
 
-/// Pixels a chunk of `weighted_median_row` takes together (one AVX-512 vector, two AVX2 ones).
-inline constexpr int kMedianLanes = 16;
+/// The most pixels a chunk of `weighted_median_row` takes together (one AVX-512 vector): the
+/// unit the planes are padded to on the right.
+inline constexpr int kMedianChunk = 16;
 
 /// The most window taps (radius 7: 15 x 15).
 inline constexpr int kMedianTaps = 225;
 
-/// Lane types of the median: kMedianLanes lanes with GCC/Clang vectors, one lane otherwise.
+/// The pixels a chunk takes together at `level`: one register of floats (16 at AVX-512, 8 at
+/// AVX2, 4 in the 16-byte registers of the portable level; 1 without GCC/Clang vectors). A wider
+/// vector type than the level's registers is lowered to scalar code at AVX2 and below.
+[[nodiscard]] constexpr int median_lanes(SimdLevel level) noexcept {
 #if defined(__GNUC__)
-typedef float MedianLanes __attribute__((vector_size(kMedianLanes * sizeof(float))));
-typedef int MedianLaneInts __attribute__((vector_size(kMedianLanes * sizeof(int))));
-inline constexpr int kMedianChunk = kMedianLanes;
+  return level >= SimdLevel::avx512 ? 16 : level == SimdLevel::avx2 ? 8 : 4;
 #else
-using MedianLanes = float;
-using MedianLaneInts = int;
-inline constexpr int kMedianChunk = 1;
+  (void)level;
+  return 1;
 #endif
+}
 
-/// A comparison's result: per lane all bits set or none (a bool with one lane).
-using MedianLaneMask = decltype(MedianLanes{} < MedianLanes{});
+/// Lane types of the median: N lanes as vectors of the compiler's; plain scalars when N is 1.
+template <int N>
+struct MedianVectors {
+#if defined(__GNUC__)
+  typedef float Lanes __attribute__((vector_size(N * sizeof(float))));
+  typedef int Ints __attribute__((vector_size(N * sizeof(int))));
+#endif
+};
+template <>
+struct MedianVectors<1> {
+  using Lanes = float;
+  using Ints = int;
+};
 
 /// Lane l of a lane vector (or the scalar itself), read and written.
 template <class V>
@@ -94,19 +107,23 @@ MPR_ALWAYS_INLINE void set_median_lane(V& v, int l, S s) noexcept {
   }
 }
 
+/// The lanes of V (1 for a scalar).
+template <class V>
+inline constexpr int kMedianWidth = std::is_arithmetic_v<V> ? 1 : static_cast<int>(sizeof(V) / 4);
+
 /// Whether any lane of a comparison's result is set.
 template <class M>
 MPR_ALWAYS_INLINE bool median_any(const M& m) noexcept {
   if constexpr (std::is_arithmetic_v<M>) {
     return m != 0;
   } else {
-    for (int l = 0; l < kMedianChunk; ++l)
+    for (int l = 0; l < kMedianWidth<M>; ++l)
       if (m[l]) return true;
     return false;
   }
 }
 
-/// v = kMedianChunk consecutive values from p (any alignment; through a reference: a vector
+/// v = the lanes of V: consecutive values from p (any alignment; through a reference: a vector
 /// return value would change the ABI between levels).
 template <class V, class T>
 MPR_ALWAYS_INLINE void median_load(V& v, const T* p) noexcept {
@@ -119,15 +136,16 @@ MPR_ALWAYS_INLINE void median_load(V& v, const T* p) noexcept {
 #if defined(MPR_SIMD_X86) && defined(__GNUC__)
 /// g = coarse[d / 32] x fine[d % 32] of every lane with AVX-512's two-register permutes (built
 /// for that level: `median_colour_weight` calls it only there).
-MPR_TARGET_AVX512 inline void median_colour_weight_avx512(MedianLanes& g, const float* coarse, const float* fine,
-                                                          const MedianLaneInts& d) noexcept {
-  const MedianLaneInts top = d >> 5;
+MPR_TARGET_AVX512 inline void median_colour_weight_avx512(MedianVectors<16>::Lanes& g, const float* coarse,
+                                                          const float* fine,
+                                                          const MedianVectors<16>::Ints& d) noexcept {
+  const MedianVectors<16>::Ints top = d >> 5;
   __m512i i, j;
   std::memcpy(&i, &top, sizeof i);
   std::memcpy(&j, &d, sizeof j);
   const __m512 c = _mm512_permutex2var_ps(_mm512_loadu_ps(coarse), i, _mm512_loadu_ps(coarse + 16));
   const __m512 f = _mm512_permutex2var_ps(_mm512_loadu_ps(fine), j, _mm512_loadu_ps(fine + 16));
-  MedianLanes a, b;
+  MedianVectors<16>::Lanes a, b;
   std::memcpy(&a, &c, sizeof a);
   std::memcpy(&b, &f, sizeof b);
   g = a * b;
@@ -136,22 +154,23 @@ MPR_TARGET_AVX512 inline void median_colour_weight_avx512(MedianLanes& g, const 
 
 /// g = coarse[d / 32] x fine[d % 32] of every lane (`MedianRowInputs`): register permutes at
 /// the AVX-512 level, two loads per lane otherwise; the same product at every level.
-template <class Tag>
-MPR_ALWAYS_INLINE void median_colour_weight(MedianLanes& g, const MedianRowInputs& in, const MedianLaneInts& d,
-                                            Tag) noexcept {
+template <class Tag, class V, class I>
+MPR_ALWAYS_INLINE void median_colour_weight(V& g, const MedianRowInputs& in, const I& d, Tag) noexcept {
 #if defined(MPR_SIMD_X86) && defined(__GNUC__)
-  if constexpr (Tag::value >= SimdLevel::avx512) return median_colour_weight_avx512(g, in.coarse, in.fine, d);
+  if constexpr (Tag::value >= SimdLevel::avx512 && kMedianWidth<V> == 16)
+    return median_colour_weight_avx512(g, in.coarse, in.fine, d);
 #endif
-  for (int l = 0; l < kMedianChunk; ++l) {
+  for (int l = 0; l < kMedianWidth<V>; ++l) {
     const int k = median_lane(d, l);
     set_median_lane(g, l, in.coarse[k >> 5] * in.fine[k & 31]);
   }
 }
 
 /// The taps' values and weights of one chunk, tap-major (tap t of every lane together).
+template <class V>
 struct MedianTaps {
-  MedianLanes value[kMedianTaps];
-  MedianLanes weight[kMedianTaps];
+  V value[kMedianTaps];
+  V weight[kMedianTaps];
 };
 
 /// One pass over the taps at the threshold p of every lane: W(p), the weights of the taps whose
@@ -159,18 +178,20 @@ struct MedianTaps {
 /// (the same order for every pixel and pass, so W(max) is the window's total exactly and W never
 /// decreases with p); `below` the largest tap value <= p (-infinity where none) and `above` the
 /// smallest > p (+infinity where none).
+template <class V>
 struct MedianCount {
-  MedianLanes weight, below, above;
+  V weight, below, above;
 };
-MPR_ALWAYS_INLINE void median_count(MedianCount& out, const MedianTaps& taps, int n, const MedianLanes& p) noexcept {
-  const MedianLanes zero = MedianLanes{} + 0.0f, inf = MedianLanes{} + std::numeric_limits<float>::infinity();
+template <class V>
+MPR_ALWAYS_INLINE void median_count(MedianCount<V>& out, const MedianTaps<V>& taps, int n, const V& p) noexcept {
+  const V zero = V{} + 0.0f, inf = V{} + std::numeric_limits<float>::infinity();
   // Four of each running sum, max and min: short dependency chains (a max or min, not a
   // compare and a blend, on the chain).
-  MedianLanes s[4] = {zero, zero, zero, zero}, lo[4] = {-inf, -inf, -inf, -inf}, hi[4] = {inf, inf, inf, inf};
+  V s[4] = {zero, zero, zero, zero}, lo[4] = {-inf, -inf, -inf, -inf}, hi[4] = {inf, inf, inf, inf};
   const auto tap = [&](int t, int k) MPR_INLINE_LAMBDA {
-    const MedianLanes v = taps.value[t];
+    const V v = taps.value[t];
     const auto in = v <= p;
-    const MedianLanes below = in ? v : -inf, above = in ? inf : v;
+    const V below = in ? v : -inf, above = in ? inf : v;
     s[k] += in ? taps.weight[t] : zero;
     lo[k] = below > lo[k] ? below : lo[k];
     hi[k] = above < hi[k] ? above : hi[k];
@@ -184,8 +205,8 @@ MPR_ALWAYS_INLINE void median_count(MedianCount& out, const MedianTaps& taps, in
   }
   for (int k = 0; t < n; ++t, ++k) tap(t, k);
   out.weight = (s[0] + s[1]) + (s[2] + s[3]);
-  const MedianLanes l01 = lo[0] > lo[1] ? lo[0] : lo[1], l23 = lo[2] > lo[3] ? lo[2] : lo[3];
-  const MedianLanes h01 = hi[0] < hi[1] ? hi[0] : hi[1], h23 = hi[2] < hi[3] ? hi[2] : hi[3];
+  const V l01 = lo[0] > lo[1] ? lo[0] : lo[1], l23 = lo[2] > lo[3] ? lo[2] : lo[3];
+  const V h01 = hi[0] < hi[1] ? hi[0] : hi[1], h23 = hi[2] < hi[3] ? hi[2] : hi[3];
   out.below = l01 > l23 ? l01 : l23;
   out.above = h01 < h23 ? h01 : h23;
 }
@@ -193,21 +214,21 @@ MPR_ALWAYS_INLINE void median_count(MedianCount& out, const MedianTaps& taps, in
 /// b = the weighted median of every lane (see the file comment) given the lanes' smallest and
 /// largest values and total weight (W(hi), `median_weights`); lanes clear in `lanes` are left
 /// as they are in the result (hi).
-MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int n, const MedianLanes& lo,
-                                     const MedianLanes& hi, const MedianLanes& total,
-                                     const MedianLaneMask& lanes) noexcept {
+template <class V, class M>
+MPR_ALWAYS_INLINE void median_search(V& b, const MedianTaps<V>& taps, int n, const V& lo, const V& hi, const V& total,
+                                     const M& lanes) noexcept {
   // a < answer <= b with W(a) < half <= W(b); u: the smallest tap value > a.
-  MedianLaneMask open = lanes;
-  MedianCount c;
-  const MedianLanes half = total * 0.5f;
-  MedianLanes u = lo, wa = MedianLanes{} + 0.0f, wb = total;
+  M open = lanes;
+  MedianCount<V> c;
+  const V half = total * 0.5f;
+  V u = lo, wa = V{} + 0.0f, wb = total;
   b = hi;
   // Each round moves b down onto a tap value or u up past one: at most n rounds.
   for (int round = 0; round <= n; ++round) {
     open = open & (u < b);
     if (!median_any(open)) break;
     // Where the half would be reached with the weight of (a, b] spread evenly over [u, b].
-    MedianLanes p = u + (b - u) * ((half - wa) / (wb - wa));
+    V p = u + (b - u) * ((half - wa) / (wb - wa));
     p = p < b ? p : u;
     median_count(c, taps, n, p);
     const auto reached = c.weight >= half;
@@ -219,8 +240,9 @@ MPR_ALWAYS_INLINE void median_search(MedianLanes& b, const MedianTaps& taps, int
 }
 
 /// The tap values of the chunk at (x0, y) and their smallest and largest per lane.
-MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, MedianLanes& lo,
-                                     MedianLanes& hi) noexcept {
+template <class V>
+MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, MedianTaps<V>& taps, V& lo,
+                                     V& hi) noexcept {
   const int r = in.radius, n = (2 * r + 1) * (2 * r + 1);
   int t = 0;
   for (int dy = -r; dy <= r; ++dy) {
@@ -228,16 +250,16 @@ MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, M
     for (int dx = -r; dx <= r; ++dx, ++t) median_load(taps.value[t], row + dx);
   }
   // Two running minima and maxima (short dependency chains).
-  MedianLanes a0 = taps.value[0], a1 = a0, b0 = a0, b1 = a0;
+  V a0 = taps.value[0], a1 = a0, b0 = a0, b1 = a0;
   for (t = 1; t + 2 <= n; t += 2) {
-    const MedianLanes u = taps.value[t], v = taps.value[t + 1];
+    const V u = taps.value[t], v = taps.value[t + 1];
     a0 = u < a0 ? u : a0;
     b0 = u > b0 ? u : b0;
     a1 = v < a1 ? v : a1;
     b1 = v > b1 ? v : b1;
   }
   if (t < n) {
-    const MedianLanes u = taps.value[t];
+    const V u = taps.value[t];
     a0 = u < a0 ? u : a0;
     b0 = u > b0 ? u : b0;
   }
@@ -248,35 +270,36 @@ MPR_ALWAYS_INLINE void median_values(const MedianRowInputs& in, int x0, int y, M
 /// The tap weights of the chunk at (x0, y): the colour weight of the distance to the lane's
 /// pixel x max(confidence, floor); 0 for taps outside the image (confidence < 0). total: their
 /// sum in the order of `median_count`, which it equals at any p >= every value.
-template <class Tag>
-MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, MedianTaps& taps, MedianLanes& total,
+template <class Tag, class V>
+MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, MedianTaps<V>& taps, V& total,
                                       Tag tag) noexcept {
+  using I = typename MedianVectors<kMedianWidth<V>>::Ints;
   const int r = in.radius;
   const std::ptrdiff_t centre = static_cast<std::ptrdiff_t>(y) * in.stride + x0;
-  MedianLaneInts p[3];
+  I p[3];
   for (int c = 0; c < 3; ++c) median_load(p[c], in.channel[c] + centre);
-  const MedianLanes floor = MedianLanes{} + in.floor, zero = MedianLanes{} + 0.0f;
+  const V floor = V{} + in.floor, zero = V{} + 0.0f;
   int t = 0;
   for (int dy = -r; dy <= r; ++dy) {
     const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y + dy) * in.stride + x0;
     for (int dx = -r; dx <= r; ++dx, ++t) {
-      MedianLaneInts d{};
+      I d{};
       for (int c = 0; c < 3; ++c) {
-        MedianLaneInts q;
+        I q;
         median_load(q, in.channel[c] + at + dx);
         q -= p[c];
         d += q < 0 ? -q : q;
       }
-      MedianLanes conf, g;
+      V conf, g;
       median_load(conf, in.confidence + at + dx);
       median_colour_weight(g, in, d, tag);
-      const MedianLanes weight = g * (conf > floor ? conf : floor);
+      const V weight = g * (conf > floor ? conf : floor);
       taps.weight[t] = conf < zero ? zero : weight;
     }
   }
   // Tap t into sum t mod 4, as `median_count`.
   const int n = t;
-  MedianLanes s0 = zero, s1 = zero, s2 = zero, s3 = zero;
+  V s0 = zero, s1 = zero, s2 = zero, s3 = zero;
   for (t = 0; t + 4 <= n; t += 4) {
     s0 += taps.weight[t];
     s1 += taps.weight[t + 1];
@@ -292,18 +315,20 @@ MPR_ALWAYS_INLINE void median_weights(const MedianRowInputs& in, int x0, int y, 
 /// Row y of the filter into out[0, width).
 template <class Tag>
 MPR_ALWAYS_INLINE void weighted_median_row_body(const MedianRowInputs& in, int y, float* out, Tag tag) noexcept {
+  constexpr int N = median_lanes(Tag::value);
+  using V = typename MedianVectors<N>::Lanes;
   const int r = in.radius, w = in.width, n = (2 * r + 1) * (2 * r + 1);
-  MedianTaps taps;
+  MedianTaps<V> taps;
   const float* centre = in.values + static_cast<std::ptrdiff_t>(y) * in.stride;
-  for (int x0 = 0; x0 < w; x0 += kMedianChunk) {
-    const int lanes = std::min(kMedianChunk, w - x0);
+  for (int x0 = 0; x0 < w; x0 += N) {
+    const int lanes = std::min(N, w - x0);
     for (int l = 0; l < lanes; ++l) out[x0 + l] = centre[x0 + l];
-    MedianLanes lo{}, hi{};
+    V lo{}, hi{};
     median_values(in, x0, y, taps, lo, hi);
-    auto open = hi - lo > MedianLanes{} + in.flat;
-    for (int l = lanes; l < kMedianChunk; ++l) set_median_lane(open, l, 0);
+    auto open = hi - lo > V{} + in.flat;
+    for (int l = lanes; l < N; ++l) set_median_lane(open, l, 0);
     if (!median_any(open)) continue;
-    MedianLanes total, m;
+    V total, m;
     median_weights(in, x0, y, taps, total, tag);
     median_search(m, taps, n, lo, hi, total, open);
     for (int l = 0; l < lanes; ++l)
