@@ -22,52 +22,66 @@ struct SweepSeenRow {
   int xb, xe;
 };
 
-/// The pixels `sweep_shift_mean_seen` takes together (one AVX-512 vector, two AVX2 ones).
+/// The pixels `sweep_shift_mean_seen` takes together without the compiler's vectors.
 inline constexpr int kSweepSeenChunk = 16;
 
 /// The most kept costs `sweep_shift_mean_seen` takes.
 inline constexpr int kSweepSeenBest = 16;
 
 #if defined(__GNUC__)
-/// kSweepSeenChunk floats as one vector of the compiler's (GCC and Clang lower it to the
-/// registers of the level `run_at` compiles for: one AVX-512 register, two AVX2 or four SSE ones).
-typedef float SweepLanes __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
+/// The pixels a chunk takes together at `level`: one register of floats (16 at AVX-512, 8 at
+/// AVX2, 4 in the 16-byte registers of the portable level). A wider vector type than the level's
+/// registers is lowered to scalar code at AVX2 and below.
+[[nodiscard]] constexpr int sweep_seen_lanes(SimdLevel level) noexcept {
+  return level >= SimdLevel::avx512 ? 16 : level == SimdLevel::avx2 ? 8 : 4;
+}
 
-/// The same lanes' bits as integers (|x| as x's bits without the sign bit: one AND, where
-/// x < 0 ? -x : x takes a compare and a blend).
-typedef unsigned SweepLaneBits __attribute__((vector_size(kSweepSeenChunk * sizeof(float))));
+/// W floats as one vector of the compiler's, and the same lanes' bits as integers (|x| as x's
+/// bits without the sign bit: one AND, where x < 0 ? -x : x takes a compare and a blend).
+template <int W>
+struct SweepSeenVectors {
+  typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
+  typedef unsigned Bits __attribute__((vector_size(W * sizeof(float))));
+};
 
-/// kSweepSeenChunk floats from p (any alignment) times w (through a reference: a vector
-/// return value would change the ABI between levels).
-MPR_ALWAYS_INLINE void sweep_lanes(SweepLanes& v, float w, const float* p) noexcept {
+/// The lanes of a vector of floats.
+template <class V>
+inline constexpr int kSweepSeenWidth = static_cast<int>(sizeof(V) / sizeof(float));
+
+/// The lanes of V from p (any alignment) times w (through a reference: a vector return value
+/// would change the ABI between levels).
+template <class V>
+MPR_ALWAYS_INLINE void sweep_lanes(V& v, float w, const float* p) noexcept {
   std::memcpy(&v, p, sizeof v);
   v *= w;
 }
 #endif
 
 #if defined(__GNUC__)
-/// v = neighbour `r`'s costs (`SweepShiftCost`) of the kSweepSeenChunk pixels from x0, of which
+/// v = neighbour `r`'s costs (`SweepShiftCost`) of the lanes of V, pixels from x0, of which
 /// it sees [lo, hi) (non-empty): tau for the others (through a reference, as `sweep_lanes`);
 /// q: the reference's channels at those pixels, loaded once a chunk (read where hi - lo is the
 /// whole chunk).
-MPR_ALWAYS_INLINE void sweep_seen_cost(SweepLanes& v, const SweepLanes q[3], const float* const ref[3],
-                                       const SweepSeenRow& r, float tau, int x0, int lo, int hi) noexcept {
-  constexpr int W = kSweepSeenChunk;
-  const SweepLanes t = SweepLanes{} + tau;
+template <class V>
+MPR_ALWAYS_INLINE void sweep_seen_cost(V& v, const V q[3], const float* const ref[3], const SweepSeenRow& r, float tau,
+                                       int x0, int lo, int hi) noexcept {
+  constexpr int W = kSweepSeenWidth<V>;
+  using Bits = typename SweepSeenVectors<W>::Bits;
+  const V t = V{} + tau;
   const float* seen_ref[3] = {ref[0] + r.xb, ref[1] + r.xb, ref[2] + r.xb};
   const SweepShiftCost cost(seen_ref, r.row, tau);
   const std::size_t at = static_cast<std::size_t>(x0 - r.xb);
   v = t;
   if (hi - lo == W) {
-    SweepLanes s{};
+    V s{};
     for (int c = 0; c < 3; ++c) {
-      SweepLanes p00, p10, p01, p11;
+      V p00, p10, p01, p11;
       sweep_lanes(p00, cost.w00, cost.a[c] + at);
       sweep_lanes(p10, cost.w10, cost.a[c] + at + 1);
       sweep_lanes(p01, cost.w01, cost.b[c] + at);
       sweep_lanes(p11, cost.w11, cost.b[c] + at + 1);
-      const SweepLanes d = p00 + p10 + p01 + p11 - q[c];
-      const SweepLanes e = (SweepLanes)((SweepLaneBits)d & 0x7fffffffu);
+      const V d = p00 + p10 + p01 + p11 - q[c];
+      const V e = (V)((Bits)d & 0x7fffffffu);
       s = c == 0 ? e : s + e;
     }
     v = s < t ? s : t;
@@ -80,10 +94,11 @@ MPR_ALWAYS_INLINE void sweep_seen_cost(SweepLanes& v, const SweepLanes q[3], con
 /// `sweep_shift_mean_seen_body`, for K = m - best < best, computed as (the sum of all m costs -
 /// the sum of the K largest) / best: K insertions a neighbour instead of `best`. The same values
 /// up to the rounding of the sums (within a few ulp of 3 m).
-template <int K>
+template <int W, int K>
 MPR_ALWAYS_INLINE void sweep_shift_drop_seen_body(const float* const ref[3], const SweepSeenRow* rows, int m, float tau,
                                                   float* MPR_RESTRICT out, int width) noexcept {
-  constexpr int W = kSweepSeenChunk;
+  using SweepLanes = typename SweepSeenVectors<W>::Lanes;
+  using SweepLaneBits = typename SweepSeenVectors<W>::Bits;
   const SweepLanes t = SweepLanes{} + tau;
   for (int x0 = 0; x0 < width; x0 += W) {
     const int len = std::min(W, width - x0);
@@ -125,15 +140,15 @@ MPR_ALWAYS_INLINE void sweep_shift_drop_seen_body(const float* const ref[3], con
 /// out[x] = the mean of the B smallest costs (`SweepShiftCost`) of pixel x among the m
 /// neighbours rows[0..m) that see it, an unseen neighbour counting as tau, for x in [0, width):
 /// what filling B rows with tau, then for every neighbour in order `sweep_shift_keep` over the
-/// pixels it sees, and `sweep_mean_best` give (the same insertions and sums), in chunks of
-/// kSweepSeenChunk pixels whose kept costs stay in registers. An unseen neighbour is skipped:
-/// inserting tau into costs that are all <= tau changes nothing. A chunk a neighbour sees only
-/// in part takes its costs pixel by pixel.
-template <int B>
+/// pixels it sees, and `sweep_mean_best` give (the same insertions and sums), in chunks of W
+/// pixels (one register of the level) whose kept costs stay there. An unseen neighbour is
+/// skipped: inserting tau into costs that are all <= tau changes nothing. A chunk a neighbour
+/// sees only in part takes its costs pixel by pixel.
+template <int W, int B>
 MPR_ALWAYS_INLINE void sweep_shift_mean_seen_body(const float* const ref[3], const SweepSeenRow* rows, int m, float tau,
                                                   float* MPR_RESTRICT out, int width) noexcept {
-  constexpr int W = kSweepSeenChunk;
 #if defined(__GNUC__)
+  using SweepLanes = typename SweepSeenVectors<W>::Lanes;
   const SweepLanes t = SweepLanes{} + tau;
   for (int x0 = 0; x0 < width; x0 += W) {
     const int len = std::min(W, width - x0);
@@ -193,23 +208,23 @@ MPR_ALWAYS_INLINE void sweep_shift_mean_seen_body(const float* const ref[3], con
 #endif
 }
 
-/// `sweep_shift_mean_seen_body<B>` for a run-time `best` in [B, kSweepSeenBest].
-template <int B>
+/// `sweep_shift_mean_seen_body<W, B>` for a run-time `best` in [B, kSweepSeenBest].
+template <int W, int B>
 MPR_ALWAYS_INLINE void sweep_shift_mean_seen_best(const float* const ref[3], const SweepSeenRow* rows, int m, int best,
                                                   float tau, float* out, int width) noexcept {
   if constexpr (B < kSweepSeenBest)
-    if (best > B) return sweep_shift_mean_seen_best<B + 1>(ref, rows, m, best, tau, out, width);
-  sweep_shift_mean_seen_body<B>(ref, rows, m, tau, out, width);
+    if (best > B) return sweep_shift_mean_seen_best<W, B + 1>(ref, rows, m, best, tau, out, width);
+  sweep_shift_mean_seen_body<W, B>(ref, rows, m, tau, out, width);
 }
 
 #if defined(__GNUC__)
-/// `sweep_shift_drop_seen_body<K>` for a run-time m - best = `drop` in [K, kSweepSeenBest).
-template <int K>
+/// `sweep_shift_drop_seen_body<W, K>` for a run-time m - best = `drop` in [K, kSweepSeenBest).
+template <int W, int K>
 MPR_ALWAYS_INLINE void sweep_shift_drop_seen_count(const float* const ref[3], const SweepSeenRow* rows, int m, int drop,
                                                    float tau, float* out, int width) noexcept {
   if constexpr (K + 1 < kSweepSeenBest)
-    if (drop > K) return sweep_shift_drop_seen_count<K + 1>(ref, rows, m, drop, tau, out, width);
-  sweep_shift_drop_seen_body<K>(ref, rows, m, tau, out, width);
+    if (drop > K) return sweep_shift_drop_seen_count<W, K + 1>(ref, rows, m, drop, tau, out, width);
+  sweep_shift_drop_seen_body<W, K>(ref, rows, m, tau, out, width);
 }
 #endif
 
@@ -221,11 +236,17 @@ MPR_ALWAYS_INLINE void sweep_shift_drop_seen_count(const float* const ref[3], co
 inline void sweep_shift_mean_seen(const float* const ref[3], const SweepSeenRow* rows, int m, int best, float tau,
                                   float* out, int width, SimdLevel level = dispatch_level()) noexcept {
 #if defined(__GNUC__)
-  if (m >= best && m - best < best)
-    return run_at(level,
-                  [&]() MPR_INLINE_LAMBDA { sweep_shift_drop_seen_count<0>(ref, rows, m, m - best, tau, out, width); });
+  const bool drop = m >= best && m - best < best;
+  run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
+    constexpr int W = sweep_seen_lanes(decltype(tag)::value);
+    if (drop)
+      sweep_shift_drop_seen_count<W, 0>(ref, rows, m, m - best, tau, out, width);
+    else
+      sweep_shift_mean_seen_best<W, 1>(ref, rows, m, best, tau, out, width);
+  });
+#else
+  run_at(level, [&]() { sweep_shift_mean_seen_best<kSweepSeenChunk, 1>(ref, rows, m, best, tau, out, width); });
 #endif
-  run_at(level, [&]() MPR_INLINE_LAMBDA { sweep_shift_mean_seen_best<1>(ref, rows, m, best, tau, out, width); });
 }
 
 } // namespace mpr::detail
