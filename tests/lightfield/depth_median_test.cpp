@@ -202,3 +202,16 @@ TEST_CASE("weighted median: views with padded rows give what packed images give"
     for (int x = 0; x < 9; ++x) CHECK(padded(x, y) == packed(x, y));
   CHECK(padded(4, 3) == 0.0f);
 }
+
+TEST_CASE("weighted median: a chunk is one register of the level", "[depth_median]") {
+  using mpr::detail::median_lanes;
+  using mpr::detail::SimdLevel;
+#if defined(__GNUC__)
+  // A vector type wider than the level's registers is lowered to scalar code.
+  STATIC_REQUIRE(sizeof(mpr::detail::MedianVectors<median_lanes(SimdLevel::portable)>::Lanes) == 16);
+  STATIC_REQUIRE(sizeof(mpr::detail::MedianVectors<median_lanes(SimdLevel::avx2)>::Lanes) == 32);
+  STATIC_REQUIRE(sizeof(mpr::detail::MedianVectors<median_lanes(SimdLevel::avx512)>::Lanes) == 64);
+#endif
+  // The padding unit holds a whole number of chunks at every level.
+  for (const SimdLevel level : mpr::detail::kSimdLevels) CHECK(mpr::detail::kMedianChunk % median_lanes(level) == 0);
+}

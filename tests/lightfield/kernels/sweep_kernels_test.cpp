@@ -406,3 +406,16 @@ TEST_CASE("the chunked kernel averages the best costs of the neighbours that see
     });
   }
 }
+
+TEST_CASE("the chunked float kernel takes one register of the level", "[sweep_kernels]") {
+#if defined(__GNUC__)
+  using mpr::detail::SimdLevel;
+  using mpr::detail::sweep_seen_lanes;
+  // A vector type wider than the level's registers is lowered to scalar code.
+  STATIC_REQUIRE(sizeof(mpr::detail::SweepSeenVectors<sweep_seen_lanes(SimdLevel::portable)>::Lanes) == 16);
+  STATIC_REQUIRE(sizeof(mpr::detail::SweepSeenVectors<sweep_seen_lanes(SimdLevel::avx2)>::Lanes) == 32);
+  STATIC_REQUIRE(sizeof(mpr::detail::SweepSeenVectors<sweep_seen_lanes(SimdLevel::avx512)>::Lanes) == 64);
+#else
+  SUCCEED("the compiler has no vector types: the kernel is scalar");
+#endif
+}
