@@ -7,6 +7,7 @@
 
 #include <mpr/core/simd.hpp>
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -63,8 +64,13 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
     du[i] = u;
     dv[i] = v;
     dd[i] = length2;
-    ok[i] = good ? Flag(-1) : Flag(0);
-    cos2[i] = good ? dn * dn / length2 : T(1);
+    const Flag mask = good ? Flag(-1) : Flag(0);
+    ok[i] = mask;
+    // The quotient for every ray, then 1 where not good, by its bits: with a select the compiler
+    // moves the division under the condition, a branch wherever the level has no masked
+    // division (AVX2, SSE2), and the loop no longer vectorises there.
+    const T cos_squared = dn * dn / length2;
+    cos2[i] = std::bit_cast<T>((std::bit_cast<Flag>(cos_squared) & mask) | (std::bit_cast<Flag>(T(1)) & ~mask));
   }
 }
 
@@ -123,8 +129,13 @@ MPR_ALWAYS_INLINE void plane_rays_affine_body(const T (&first)[6], const T (&ste
     du[i] = u;
     dv[i] = v;
     dd[i] = length2;
-    ok[i] = good ? Flag(-1) : Flag(0);
-    cos2[i] = good ? dn * dn / length2 : T(1);
+    const Flag mask = good ? Flag(-1) : Flag(0);
+    ok[i] = mask;
+    // The quotient for every ray, then 1 where not good, by its bits: with a select the compiler
+    // moves the division under the condition, a branch wherever the level has no masked
+    // division (AVX2, SSE2), and the loop no longer vectorises there.
+    const T cos_squared = dn * dn / length2;
+    cos2[i] = std::bit_cast<T>((std::bit_cast<Flag>(cos_squared) & mask) | (std::bit_cast<Flag>(T(1)) & ~mask));
   }
 }
 
