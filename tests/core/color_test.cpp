@@ -86,7 +86,7 @@ TEST_CASE("linear_to_srgb8_row gives the per-channel codes bit for bit", "[color
                         std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(), 1.0f,
                         std::nextafter(1.0f, 0.0f), std::nextafter(1.0f, 2.0f), 1e30f, -1e30f})
     for (int r = 0; r < 17; ++r) in.push_back(v);
-  // Every level this CPU runs (the AVX-512 one has its own 16-wide step).
+  // Every level this CPU runs (AVX-512 and AVX2 have their own 16- and 8-wide steps).
   mpr_test::for_each_simd_level([&](mpr::detail::SimdLevel level) {
     for (const std::size_t length : {in.size(), std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{16},
                                      std::size_t{17}, std::size_t{33}}) {

@@ -109,8 +109,8 @@ inline const SrgbTables srgb_tables{};
 }
 
 /// `linear_to_srgb8` over m channels (`out[j]` from `in[j]`), compiled for `level` (default:
-/// the widest this CPU runs); with AVX-512, 16 channels at a time (core/kernels/srgb_encode.hpp).
-/// The same codes at every level.
+/// the widest this CPU runs); 16 channels at a time with AVX-512, 8 with AVX2
+/// (core/kernels/srgb_encode.hpp). The same codes at every level.
 inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t m,
                                 detail::SimdLevel level = detail::dispatch_level()) noexcept {
   detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {

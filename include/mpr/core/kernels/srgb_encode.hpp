@@ -47,14 +47,42 @@ MPR_TARGET_AVX512 inline std::size_t linear_to_srgb8_avx512(const float* in, std
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
+
+/// `linear_to_srgb8_avx512` 8 channels at a time with AVX2's gather: the channels [0, m - m % 8)
+/// of `in`, the same codes bit for bit. Returns m - m % 8.
+MPR_TARGET_AVX2 inline std::size_t linear_to_srgb8_avx2(const float* in, std::uint8_t* out, std::size_t m,
+                                                        const std::uint32_t* bin_entry, int bins) noexcept {
+  const __m256 zero = _mm256_setzero_ps(), below_one = _mm256_set1_ps(0x1.fffffep-1f);
+  const __m256 scale = _mm256_set1_ps(static_cast<float>(bins)), fraction = _mm256_set1_ps(0x1p23f);
+  const __m256i byte = _mm256_set1_epi32(0xff), one = _mm256_set1_epi32(1);
+  const int* entries = reinterpret_cast<const int*>(bin_entry);
+  std::size_t j = 0;
+  for (; j + 8 <= m; j += 8) {
+    // max(x, 0) returns 0 for NaN (the second operand).
+    const __m256 x = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(in + j), zero), below_one);
+    const __m256 scaled = _mm256_mul_ps(x, scale);
+    const __m256i bin = _mm256_cvttps_epi32(scaled);
+    const __m256i entry = _mm256_i32gather_epi32(entries, bin, 4);
+    const __m256i at = _mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(scaled, _mm256_cvtepi32_ps(bin)), fraction));
+    // The code at the bin's lower edge, plus 1 unless `at` lies below the threshold (both below
+    // 2^24: the signed compare is exact).
+    const __m256i below = _mm256_cmpgt_epi32(_mm256_srli_epi32(entry, 8), at);
+    const __m256i k = _mm256_add_epi32(_mm256_and_si256(entry, byte), _mm256_add_epi32(one, below));
+    const __m128i words = _mm_packus_epi32(_mm256_castsi256_si128(k), _mm256_extracti128_si256(k, 1));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + j), _mm_packus_epi16(words, words));
+  }
+  return j;
+}
 #endif
 
-/// The step of the sRGB row encoder at level `L` (see `linear_to_srgb8_avx512`): AVX-512 only.
+/// The step of the sRGB row encoder at level `L` (see `linear_to_srgb8_avx512`): AVX-512 and
+/// AVX2; none at the portable level.
 template <SimdLevel L>
 MPR_ALWAYS_INLINE std::size_t linear_to_srgb8_step(SimdTag<L>, const float* in, std::uint8_t* out, std::size_t m,
                                                    const std::uint32_t* bin_entry, int bins) noexcept {
 #if defined(MPR_SIMD_X86)
   if constexpr (L == SimdLevel::avx512) return linear_to_srgb8_avx512(in, out, m, bin_entry, bins);
+  if constexpr (L == SimdLevel::avx2) return linear_to_srgb8_avx2(in, out, m, bin_entry, bins);
 #endif
   (void)in, (void)out, (void)m, (void)bin_entry, (void)bins;
   return 0;
