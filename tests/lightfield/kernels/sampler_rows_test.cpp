@@ -14,6 +14,7 @@
 #include <mpr/mpr.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -1290,5 +1291,32 @@ TEMPLATE_TEST_CASE("evenly_spaced: every variant tells evenly spaced points from
     mpr::detail::widen_bounds(v.data(), len, wide_lo, wide_hi);
     CHECK(wide_lo == T(-5000));
     CHECK(wide_hi == T(5000));
+  }
+}
+
+TEST_CASE("average_rows: the sums over positive weights at every level, 0 elsewhere", "[camera_frame_kernels]") {
+  // Weights of every kind the finish sees (counts, fractions) and the ones it must not divide by.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float kinds[] = {0.0f, 1.0f, 3.0f, 0.37f, -1.0f, -0.0f, nan, std::numeric_limits<float>::denorm_min(), 48.0f};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> colour(0.0f, 50.0f);
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{8}, std::size_t{9},
+                              std::size_t{255}, std::size_t{256}, std::size_t{257}, std::size_t{600}}) {
+    std::vector<float> weight(n), acc(3 * n);
+    for (std::size_t i = 0; i < n; ++i) weight[i] = kinds[(i * 5 + n) % std::size(kinds)];
+    for (float& a : acc) a = colour(rng);
+    mpr_test::for_each_simd_level([&](Kernel level) {
+      std::vector<float> out(3 * n + 1, -7.0f);
+      mpr::detail::average_rows(acc.data(), weight.data(), out.data(), n, level);
+      int wrong = 0;
+      for (std::size_t j = 0; j < 3 * n; ++j) {
+        const float w = weight[j / 3];
+        const float expected = w > 0 ? acc[j] * (1.0f / w) : 0.0f;
+        wrong += std::bit_cast<std::uint32_t>(out[j]) != std::bit_cast<std::uint32_t>(expected) ? 1 : 0;
+      }
+      INFO("n " << n << ", level " << mpr::detail::simd_level_name(level));
+      CHECK(wrong == 0);
+      CHECK(out[3 * n] == -7.0f); // nothing written past the row
+    });
   }
 }

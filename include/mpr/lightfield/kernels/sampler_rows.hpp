@@ -11,6 +11,7 @@
 /// which the compiler's vectoriser fills at full width.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -250,8 +251,12 @@ MPR_ALWAYS_INLINE void average_rows_body(const float* MPR_RESTRICT acc, const fl
   for (std::size_t s0 = 0; s0 < n; s0 += kStep) {
     const std::size_t m = std::min(kStep, n - s0);
     for (std::size_t i = 0; i < m; ++i) {
+      // The reciprocal of every weight, then 0 by its bits where the weight is not positive:
+      // under a select the compiler moves the division into a branch below AVX-512, and the
+      // loop no longer vectorises there.
       const float w = weight[s0 + i];
-      const float inv = w > 0 ? 1.0f / w : 0.0f;
+      const std::int32_t keep = w > 0 ? -1 : 0;
+      const float inv = std::bit_cast<float>(std::bit_cast<std::int32_t>(1.0f / w) & keep);
       spread[3 * i] = spread[3 * i + 1] = spread[3 * i + 2] = inv;
     }
     for (std::size_t j = 0; j < 3 * m; ++j) out[3 * s0 + j] = acc[3 * s0 + j] * spread[j];
