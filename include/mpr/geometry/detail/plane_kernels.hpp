@@ -32,6 +32,19 @@ struct PlaneAxes {
   T px, py, pz, nx, ny, nz, ux, uy, uz, vx, vy, vz;
 };
 
+/// ok = all bits set where `good`, else 0; returns the squared cosine dn^2 / length2 where
+/// `good`, else 1. The quotient is formed for every ray and replaced by its bits: under a select
+/// the compiler moves the division into a branch wherever the level has no masked division
+/// (AVX2, SSE2), and the loop no longer vectorises there.
+template <class T, class Flag>
+MPR_ALWAYS_INLINE T plane_cos2(bool good, T dn, T length2, Flag& ok) noexcept {
+  static_assert(sizeof(Flag) == sizeof(T));
+  const Flag mask = good ? Flag(-1) : Flag(0);
+  ok = mask;
+  const T quotient = dn * dn / length2;
+  return std::bit_cast<T>((std::bit_cast<Flag>(quotient) & mask) | (std::bit_cast<Flag>(T(1)) & ~mask));
+}
+
 /// Fills `out` (n entries from each pointer) for rays given as structure of arrays (origin
 /// o = (ox, oy, oz) relative to the frame's point, direction (dx, dy, dz)), and cos2[i], the
 /// squared cosine between ray i and the normal. A ray crosses when (d . n)^2 > 1e-6 |d|^2 and
@@ -44,7 +57,6 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
                                        T* MPR_RESTRICT du, T* MPR_RESTRICT dv, T* MPR_RESTRICT dd,
                                        typename PlaneRays<T>::Flag* MPR_RESTRICT ok, T* MPR_RESTRICT cos2) noexcept {
   // (Outputs are parameters: GCC honours `restrict` on parameters, not on local copies.)
-  using Flag = typename PlaneRays<T>::Flag;
   // The frame in locals: loads through `f` inside the loop could alias the outputs.
   const T nx = f.nx, ny = f.ny, nz = f.nz, ux = f.ux, uy = f.uy, uz = f.uz, vx = f.vx, vy = f.vy, vz = f.vz;
   for (std::size_t i = 0; i < n; ++i) {
@@ -64,13 +76,7 @@ MPR_ALWAYS_INLINE void plane_rays_body(const T* MPR_RESTRICT ox, const T* MPR_RE
     du[i] = u;
     dv[i] = v;
     dd[i] = length2;
-    const Flag mask = good ? Flag(-1) : Flag(0);
-    ok[i] = mask;
-    // The quotient for every ray, then 1 where not good, by its bits: with a select the compiler
-    // moves the division under the condition, a branch wherever the level has no masked
-    // division (AVX2, SSE2), and the loop no longer vectorises there.
-    const T cos_squared = dn * dn / length2;
-    cos2[i] = std::bit_cast<T>((std::bit_cast<Flag>(cos_squared) & mask) | (std::bit_cast<Flag>(T(1)) & ~mask));
+    cos2[i] = plane_cos2(good, dn, length2, ok[i]);
   }
 }
 
@@ -95,7 +101,6 @@ MPR_ALWAYS_INLINE void plane_rays_affine_body(const T (&first)[6], const T (&ste
                                               T* MPR_RESTRICT du, T* MPR_RESTRICT dv, T* MPR_RESTRICT dd,
                                               typename PlaneRays<T>::Flag* MPR_RESTRICT ok,
                                               T* MPR_RESTRICT cos2) noexcept {
-  using Flag = typename PlaneRays<T>::Flag;
   const auto dot = [](T ax, T ay, T az, T bx, T by, T bz) { return ax * bx + ay * by + az * bz; };
   // Each per-ray quantity as q0 + i q1: the origin's and direction's projections on n, u, v,
   // and the direction's components (for its length).
@@ -129,13 +134,7 @@ MPR_ALWAYS_INLINE void plane_rays_affine_body(const T (&first)[6], const T (&ste
     du[i] = u;
     dv[i] = v;
     dd[i] = length2;
-    const Flag mask = good ? Flag(-1) : Flag(0);
-    ok[i] = mask;
-    // The quotient for every ray, then 1 where not good, by its bits: with a select the compiler
-    // moves the division under the condition, a branch wherever the level has no masked
-    // division (AVX2, SSE2), and the loop no longer vectorises there.
-    const T cos_squared = dn * dn / length2;
-    cos2[i] = std::bit_cast<T>((std::bit_cast<Flag>(cos_squared) & mask) | (std::bit_cast<Flag>(T(1)) & ~mask));
+    cos2[i] = plane_cos2(good, dn, length2, ok[i]);
   }
 }
 
