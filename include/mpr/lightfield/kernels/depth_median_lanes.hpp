@@ -150,15 +150,38 @@ MPR_TARGET_AVX512 inline void median_colour_weight_avx512(MedianVectors<16>::Lan
   std::memcpy(&b, &f, sizeof b);
   g = a * b;
 }
+
+/// t[k] of every lane of the 32-entry table t (k in [0, 32)) with AVX2: a permute of each
+/// quarter, chosen by bits 3 and 4 of k.
+MPR_TARGET_AVX2 inline __m256 median_table_avx2(const float* t, __m256i k) noexcept {
+  const __m256 q0 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(t), k);
+  const __m256 q1 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(t + 8), k);
+  const __m256 q2 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(t + 16), k);
+  const __m256 q3 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(t + 24), k);
+  const __m256 bit3 = _mm256_castsi256_ps(_mm256_slli_epi32(k, 28)),
+               bit4 = _mm256_castsi256_ps(_mm256_slli_epi32(k, 27));
+  return _mm256_blendv_ps(_mm256_blendv_ps(q0, q1, bit3), _mm256_blendv_ps(q2, q3, bit3), bit4);
+}
+
+/// `median_colour_weight_avx512` for 8 lanes with AVX2's permutes (`median_table_avx2`).
+MPR_TARGET_AVX2 inline void median_colour_weight_avx2(MedianVectors<8>::Lanes& g, const float* coarse,
+                                                      const float* fine, const MedianVectors<8>::Ints& d) noexcept {
+  const MedianVectors<8>::Ints top = (d >> 5) & 31, low = d & 31;
+  const __m256 c = median_table_avx2(coarse, __builtin_bit_cast(__m256i, top));
+  const __m256 f = median_table_avx2(fine, __builtin_bit_cast(__m256i, low));
+  g = __builtin_bit_cast(MedianVectors<8>::Lanes, c) * __builtin_bit_cast(MedianVectors<8>::Lanes, f);
+}
 #endif
 
 /// g = coarse[d / 32] x fine[d % 32] of every lane (`MedianRowInputs`): register permutes at
-/// the AVX-512 level, two loads per lane otherwise; the same product at every level.
+/// AVX-512 and AVX2, two loads per lane otherwise; the same product at every level.
 template <class Tag, class V, class I>
 MPR_ALWAYS_INLINE void median_colour_weight(V& g, const MedianRowInputs& in, const I& d, Tag) noexcept {
 #if defined(MPR_SIMD_X86) && defined(__GNUC__)
   if constexpr (Tag::value >= SimdLevel::avx512 && kMedianWidth<V> == 16)
     return median_colour_weight_avx512(g, in.coarse, in.fine, d);
+  if constexpr (Tag::value == SimdLevel::avx2 && kMedianWidth<V> == 8)
+    return median_colour_weight_avx2(g, in.coarse, in.fine, d);
 #endif
   for (int l = 0; l < kMedianWidth<V>; ++l) {
     const int k = median_lane(d, l);
