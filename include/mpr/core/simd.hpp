@@ -61,6 +61,13 @@ inline constexpr std::array<SimdLevel, 4> kSimdLevels{SimdLevel::portable, SimdL
   }
 }
 
+/// The bytes of a vector register at `level`: 64 at AVX-512, 32 at AVX2, 16 at the portable
+/// level (SSE2, NEON). Kernels written with the compiler's vector types size their lanes by it: a
+/// vector type wider than the level's registers is lowered to scalar code at AVX2 and below.
+[[nodiscard]] constexpr int simd_register_bytes(SimdLevel level) noexcept {
+  return level >= SimdLevel::avx512 ? 64 : level == SimdLevel::avx2 ? 32 : 16;
+}
+
 /// The level a value of `MPR_SIMD` names, or nothing for an unknown name. Accepted: the names of
 /// `simd_level_name`, and `portable`, `sse2`, `neon`, `baseline` (the baseline) and `avx2`.
 [[nodiscard]] constexpr std::optional<SimdLevel> parse_simd_level(std::string_view name) noexcept {

@@ -61,12 +61,12 @@ inline constexpr int kMedianChunk = 16;
 /// The most window taps (radius 7: 15 x 15).
 inline constexpr int kMedianTaps = 225;
 
-/// The pixels a chunk takes together at `level`: one register of floats (16 at AVX-512, 8 at
-/// AVX2, 4 in the 16-byte registers of the portable level; 1 without GCC/Clang vectors). A wider
-/// vector type than the level's registers is lowered to scalar code at AVX2 and below.
+/// The pixels a chunk takes together at `level`: one register of floats
+/// (`simd_register_bytes`: 16 at AVX-512, 8 at AVX2, 4 at the portable level; 1 without
+/// GCC/Clang vectors).
 [[nodiscard]] constexpr int median_lanes(SimdLevel level) noexcept {
 #if defined(__GNUC__)
-  return level >= SimdLevel::avx512 ? 16 : level == SimdLevel::avx2 ? 8 : 4;
+  return simd_register_bytes(level) / static_cast<int>(sizeof(float));
 #else
   (void)level;
   return 1;

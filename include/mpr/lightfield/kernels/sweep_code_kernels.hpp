@@ -137,11 +137,9 @@ struct SweepCodeVectors {
   typedef float Floats __attribute__((vector_size(N * sizeof(float))));
 };
 
-/// The 16-bit lanes of a register at `level` (32 at AVX-512, 16 at AVX2, 8 in the 16-byte
-/// registers of the portable level); a chunk of the kernel is twice as many pixels.
-[[nodiscard]] constexpr int sweep_code_lanes(SimdLevel level) noexcept {
-  return level >= SimdLevel::avx512 ? 32 : level == SimdLevel::avx2 ? 16 : 8;
-}
+/// The 16-bit lanes of a register at `level` (`simd_register_bytes`: 32 at AVX-512, 16 at AVX2,
+/// 8 at the portable level); a chunk of the kernel is twice as many pixels.
+[[nodiscard]] constexpr int sweep_code_lanes(SimdLevel level) noexcept { return simd_register_bytes(level) / 2; }
 
 /// N words (2N codes) from p (any alignment), through a reference (a vector return value would
 /// change the ABI between levels).

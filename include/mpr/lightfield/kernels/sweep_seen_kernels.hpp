@@ -29,11 +29,10 @@ inline constexpr int kSweepSeenChunk = 16;
 inline constexpr int kSweepSeenBest = 16;
 
 #if defined(__GNUC__)
-/// The pixels a chunk takes together at `level`: one register of floats (16 at AVX-512, 8 at
-/// AVX2, 4 in the 16-byte registers of the portable level). A wider vector type than the level's
-/// registers is lowered to scalar code at AVX2 and below.
+/// The pixels a chunk takes together at `level`: one register of floats
+/// (`simd_register_bytes`: 16 at AVX-512, 8 at AVX2, 4 at the portable level).
 [[nodiscard]] constexpr int sweep_seen_lanes(SimdLevel level) noexcept {
-  return level >= SimdLevel::avx512 ? 16 : level == SimdLevel::avx2 ? 8 : 4;
+  return simd_register_bytes(level) / static_cast<int>(sizeof(float));
 }
 
 /// W floats as one vector of the compiler's, and the same lanes' bits as integers (|x| as x's
