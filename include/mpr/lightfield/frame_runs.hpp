@@ -364,7 +364,8 @@ bool projective_row_of(const typename FrameTable<T, Px>::Camera& c, const Vec3<T
          c.height,
          c.texels->c,
          Table::texel_type::scale,
-         texel_decode_table<typename Table::texel_type>()};
+         texel_decode_table<typename Table::texel_type>(),
+         c.linear};
   return true;
 }
 } // namespace detail

@@ -1,8 +1,8 @@
 // The projective-row kernel (lightfield/kernels/projective_row.hpp): every SIMD level against a
 // long-double reference of the same sums, on rows that cross the image borders, pass behind the
 // camera, stand still or step several pixels at a time, with and without per-point weights, for
-// 8-bit codes and float channels and float and double coordinates. Nothing past a row's end is
-// written.
+// 8-bit codes (with and without their 16-bit linear copy) and float channels and float and double
+// coordinates. Nothing past a row's end is written.
 #include "lightfield/projective_reference.hpp"
 #include "simd_levels.hpp"
 
@@ -61,8 +61,14 @@ void run_row(Entry entry, const ProjectiveRow<T, C>& r, std::size_t n, const flo
   mpr::detail::projective_row(r, n, rw, acc, seen, level);
 }
 
+// Whether 8-bit rows also carry their 16-bit linear copy (`ProjectiveRow::linear`, as the frames
+// hold it below the VBMI level); with one, each result must also equal, bit for bit, the same row
+// run without it (the kernels' claim: the same sums).
+enum class Copy { none, linear16 };
+
 template <class T, class C>
-void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entry entry = Entry::dispatch) {
+void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entry entry = Entry::dispatch,
+                  Copy copy = Copy::none) {
   std::mt19937_64 rng(2007 + sizeof(T) * 10 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
   const int width = 37, height = 23;
@@ -76,6 +82,14 @@ void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entr
   }
   const float scale = std::is_same_v<C, float> ? 1.0f : 1.0f / 65535.0f;
   const std::uint16_t* lut = std::is_same_v<C, std::uint8_t> ? table : nullptr;
+  // The copy, with 32 readable values after the last (as `CameraFrameSet::linear16`'s).
+  std::vector<std::uint16_t> linear;
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    if (copy == Copy::linear16) {
+      linear.assign(texels.size() + 32, 0);
+      for (std::size_t k = 0; k < texels.size(); ++k) linear[k] = lut[texels[k]];
+    }
+  int differ = 0;
   // Coordinates far from the origin make float rounding of the projective map realistic.
   const LD margin = std::is_same_v<T, float> ? 2e-3L : 1e-9L;
   int failures = 0, compared = 0, seen_points = 0;
@@ -98,7 +112,8 @@ void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entr
                             height,
                             texels.data(),
                             scale,
-                            lut};
+                            lut,
+                            linear.empty() ? nullptr : linear.data()};
       if (trial >= 10) r.hs[0] = r.hs[1] = r.hs[2] = 0;
       std::vector<float> rw(n);
       for (float& v : rw) v = unit(rng) < 0.25 ? (unit(rng) < 0.5 ? 0.0f : -1.0f) : static_cast<float>(unit(rng));
@@ -108,6 +123,13 @@ void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entr
       mpr_test::for_each_simd_level([&](SimdLevel level) {
         std::vector<float> acc = acc0, seen = seen0;
         run_row(entry, r, n, weighted ? rw.data() : nullptr, acc.data(), seen.data(), level);
+        if (r.linear != nullptr) {
+          ProjectiveRow<T, C> codes = r;
+          codes.linear = nullptr;
+          std::vector<float> acc_codes = acc0, seen_codes = seen0;
+          run_row(entry, codes, n, weighted ? rw.data() : nullptr, acc_codes.data(), seen_codes.data(), level);
+          differ += acc != acc_codes || seen != seen_codes ? 1 : 0;
+        }
         for (std::size_t j = 3 * n; j < acc.size(); ++j) failures += acc[j] != kSentinel ? 1 : 0;
         for (std::size_t j = n; j < seen.size(); ++j) failures += seen[j] != kSentinel ? 1 : 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -126,6 +148,7 @@ void check_kernel(const std::uint16_t* table = mpr::Srgb8Texel::linear16(), Entr
       });
     }
   CHECK(failures == 0);
+  CHECK(differ == 0);
   CHECK(compared > 1000);
   CHECK(seen_points > 300); // the rows do cross the image
 }
@@ -137,6 +160,9 @@ TEMPLATE_TEST_CASE("projective_row: every level adds the bilinear pixels of the 
   SECTION("8-bit sRGB codes") { check_kernel<TestType, std::uint8_t>(); }
   SECTION("float channels") { check_kernel<TestType, float>(); }
   SECTION("8-bit codes, another decode table") { check_kernel<TestType, std::uint8_t>(other_table()); }
+  SECTION("8-bit sRGB codes with their 16-bit linear copy") {
+    check_kernel<TestType, std::uint8_t>(mpr::Srgb8Texel::linear16(), Entry::dispatch, Copy::linear16);
+  }
 }
 
 TEST_CASE("projective_row_hwy: the Highway kernel at every level adds the bilinear pixels of the reference",
@@ -144,6 +170,12 @@ TEST_CASE("projective_row_hwy: the Highway kernel at every level adds the biline
   SECTION("8-bit sRGB codes") { check_kernel<float, std::uint8_t>(mpr::Srgb8Texel::linear16(), Entry::hwy); }
   SECTION("8-bit codes, another decode table") { check_kernel<float, std::uint8_t>(other_table(), Entry::hwy); }
   SECTION("float channels") { check_kernel<float, float>(nullptr, Entry::hwy); }
+  SECTION("8-bit sRGB codes with their 16-bit linear copy") {
+    check_kernel<float, std::uint8_t>(mpr::Srgb8Texel::linear16(), Entry::hwy, Copy::linear16);
+  }
+  SECTION("8-bit codes, another decode table, with the copy") {
+    check_kernel<float, std::uint8_t>(other_table(), Entry::hwy, Copy::linear16);
+  }
 }
 
 TEST_CASE("gather_indexable: 32-bit channel offsets for the whole image", "[projective_row]") {

@@ -28,6 +28,9 @@ namespace mpr::detail {
 /// k]` is channel k of texel t), colour = `channel_value(channel, lut)` x `scale` (`lut`: the
 /// decode table of 8-bit codes, else unused). 8-bit texels need readable bytes after the last
 /// (`HugePageAllocator`'s padding): the AVX-512 step loads each texel as a 32-bit word.
+/// `linear` (8-bit texels only; nullptr: none): the same channels as 16-bit decode-table values
+/// (`CameraFrameSet::linear16`, `linear[k] = lut[texels[k]]`, readable values after the last),
+/// which the Highway kernel gathers in place of decoding the codes (the same sums).
 template <class T, class C>
 struct ProjectiveRow {
   T h0[3], hs[3];
@@ -35,6 +38,7 @@ struct ProjectiveRow {
   const C* texels;
   float scale;
   const std::uint16_t* lut = nullptr;
+  const std::uint16_t* linear = nullptr;
 };
 
 /// Whether the kernels can index every channel of a `width` x `height` image with 32-bit

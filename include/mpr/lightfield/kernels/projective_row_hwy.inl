@@ -55,9 +55,13 @@ private:
 /// Float channels need no decode.
 struct NoDecode {};
 
+/// 8-bit texels read from their 16-bit linear copy (`ProjectiveRow::linear`): the values are
+/// the decoded ones, gathered two channels a 32-bit word.
+struct LinearTexels {};
+
 /// sum[k] += weight x channel k of the texels at channel offsets `offset`: 8-bit codes by one
-/// 32-bit gather per texel (its r g b and the byte past them), decoded together; float channels
-/// by one gather per channel.
+/// 32-bit gather per texel (its r g b and the byte past them), decoded together; their 16-bit
+/// linear copy (`LinearTexels`) by two; float channels by one gather per channel.
 template <class C, class Decode>
 HWY_INLINE void projective_tap(const C* HWY_RESTRICT texels, const Decode& decode, hn::Vec<DI> offset,
                                hn::Vec<DF> weight, hn::Vec<DF> (&sum)[3]) noexcept {
@@ -69,6 +73,16 @@ HWY_INLINE void projective_tap(const C* HWY_RESTRICT texels, const Decode& decod
     sum[0] = hn::MulAdd(weight, decode(hn::And(word, byte)), sum[0]);
     sum[1] = hn::MulAdd(weight, decode(hn::And(hn::ShiftRight<8>(word), byte)), sum[1]);
     sum[2] = hn::MulAdd(weight, decode(hn::And(hn::ShiftRight<16>(word), byte)), sum[2]);
+  } else if constexpr (std::is_same_v<Decode, LinearTexels>) {
+    // Channel offset o is byte 2 o of the 16-bit copy: r g in one word, b (and the next
+    // texel's r, or padding) in the next.
+    const auto at = hn::Add(offset, offset);
+    const auto rg = hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(texels), at);
+    const auto b = hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(texels), hn::Add(at, hn::Set(di, 4)));
+    const auto low = hn::Set(di, 0xFFFF);
+    sum[0] = hn::MulAdd(weight, hn::ConvertTo(df, hn::And(rg, low)), sum[0]);
+    sum[1] = hn::MulAdd(weight, hn::ConvertTo(df, hn::And(hn::ShiftRight<16>(rg), low)), sum[1]);
+    sum[2] = hn::MulAdd(weight, hn::ConvertTo(df, hn::And(b, low)), sum[2]);
   } else {
     (void)decode;
     for (int k = 0; k < 3; ++k)
@@ -79,8 +93,8 @@ HWY_INLINE void projective_tap(const C* HWY_RESTRICT texels, const Decode& decod
 /// Asks for the texel rows of the points from t on (their first and second tap rows, every
 /// second lane): a tilted or scaled row walks across camera rows, which the hardware prefetcher
 /// does not follow.
-template <class Row>
-HWY_INLINE void projective_prefetch(const Row& r, hn::Vec<DF> t) noexcept {
+template <class Row, class P>
+HWY_INLINE void projective_prefetch(const Row& r, const P* texels, hn::Vec<DF> t) noexcept {
   const DF df;
   const DI di;
   const auto inv = hn::ApproximateReciprocal(hn::MulAdd(t, hn::Set(df, r.hs[2]), hn::Set(df, r.h0[2])));
@@ -93,9 +107,18 @@ HWY_INLINE void projective_prefetch(const Row& r, hn::Vec<DF> t) noexcept {
   HWY_ALIGN std::int32_t o[hn::MaxLanes(DI())];
   hn::Store(off, di, o);
   for (std::size_t l = 0; l < hn::Lanes(di); l += 2) {
-    __builtin_prefetch(r.texels + o[l]);
-    __builtin_prefetch(r.texels + o[l] + 3 * r.width);
+    __builtin_prefetch(texels + o[l]);
+    __builtin_prefetch(texels + o[l] + 3 * r.width);
   }
+}
+
+/// The channels `Decode` reads: the 16-bit linear copy for `LinearTexels`, else the texels.
+template <class Row, class Decode>
+HWY_INLINE auto texels_of(const Row& r, const Decode&) noexcept {
+  if constexpr (std::is_same_v<Decode, LinearTexels>)
+    return r.linear;
+  else
+    return r.texels;
 }
 
 /// One vector of points from i on (`live` of them: the rest are past the row's end): weights at
@@ -131,10 +154,11 @@ HWY_INLINE void projective_step(const Row& r, const Decode& decode, std::size_t 
   const auto s = hn::IfThenElseZero(m, hn::Mul(wt, hn::Set(df, r.scale)));
   const auto bx = hn::Sub(one, ax), by = hn::Sub(one, ay);
   hn::Vec<DF> sum[3] = {zero, zero, zero};
-  projective_tap(r.texels, decode, hn::Add(ya, xa), hn::Mul(hn::Mul(bx, by), s), sum);
-  projective_tap(r.texels, decode, hn::Add(ya, xb), hn::Mul(hn::Mul(ax, by), s), sum);
-  projective_tap(r.texels, decode, hn::Add(yb, xa), hn::Mul(hn::Mul(bx, ay), s), sum);
-  projective_tap(r.texels, decode, hn::Add(yb, xb), hn::Mul(hn::Mul(ax, ay), s), sum);
+  const auto* texels = texels_of(r, decode);
+  projective_tap(texels, decode, hn::Add(ya, xa), hn::Mul(hn::Mul(bx, by), s), sum);
+  projective_tap(texels, decode, hn::Add(ya, xb), hn::Mul(hn::Mul(ax, by), s), sum);
+  projective_tap(texels, decode, hn::Add(yb, xa), hn::Mul(hn::Mul(bx, ay), s), sum);
+  projective_tap(texels, decode, hn::Add(yb, xb), hn::Mul(hn::Mul(ax, ay), s), sum);
   hn::Vec<DF> a0, a1, a2;
   hn::LoadInterleaved3(df, acc, a0, a1, a2);
   hn::StoreInterleaved3(hn::IfThenElse(m, hn::Add(a0, sum[0]), a0), hn::IfThenElse(m, hn::Add(a1, sum[1]), a1),
@@ -144,7 +168,7 @@ HWY_INLINE void projective_step(const Row& r, const Decode& decode, std::size_t 
 }
 
 /// Points ahead of the current ones whose texels are prefetched.
-inline constexpr std::size_t kProjectiveAhead = 64;
+inline constexpr std::size_t kProjectiveAhead = 32;
 
 /// `projective_row_portable` over [0, n) for float coordinates at this target, a vector of
 /// points at a time; the last, partial vector goes through stack copies of its weights and sums,
@@ -156,7 +180,8 @@ void projective_row_lanes(const Row& r, const Decode& decode, std::size_t n, con
   const std::size_t lanes = hn::Lanes(df);
   std::size_t i = 0;
   for (; i + lanes <= n; i += lanes) {
-    projective_prefetch(r, hn::Add(hn::Set(df, static_cast<float>(i + kProjectiveAhead)), hn::Iota(df, 0.0f)));
+    projective_prefetch(r, texels_of(r, decode),
+                        hn::Add(hn::Set(df, static_cast<float>(i + kProjectiveAhead)), hn::Iota(df, 0.0f)));
     projective_step(r, decode, i, lanes, rw != nullptr ? rw + i : nullptr, acc + 3 * i, seen + i);
   }
   if (i == n) return;
@@ -174,13 +199,17 @@ void projective_row_lanes(const Row& r, const Decode& decode, std::size_t n, con
   }
 }
 
-/// The kernel at this target: 8-bit codes decoded by the cubic where the table is the one it
-/// reproduces and vectors are 8 floats wide or more, else by the table; float channels as they
-/// are. Row: `detail::ProjectiveRow<float, C>`, C std::uint8_t or float.
+/// The kernel at this target: 8-bit codes read from their 16-bit linear copy where the row has
+/// one, else decoded by the cubic where the table is the one it reproduces and vectors are 8
+/// floats wide or more, else by the table; float channels as they are. Row: `detail::ProjectiveRow<float, C>`, C
+/// std::uint8_t or float.
 template <class Row>
 void projective_row(const Row& r, std::size_t n, const float* rw, float* acc, float* seen) noexcept {
   using C = std::remove_cv_t<std::remove_pointer_t<decltype(r.texels)>>;
   if constexpr (std::is_same_v<C, std::uint8_t>) {
+    // The copy's byte offsets (twice the channel offsets) must fit the gathers' 32-bit lanes.
+    if (r.linear != nullptr && 6.0 * r.width * static_cast<double>(r.height) + 8 < 2147483647.0)
+      return projective_row_lanes(r, LinearTexels{}, n, rw, acc, seen);
     if constexpr (hn::MaxLanes(DF()) >= 8) {
       if (srgb_cubic_matches(r.lut)) return projective_row_lanes(r, CubicDecode(), n, rw, acc, seen);
     }
