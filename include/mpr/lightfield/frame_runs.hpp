@@ -285,8 +285,21 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
   // hardware prefetcher to pick up; on long ones (whole-row refocusing) it does, and extra
   // prefetches cost time.
   const texel_type* below = ay == 0 ? b : b + c.width;
-  if (!border && iy + (ay == 0 ? 1 : 2) < c.height && i_end - i_begin < 1024 && stride == 1)
-    detail::prefetch_range(below + i_begin, below + i_end + 1);
+  // The rows' 16-bit linear copy where the frames hold one and the separable form below reads it
+  // (`detail::lerp_row_reads_linear`), else nullptr.
+  const bool linear_rows = detail::lerp_row_reads_linear(detail::dispatch_level());
+  const auto linear_of = [linear_rows](const typename Table::Camera* cam,
+                                       const auto* code) noexcept -> const std::uint16_t* {
+    return linear_rows && cam != nullptr && cam->linear != nullptr && code != nullptr
+               ? cam->linear + (code - cam->texels->c)
+               : nullptr;
+  };
+  if (!border && iy + (ay == 0 ? 1 : 2) < c.height && i_end - i_begin < 1024 && stride == 1) {
+    if (const std::uint16_t* lb = linear_of(&c, below->c))
+      detail::prefetch_range(lb + 3 * i_begin, lb + 3 * (i_end + 1));
+    else
+      detail::prefetch_range(below + i_begin, below + i_end + 1);
+  }
   const std::size_t m = i_end - i_begin;
   const float* rw = ray_weight != nullptr ? ray_weight + i_begin : nullptr;
   // One camera row (a vertical offset of 0) one pixel apart: decoded, interpolated and added
@@ -304,9 +317,12 @@ bool shift_add(const FrameTable<T, Px>& table, const typename FrameTable<T, Px>:
     const std::uint16_t* lut = texel_decode_table<texel_type>();
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(stride * i_begin);
     const auto next = detail::ahead_rows<T, Px>(ahead, points[i_begin], sight, i_begin);
-    const float* h0 = rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next[0]);
+    const float* h0 =
+        rows.row(a[start].c, lut, 3 * m, ax, sc, stride, next[0], linear_of(&c, a[start].c), linear_of(ahead, next[0]));
     // At a vertical offset of 0 (snapped) the second row has weight 0 and is not read.
-    const float* h1 = h0 == nullptr || ay == 0 ? h0 : rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next[1]);
+    const float* h1 = h0 == nullptr || ay == 0 ? h0
+                                               : rows.row(b[start].c, lut, 3 * m, ax, sc, stride, next[1],
+                                                          linear_of(&c, b[start].c), linear_of(ahead, next[1]));
     if (h1 != nullptr) {
       detail::blend_rows(h0, h1, 1 - ay, ay, rw, acc + 3 * i_begin, m);
     } else {

@@ -3,8 +3,8 @@
 /// `mpr::LerpRowCache`: camera rows interpolated horizontally for a shift-and-add (`shift_add`,
 /// frame_runs.hpp), kept for the next output row that reads them.
 
-#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <cmath>
 #include <cstddef>
@@ -26,10 +26,15 @@ public:
   /// With `stride` k > 1 (an output pixel every k camera pixels), the row holds the `m / 3`
   /// pixels 0, k, 2k, ... of the interpolated row (which reads k (m / 3 - 1) + 2 texels).
   /// `ahead` (nullptr: none): texels of the row to be asked for next, prefetched while this one
-  /// is computed (`detail::lerp_row`).
+  /// is computed (`detail::lerp_row`). `linear` (nullptr: none): the same channels as 16-bit
+  /// decode-table values (`CameraFrameSet::linear16`), read in place of the codes where the
+  /// level's row kernel is the Highway one (`detail::lerp_row_or_linear`: the same row), with
+  /// `linear_ahead` prefetched in place of `ahead`.
   template <class C>
   [[nodiscard]] const float* row(const C* texels, const std::uint16_t* lut, std::size_t m, float ax, float scale,
-                                 std::size_t stride = 1, const C* ahead = nullptr) noexcept {
+                                 std::size_t stride = 1, const C* ahead = nullptr,
+                                 const std::uint16_t* linear = nullptr,
+                                 const std::uint16_t* linear_ahead = nullptr) noexcept {
     for (int k = 0; k < 2; ++k) {
       const Entry& e = entries_[k];
       if (e.texels == static_cast<const void*>(texels) && e.m == m && e.stride == stride &&
@@ -47,7 +52,7 @@ public:
       e.texels = nullptr;
       return nullptr;
     }
-    detail::lerp_row(texels, lut, ax, scale, e.h.data(), wide, ahead);
+    detail::lerp_row_or_linear(texels, linear, lut, ax, scale, e.h.data(), wide, ahead, linear_ahead);
     if (stride > 1) // keep every stride-th pixel, in place (each moves left or stays)
       for (std::size_t i = 1; i < pixels; ++i)
         for (std::size_t k = 0; k < 3; ++k) e.h[3 * i + k] = e.h[3 * stride * i + k];
