@@ -7,8 +7,9 @@
 /// kernels/projective_row.hpp). Each vector of points: the projective map
 /// per lane (a division), the seen-mask (w > 0, pixel inside the image, weight > 0), the four
 /// bilinear taps gathered (8-bit texels a 32-bit word each, decoded to linear light by the sRGB
-/// cubic or the decode table, as kernels/lerp_row_hwy.hpp decodes), weighed and added to the
-/// interleaved r g b sums.
+/// cubic or the decode table, as kernels/lerp_row_hwy.hpp decodes; or, where the row carries the
+/// frames' 16-bit linear copy, two 32-bit words of it a texel, no decode), weighed and added to
+/// the interleaved r g b sums.
 ///
 /// Header-only use as kernels/depth_lanes_hwy.hpp: Highway's ops exist once per target in a
 /// translation unit (its foreach_target.h runs once, through kernels/lerp_row_hwy.hpp, for every

@@ -201,8 +201,8 @@ void projective_row_lanes(const Row& r, const Decode& decode, std::size_t n, con
 
 /// The kernel at this target: 8-bit codes read from their 16-bit linear copy where the row has
 /// one, else decoded by the cubic where the table is the one it reproduces and vectors are 8
-/// floats wide or more, else by the table; float channels as they are. Row: `detail::ProjectiveRow<float, C>`, C
-/// std::uint8_t or float.
+/// floats wide or more, else by the table; float channels as they are.
+/// Row: `detail::ProjectiveRow<float, C>`, C std::uint8_t or float.
 template <class Row>
 void projective_row(const Row& r, std::size_t n, const float* rw, float* acc, float* seen) noexcept {
   using C = std::remove_cv_t<std::remove_pointer_t<decltype(r.texels)>>;
