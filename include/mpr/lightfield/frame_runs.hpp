@@ -10,6 +10,7 @@
 #include <mpr/lightfield/accumulation/affine_block.hpp>
 #include <mpr/lightfield/accumulation/shift_tile.hpp>
 #include <mpr/lightfield/frame_table.hpp>
+#include <mpr/lightfield/kernels/lerp_row_or_linear.hpp>
 #include <mpr/lightfield/kernels/projective_row.hpp>
 #include <mpr/lightfield/kernels/projective_tile.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>

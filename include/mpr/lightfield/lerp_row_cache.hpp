@@ -3,6 +3,7 @@
 /// `mpr::LerpRowCache`: camera rows interpolated horizontally for a shift-and-add (`shift_add`,
 /// frame_runs.hpp), kept for the next output row that reads them.
 
+#include <mpr/lightfield/kernels/lerp_row_or_linear.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
 #include <mpr/lightfield/kernels/sampler_rows.hpp>
 
