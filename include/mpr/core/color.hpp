@@ -61,8 +61,18 @@ struct SrgbTables {
   /// none): x of bin i is above the threshold exactly when trunc((x kBins - i) 2^23) >= f. Exact
   /// because x kBins - i is computed without rounding and, for i >= 1 (x >= 2^-13, so x has no
   /// bits below 2^-36), is a multiple of 2^-23; bin 0 holds no threshold (the first is 1.5e-4).
-  /// The AVX-512 encoder reads one such entry (one gather) per channel.
+  /// The AVX2 encoder reads one such entry (one gather) per channel, the AVX-512 one only for
+  /// the channels its polynomial leaves undecided.
   std::array<std::uint32_t, kBins> bin_entry{};
+  /// The AVX-512 encoder's estimate of 255 encode(x) above the linear segment (x > 0.0031308):
+  /// per half octave i = 2 (e + 9) + h of x = 2^e m (e in [-9, -1], m in [1, 2), h = 1 when m >=
+  /// 1.5), a degree-4 polynomial in t = m - 1.25 - h / 2 (t in [-0.25, 0.25)), poly[d][i] the
+  /// coefficient of t^d, interpolating at the Chebyshev nodes (i = 0, wholly in the linear
+  /// segment, is zero; i = 1 from 0.0031308 on). Within 2e-4 of a code (evaluated in float,
+  /// checked over every float in tests/core/kernels/srgb_encode_test.cpp), so away from k + 1/2
+  /// its nearest integer is the code.
+  static constexpr int kPolyDegree = 4, kHalfOctaves = 18;
+  std::array<std::array<float, 32>, kPolyDegree + 1> poly{};
 
   SrgbTables() noexcept {
     for (int k = 0; k < 256; ++k) decoded[k] = static_cast<float>(srgb_decode(k / 255.0));
@@ -91,6 +101,31 @@ struct SrgbTables {
         split = static_cast<std::uint32_t>((t * kBins - static_cast<float>(i)) * 0x1p23f);
       bin_entry[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(code) | (split << 8);
     }
+    for (int i = 1; i < kHalfOctaves; ++i) fit_half_octave(i);
+  }
+
+private:
+  // poly[.][i]: the polynomial through 255 encode(x) at the kPolyDegree + 1 Chebyshev nodes of
+  // the used part of half octave i (see `poly`), solved in double (Gauss-Jordan).
+  void fit_half_octave(int i) noexcept {
+    constexpr int n = kPolyDegree + 1;
+    const int e = i / 2 - 9, h = i % 2;
+    const double centre = 1.25 + 0.5 * h, lo = i == 1 ? std::ldexp(0.0031308, -e) : centre - 0.25;
+    const double hi = centre + 0.25, pi = 3.14159265358979323846;
+    std::array<std::array<double, n + 1>, n> a{};
+    for (int r = 0; r < n; ++r) {
+      const double m = 0.5 * (lo + hi) + 0.5 * (hi - lo) * std::cos(pi * (r + 0.5) / n);
+      double power = 1;
+      for (int d = 0; d < n; ++d, power *= m - centre) a[r][d] = power;
+      a[r][n] = 255 * srgb_encode(std::ldexp(m, e));
+    }
+    for (int c = 0; c < n; ++c) // the nodes are distinct: no pivot is zero
+      for (int r = 0; r < n; ++r)
+        if (r != c) {
+          const double f = a[r][c] / a[c][c];
+          for (int k = c; k <= n; ++k) a[r][k] -= f * a[c][k];
+        }
+    for (int d = 0; d < n; ++d) poly[d][i] = static_cast<float>(a[d][n] / a[d][d]);
   }
 };
 
@@ -115,7 +150,8 @@ inline void linear_to_srgb8_row(const float* in, std::uint8_t* out, std::size_t 
                                 detail::SimdLevel level = detail::dispatch_level()) noexcept {
   detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
     const auto& t = detail::srgb_tables;
-    std::size_t j = detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), detail::SrgbTables::kBins);
+    std::size_t j =
+        detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), detail::SrgbTables::kBins, t.poly[0].data());
     for (; j < m; ++j) out[j] = linear_to_srgb8(in[j]);
   });
 }

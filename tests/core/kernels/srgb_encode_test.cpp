@@ -9,6 +9,7 @@
 #include <mpr/core/simd.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -24,7 +25,8 @@ std::size_t step_at(SimdLevel level, const float* in, std::uint8_t* out, std::si
   std::size_t done = 0;
   mpr::detail::run_at(level, [&](auto tag) MPR_INLINE_LAMBDA {
     const auto& t = mpr::detail::srgb_tables;
-    done = mpr::detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), mpr::detail::SrgbTables::kBins);
+    done = mpr::detail::linear_to_srgb8_step(tag, in, out, m, t.bin_entry.data(), mpr::detail::SrgbTables::kBins,
+                                             t.poly[0].data());
   });
   return done;
 }
@@ -73,5 +75,32 @@ TEST_CASE("sRGB row step: a multiple of 16 channels at AVX-512, of 8 at AVX2, no
       CHECK(wrong == 0);
       for (std::size_t j = done; j < m + 16; ++j) CHECK(out[j] == 7); // nothing past what it reports
     }
+  });
+}
+
+TEST_CASE("sRGB row step: every float of [0.0031308, 1) and every 16th below it gives its code", "[color][simd]") {
+  // The AVX-512 step takes the nearest integer of a polynomial estimate wherever that estimate is
+  // not within 1/1024 of k + 1/2 (SrgbTables::poly): exact only if the estimate's error stays
+  // below that for every float it is asked about, which this checks for all of them.
+  constexpr std::uint32_t kKnee = 0x3b4d2e1c, kOne = 0x3f800000, kChunk = 1U << 16; // 0.0031308f, 1.0f
+  static_assert(kKnee < kOne);
+  std::vector<float> in;
+  in.reserve(kChunk);
+  std::vector<std::uint8_t> out(kChunk);
+  mpr_test::for_each_simd_level([&](SimdLevel level) {
+    std::size_t wrong = 0, checked = 0;
+    const auto check = [&] {
+      const std::size_t done = step_at(level, in.data(), out.data(), in.size());
+      for (std::size_t j = 0; j < done; ++j) wrong += out[j] != mpr::linear_to_srgb8(in[j]) ? 1 : 0;
+      checked += done;
+      in.clear();
+    };
+    for (std::uint32_t bits = 0; bits < kOne; bits += bits < kKnee ? 16 : 1) {
+      in.push_back(std::bit_cast<float>(bits));
+      if (in.size() == kChunk) check();
+    }
+    check();
+    CHECK(wrong == 0);
+    CHECK(checked >= (level >= SimdLevel::avx2 ? (kOne - kKnee) : 0));
   });
 }
