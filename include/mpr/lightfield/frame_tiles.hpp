@@ -84,8 +84,8 @@ TileBlock tile_block(T x0, T y0, T sx, T sy, std::size_t rows, std::size_t n, in
 /// regular grid of its image: point i of run r at camera pixel (x0 + sx i, y0 + sy r), checked at
 /// each run's ends and middle within 1e-3 pixel (the contract of `shift_add`), with 0 < sx <=
 /// `detail::kResampleMaxStep`. A grid one pixel apart both ways is a 2-D shift
-/// (`detail::shift_tile`; an offset within 1e-4 pixel of a texel is taken as on it, so integer
-/// shifts add texels uninterpolated), any other is resampled (`detail::resample_tile`). Pixels whose texel
+/// (`detail::shift_tile`; an offset within `detail::texel_snap` of a texel is taken as on it, so
+/// integer shifts add texels uninterpolated), any other is resampled (`detail::resample_tile`). Pixels whose texel
 /// pairs lie inside the image are added so, those near the left and right edges ray by ray
 /// (`detail::add_run_edges`), runs on the image's top and bottom rows or beyond through
 /// `shift_add` one by one (or ray by ray). False (nothing added) when the tile is no such grid
@@ -127,7 +127,7 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
         return false;
     }
   if (!(std::abs(x0) < T(1e8) && std::abs(y0) < T(1e8))) return false; // keeps the conversions in range
-  // The 2-D shift's texel and offsets, snapped to a texel within 1e-4 pixel, so that integer
+  // The 2-D shift's texel and offsets, snapped to a texel within `texel_snap`, so that integer
   // shifts add decoded texels with no interpolation (`detail::shift_tile`).
   long ix = 0, iy = 0;
   T ax = 0, ay = 0;

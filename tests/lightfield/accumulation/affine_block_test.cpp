@@ -215,3 +215,34 @@ TEMPLATE_TEST_CASE("affine_sight: a camera that sees a block at one depth maps e
   REQUIRE(mpr::detail::affine_grid(pointers(across).data(), nrows, n, ga));
   CHECK_FALSE(mpr::detail::affine_sight(projection<T>(camera_at({0, 0, 0}, 0)).data(), ga, n, nrows, 1e9, sight));
 }
+
+TEMPLATE_TEST_CASE("snap_to_texel: within 1e-4 pixel of a texel, or within T's rounding of the coordinate, is on it",
+                   "[lightfield][snap]", float, double) {
+  using T = TestType;
+  const auto snapped = [](T x, long expect_i, T expect_a) {
+    long i = -1;
+    T a = -1;
+    mpr::detail::snap_to_texel(x, i, a);
+    INFO("x = " << static_cast<double>(x));
+    CHECK(i == expect_i);
+    CHECK(a == expect_a);
+  };
+  snapped(T(40.3), 40, T(40.3) - T(40)); // a fraction is kept
+  snapped(T(-40.5), -41, T(0.5));
+  snapped(T(40.00005), 40, 0); // within 1e-4 pixel, above and below
+  snapped(T(40.99995), 41, 0);
+  snapped(T(-10.99996), -11, 0);
+  // Two units in the last place above 800 in float (1.2e-4 pixel, as a float projection lands
+  // off a texel it should hit) snap in float; in double the same offset is a real fraction.
+  const T off = std::nextafter(std::nextafter(T(800), T(1e4)), T(1e4)) - T(800);
+  if constexpr (std::is_same_v<T, float>) {
+    CHECK(off > T(1e-4));
+    snapped(T(800) + off, 800, 0);
+    snapped(T(1400) - T(4) * std::numeric_limits<T>::epsilon() * T(1400) / T(2), 1400, 0);
+  } else {
+    snapped(T(800) + T(1.22e-4), 800, T(800) + T(1.22e-4) - T(800));
+  }
+  snapped(T(800.001), 800, T(800.001) - T(800)); // a thousandth of a pixel is a fraction at any scale
+  CHECK(mpr::detail::texel_snap(T(1400)) <= T(6.7e-4));
+  CHECK(mpr::detail::texel_snap(T(3)) == T(1e-4));
+}
