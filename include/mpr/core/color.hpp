@@ -182,9 +182,10 @@ template <>
 struct PixelTraits<Rgb8> {
   [[nodiscard]] static Rgb8 from_color(const Color& c) noexcept { return to_rgb8(c); }
   static void from_colors(const Color* colors, Rgb8* out, std::size_t n) noexcept {
-    // Both are packed channel triples: one flat conversion of 3n channels.
+    // Both are packed channel triples: one flat conversion of 3n channels, into the row as bytes
+    // (`&out[0].r` names a one-byte member, against which GCC 12 checks the 3n writes).
     static_assert(sizeof(Rgb8) == 3 && sizeof(Color) == 3 * sizeof(float));
-    if (n > 0) linear_to_srgb8_row(colors[0].data(), &out[0].r, 3 * n);
+    if (n > 0) linear_to_srgb8_row(colors[0].data(), reinterpret_cast<std::uint8_t*>(out), 3 * n);
   }
 };
 
