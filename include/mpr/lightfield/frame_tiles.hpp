@@ -195,6 +195,19 @@ bool shift_add_tile(const FrameTable<T, Px>& table, const typename FrameTable<T,
     tile.ay = work.ay.data();
     tile.scale = texel_type::scale;
     tile.lut = texel_decode_table<texel_type>();
+    tile.linear = c.linear;
+    // The next camera's rows of the block from its first pixel (its block's, nearly), asked for
+    // while this one's are read.
+    if (ahead != nullptr && ahead->width == c.width && ahead->height == c.height) {
+      const auto next = detail::ahead_rows<T, Px>(
+          ahead, points[static_cast<std::size_t>(b.r_begin) * n + static_cast<std::size_t>(b.first)]);
+      if (next[0] != nullptr) {
+        const std::ptrdiff_t first = next[0] - ahead->texels->c, stride = next[1] - next[0]; // channels
+        const bool linear = c.linear != nullptr && ahead->linear != nullptr;
+        tile.ahead = linear ? static_cast<const void*>(ahead->linear + first) : static_cast<const void*>(next[0]);
+        tile.ahead_stride = stride * static_cast<std::ptrdiff_t>(linear ? sizeof(std::uint16_t) : sizeof(*next[0]));
+      }
+    }
     tile.acc = block_acc;
     tile.acc_stride = 3 * static_cast<std::ptrdiff_t>(n);
     if (!detail::resample_tile_any(tile, work.resample)) // out of memory: ray by ray

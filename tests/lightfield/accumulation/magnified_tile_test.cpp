@@ -1,7 +1,9 @@
 // The magnified block (mpr/lightfield/accumulation/magnified_tile.hpp: each camera row resampled once into a
 // stored row, output rows blended from two stored rows) at every instruction-set level against a
 // long-double reference, for output rows closer together than the camera's rows going down and up
-// the camera; and which blocks take that path.
+// the camera, steps of a small ratio (a plan of one period), within the plan's tolerance of one,
+// of none, near 1 (no plan) and above 1; 8-bit codes read as codes or from a 16-bit linear copy,
+// and float channels; and which blocks take that path.
 
 #include "lightfield/channel_values.hpp"
 #include "simd_levels.hpp"
@@ -23,8 +25,11 @@ namespace {
 
 using LD = long double;
 
+// A step a float projection gives for 2 / 3: a plan takes it as 2 / 3 (within its tolerance).
+constexpr double kNearTwoThirds = 2.0 / 3.0 + 2e-7;
+
 template <class C>
-void check_magnified_tile() {
+void check_magnified_tile(bool with_linear) {
   std::mt19937_64 rng(2100 + sizeof(C));
   std::uniform_real_distribution<double> unit(0, 1);
   const mpr_test::ChannelValues<C> channels;
@@ -34,7 +39,7 @@ void check_magnified_tile() {
   int failures = 0, cases = 0;
   mpr_test::for_each_simd_level([&](mpr_test::SimdLevel level) {
     for (const std::size_t width : {2u, 19u, 300u})
-      for (const double s : {0.5, 1.0, 1.4583333, 2.0, 2.5})
+      for (const double s : {0.5, 2.0 / 3.0, kNearTwoThirds, 0.7071, 0.9995, 1.0, 1.4583333, 2.0, 2.5})
         for (const std::size_t n : {1u, 16u, 17u, 45u, 190u}) {
           const std::size_t height = 12, rows = 2 + rng() % 10;
           std::vector<C> image(3 * width * height);
@@ -78,6 +83,17 @@ void check_magnified_tile() {
           t.lut = channels.lut;
           t.acc = acc.data();
           t.acc_stride = acc_stride;
+          // The codes' 16-bit table values, followed by 32 more (as the frames' copy is).
+          std::vector<std::uint16_t> linear;
+          if constexpr (std::is_same_v<C, std::uint8_t>) {
+            if (with_linear) {
+              for (const C c : image) linear.push_back(channels.lut[c]);
+              linear.resize(linear.size() + 32, 0);
+              t.linear = linear.data();
+            }
+          }
+          t.ahead = image.data() + (rng() % image.size()); // prefetched only
+          t.ahead_stride = static_cast<std::ptrdiff_t>(3 * width * sizeof(C));
           mpr::detail::ResampleTileWork work;
           CHECK(mpr::detail::resample_tile_stored(t, work, level));
           ++cases;
@@ -104,7 +120,9 @@ void check_magnified_tile() {
                 std::abs(value(top[a + 3]) - value(top[a])) + std::abs(value(bottom[a + 3]) - value(bottom[a]));
             const LD size = std::abs(LD(acc0[at])) + sc * (std::abs(value(top[a])) + std::abs(value(top[a + 3])) +
                                                            std::abs(value(bottom[a])) + std::abs(value(bottom[a + 3])));
-            const LD tolerance = sc * 1e-5L * spread + 8 * LD(std::numeric_limits<float>::epsilon()) * size;
+            // The plan moves positions by up to 2e-7 n pixels for the step near 2 / 3.
+            const LD moved = s == kNearTwoThirds ? LD(2e-7) * LD(n) : 0;
+            const LD tolerance = sc * (1e-5L + moved) * spread + 8 * LD(std::numeric_limits<float>::epsilon()) * size;
             if (!(std::abs(LD(acc[at]) - want) <= tolerance) && ++failures <= 5)
               FAIL_CHECK("width " << width << " s " << s << " n " << n << " row " << r << " pixel " << i << " channel "
                                   << k << ": " << acc[at] << " vs " << static_cast<double>(want));
@@ -119,8 +137,9 @@ void check_magnified_tile() {
 
 TEST_CASE("resample_tile_stored: every level adds each row's blend of its two resampled camera rows, nothing else",
           "[magnified_tile]") {
-  SECTION("8-bit sRGB codes") { check_magnified_tile<std::uint8_t>(); }
-  SECTION("float channels") { check_magnified_tile<float>(); }
+  SECTION("8-bit sRGB codes") { check_magnified_tile<std::uint8_t>(false); }
+  SECTION("8-bit sRGB codes with their 16-bit linear copy") { check_magnified_tile<std::uint8_t>(true); }
+  SECTION("float channels") { check_magnified_tile<float>(false); }
 }
 
 TEST_CASE("magnified_rows: blocks whose rows repeat camera rows, moving at most one row at a time",

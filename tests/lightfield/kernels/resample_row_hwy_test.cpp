@@ -86,4 +86,82 @@ TEST_CASE("resample_row_hwy: the plain loop's values on random rows, every level
   CHECK(cases > 0);
   CHECK(failures == 0);
 }
+
+TEST_CASE("plan_magnified_hwy: one period for a step of a small ratio, the whole row otherwise, none near 1",
+          "[resample_row_hwy]") {
+  mpr_test::for_each_simd_level([&](mpr::detail::SimdLevel level) {
+    using mpr::kernels::PlanOutcome;
+    mpr::kernels::MagnifiedPlan plan;
+    // 1.5x: 3 pixels a pattern, 2 texels on; a period of 9 vectors whatever the lanes (4, 8, 16).
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 3.25, 2.0 / 3.0, 2000, 1400, level) == PlanOutcome::made);
+    CHECK(plan.period == 9);
+    CHECK(plan.advance == 6 * plan.lanes); // 3 N pixels, 2 N texels
+
+    // Within the tolerance over the row: the same period (a float projection's step).
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 3.25, 2.0 / 3.0 + 2e-7, 2000, 1400, level) == PlanOutcome::made);
+    CHECK(plan.period == 9);
+    // 2x: 2 pixels, 1 texel; 3 vectors.
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 0.5, 0.5, 300, 1400, level) == PlanOutcome::made);
+    CHECK(plan.period == 3);
+    CHECK(2 * plan.advance == 3 * plan.lanes); // N pixels, N / 2 texels
+    // No ratio of 16 or less within the tolerance: the whole row.
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 0.5, 0.70710678, 300, 1400, level) == PlanOutcome::made);
+    CHECK(plan.period == (900 + plan.lanes - 1) / plan.lanes);
+    CHECK(plan.advance == 0);
+    // A ratio whose last pixel falls past the row's last texel (its pairs clamped): the whole row.
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 0.5, 0.5, 300, 100, level) == PlanOutcome::made);
+    CHECK(plan.advance == 0);
+    // Float positions within 1e-3 of a step of 1 (not 1): no plan; 1 itself: a period of one texel.
+    CHECK(mpr::kernels::plan_magnified_hwy(plan, 0.5, 0.9995, 300, 1400, level) == PlanOutcome::no_plan);
+    REQUIRE(mpr::kernels::plan_magnified_hwy(plan, 0.5, 1.0, 300, 1400, level) == PlanOutcome::made);
+    CHECK(plan.period == 3);
+    CHECK(plan.advance == 3 * plan.lanes); // N pixels, N texels
+  });
+}
+
+TEST_CASE("resample_planned_hwy: every lane's pair within one vector of values, blended in the same pass",
+          "[resample_row_hwy]") {
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int failures = 0, cases = 0;
+  mpr_test::for_each_simd_level([&](mpr::detail::SimdLevel level) {
+    for (const double s : {0.25, 0.5, 0.6, 2.0 / 3.0, 0.7071, 0.8, 0.99, 1.0})
+      for (const std::size_t n : {1u, 5u, 16u, 17u, 100u, 333u}) {
+        const std::size_t texels = static_cast<std::size_t>(std::ceil(s * static_cast<double>(n))) + 40;
+        const double x = 3 * unit(rng);
+        INFO("s " << s << " n " << n);
+        mpr::kernels::MagnifiedPlan plan;
+        REQUIRE(mpr::kernels::plan_magnified_hwy(plan, x, s, n, texels, level) == mpr::kernels::PlanOutcome::made);
+        // Values read past the last texel (N + 3 values: the plan's reads) as the frames allow.
+        std::vector<std::uint16_t> row(3 * texels + 64);
+        for (auto& v : row) v = static_cast<std::uint16_t>(rng() % 65536);
+        const std::size_t j_first = static_cast<std::size_t>(x);
+        std::vector<float> h(3 * n, -1.0f), above(3 * n), acc(3 * n), acc0;
+        for (auto& a : above) a = static_cast<float>(unit(rng) * 65535);
+        for (auto& a : acc) a = static_cast<float>(unit(rng));
+        acc0 = acc;
+        const float w0 = 0.3f, w1 = 0.7f;
+        mpr::kernels::resample_planned_hwy(plan, row.data() + 3 * j_first, h.data(), 0, 3 * n, above.data(), w0, w1,
+                                           acc.data());
+        ++cases;
+        for (std::size_t c = 0; c < 3 * n; ++c) {
+          const double xi = x + s * static_cast<double>(c / 3);
+          const std::size_t j = std::min(static_cast<std::size_t>(xi), texels - 2);
+          const double f = std::clamp(xi - static_cast<double>(j), 0.0, 1.0);
+          const double v0 = row[3 * j + c % 3], v1 = row[3 * j + 3 + c % 3];
+          const double want = v0 + f * (v1 - v0);
+          const double blended = acc0[c] + w0 * above[c] + w1 * want;
+          if (!(std::abs(h[c] - want) <= 2e-5 * std::abs(v1 - v0) + 4e-7 * (v0 + v1)) ||
+              !(std::abs(acc[c] - blended) <= 1e-5 * (std::abs(v1 - v0) + above[c]) + 4e-7 * (v0 + v1) + 1e-6)) {
+            if (++failures <= 5)
+              FAIL_CHECK("s " << s << " n " << n << " channel " << c << ": " << h[c] << " vs " << want << ", acc "
+                              << acc[c] << " vs " << blended);
+          }
+        }
+      }
+  });
+  CHECK(cases > 0);
+  CHECK(failures == 0);
+}
+
 #endif

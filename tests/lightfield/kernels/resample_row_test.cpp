@@ -8,8 +8,8 @@
 
 #include <catch2/catch.hpp>
 
-#include <mpr/lightfield/kernels/resample_row.hpp>
 #include <mpr/lightfield/frame_set.hpp>
+#include <mpr/lightfield/kernels/resample_row.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -91,9 +91,26 @@ TEST_CASE("resample_row: the VBMI step's window holds every texel pair of a 16-p
   constexpr double s = mpr::detail::kResampleMaxStep;
   constexpr double last_pair = 0.999999 + 15 * s; // texel offset of the 16th pixel's left texel
   STATIC_REQUIRE(3 * (static_cast<int>(last_pair) + 1) + 2 < 128);
-#if defined(MPR_SIMD_X86) // the step's byte patterns exist where it does
+#if defined(MPR_SIMD_X86)                                            // the step's byte patterns exist where it does
   STATIC_REQUIRE(mpr::detail::kResamplePatterns.offset[1][31] == 5); // the last code: right texel's blue
   STATIC_REQUIRE(mpr::detail::kResamplePatterns.pixel[1][31] == 15);
   STATIC_REQUIRE(mpr::detail::kResamplePatterns.lane_pixel[2][15] == 15);
 #endif
+}
+
+TEST_CASE("decode_row16: every code's table value at every level, nothing past the row", "[resample_row]") {
+  const std::uint16_t* lut = mpr::Srgb8Texel::linear16();
+  std::vector<std::uint8_t> codes(300);
+  for (std::size_t k = 0; k < codes.size(); ++k) codes[k] = static_cast<std::uint8_t>((k * 7 + k / 256) % 256);
+  mpr_test::for_each_simd_level([&](mpr_test::SimdLevel level) {
+    for (const std::size_t count : {0u, 1u, 63u, 64u, 65u, 256u, 300u}) {
+      INFO("count " << count);
+      std::vector<std::uint16_t> out(count + 70, 0xBEEF);
+      mpr::detail::decode_row16(codes.data(), lut, out.data(), count, level);
+      int wrong = 0;
+      for (std::size_t k = 0; k < count; ++k) wrong += out[k] != lut[codes[k]] ? 1 : 0;
+      for (std::size_t k = count; k < out.size(); ++k) wrong += out[k] != 0xBEEF ? 1 : 0;
+      CHECK(wrong == 0);
+    }
+  });
 }

@@ -191,6 +191,34 @@ MPR_TARGET_AVX512_VBMI inline void resample_row_codes_vbmi(const std::uint8_t* r
 }
 #endif
 
+#if defined(MPR_SIMD_X86)
+// `decode_row16` on AVX-512 with VBMI, 64 codes a step (the last step masked).
+MPR_TARGET_AVX512_VBMI inline void decode_row16_vbmi(const std::uint8_t* a, const std::uint16_t* lut,
+                                                     std::uint16_t* out, std::size_t count) noexcept {
+  const DecodeBytes d = load_decode_bytes(lut);
+  for (std::size_t k = 0; k < count; k += 64) {
+    const std::size_t m = std::min<std::size_t>(64, count - k);
+    const __mmask64 keep = m == 64 ? ~__mmask64(0) : (__mmask64(1) << m) - 1;
+    __m512i first, second;
+    decode16x64(d, _mm512_maskz_loadu_epi8(keep, a + k), first, second);
+    _mm512_mask_storeu_epi16(out + k, static_cast<__mmask32>(keep), first);
+    _mm512_mask_storeu_epi16(out + k + 32, static_cast<__mmask32>(keep >> 32), second);
+  }
+}
+#endif
+
+/// out[k] = lut[a[k]] for k in [0, count): a row of 8-bit codes as their 16-bit table values (a
+/// row of the frames' 16-bit linear copy, `linear16_copy`), with byte permutes on AVX-512 with
+/// VBMI, a plain loop below.
+inline void decode_row16(const std::uint8_t* a, const std::uint16_t* lut, std::uint16_t* out, std::size_t count,
+                         SimdLevel level = dispatch_level()) noexcept {
+#if defined(MPR_SIMD_X86)
+  if (level >= SimdLevel::avx512vbmi) return decode_row16_vbmi(a, lut, out, count);
+#endif
+  (void)level;
+  for (std::size_t k = 0; k < count; ++k) out[k] = lut[a[k]];
+}
+
 /// `resample_row_portable` at `level`: for 8-bit codes, the VBMI step when `level` is
 /// `avx512vbmi` and s <= `kResampleMaxStep`; else (and for float channels) the Highway kernel of
 /// `level` (kernels/resample_row_hwy.inl) where Highway is present, the plain loop compiled for

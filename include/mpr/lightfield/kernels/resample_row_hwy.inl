@@ -253,3 +253,162 @@ inline void resample_row_floats(Target t, const float* HWY_RESTRICT row, std::si
                           for (std::size_t q = 0; q < 3; ++q) plane[q][t] = a[3 * t + q];
                       });
 }
+
+/// Float lanes of this target's vectors: the unit of `plan_magnified_row`'s layout.
+inline std::size_t magnified_lanes(Target) noexcept { return hn::Lanes(hn::ScalableTag<float>()); }
+
+/// Where the channels of a row of n pixels at x + s i (camera pixels; texel centres at integers,
+/// pairs clamped to [0, texels - 2], fractions to [0, 1], as `detail::resample_row_portable`)
+/// read their texel pairs, for `resample_planned_row`: vector q holds the row's channels
+/// [q N, q N + N) (N lanes; channel c is pixel c / 3's channel c mod 3); lane l takes value
+/// `lane[q N + l]` of the N values from `base[q]` on as its pair's left value (values counted
+/// from the left texel of j_first = the pair of x), the value 3 on as its right, and `f[q N + l]`
+/// as its fraction. Every lane's left value lies within the N from `base[q]` (the least of them)
+/// when no pixel's pair is more than one texel on from the last's: a step s <= 1 (and, for the
+/// float positions, not within 1e-3 of it unless 1 exactly). Writes ceil(3 n / N) entries of
+/// `base` and N as many of the others.
+inline void plan_magnified_row(Target, double x, double s, std::size_t n, std::size_t texels,
+                               std::int32_t* HWY_RESTRICT base, std::int32_t* HWY_RESTRICT lane,
+                               float* HWY_RESTRICT f) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::RebindToSigned<DF> di;
+  constexpr std::size_t kMax = hn::MaxLanes(DF());
+  const std::size_t lanes = hn::Lanes(df);
+  const long last_pair = static_cast<long>(texels) - 2;
+  const auto pair_of = [last_pair](double v) { return std::clamp(static_cast<long>(v), 0L, last_pair); };
+  const long j_first = pair_of(x);
+  // A group of N pixels fills three vectors; lane l of vector m is pixel (m N + l) / 3 of the
+  // group, channel (m N + l) mod 3.
+  HWY_ALIGN float pixel[3][kMax];
+  HWY_ALIGN std::int32_t channel[3][kMax];
+  for (std::size_t m = 0; m < 3; ++m)
+    for (std::size_t l = 0; l < lanes; ++l) {
+      pixel[m][l] = static_cast<float>((m * lanes + l) / 3);
+      channel[m][l] = static_cast<std::int32_t>((m * lanes + l) % 3);
+    }
+  const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f), vs = hn::Set(df, static_cast<float>(s));
+  const auto top = hn::Set(di, static_cast<std::int32_t>(lanes) - 1);
+  const std::size_t channels = 3 * n;
+  for (std::size_t i = 0; i < n; i += lanes) {
+    const double xg = x + s * static_cast<double>(i);
+    const long jg = pair_of(xg);
+    const auto xr = hn::Set(df, static_cast<float>(xg - static_cast<double>(jg)));
+    const auto last = hn::Set(di, static_cast<std::int32_t>(last_pair - jg));
+    for (std::size_t m = 0; m < 3; ++m) {
+      const std::size_t q0 = 3 * i + m * lanes; // the vector's first channel
+      if (q0 >= channels) break;
+      const auto xl = hn::MulAdd(vs, hn::Load(df, pixel[m]), xr);
+      const auto jl = hn::Min(hn::ConvertTo(di, hn::Max(xl, zero)), last);
+      const auto fl = hn::Min(hn::Max(hn::Sub(xl, hn::ConvertTo(df, jl)), zero), one);
+      // Each lane's left value from texel jg on, and the least of them.
+      const auto at = hn::Add(hn::Add(jl, hn::Add(jl, jl)), hn::Load(di, channel[m]));
+      const auto least = hn::MinOfLanes(di, at);
+      const std::int32_t b = hn::GetLane(least);
+      base[q0 / lanes] = static_cast<std::int32_t>(3 * (jg - j_first)) + b;
+      hn::StoreU(hn::Min(hn::Sub(at, least), top), di, lane + q0); // (within N by the precondition)
+      hn::StoreU(fl, df, f + q0);
+    }
+  }
+}
+
+/// N channel values from p as floats: 16-bit linear values or floats.
+template <class DF>
+HWY_INLINE hn::Vec<DF> load_values(DF df, const std::uint16_t* HWY_RESTRICT p) noexcept {
+  const hn::Rebind<std::int32_t, DF> di;
+  const hn::Rebind<std::uint16_t, DF> d16;
+  return hn::ConvertTo(df, hn::PromoteTo(di, hn::LoadU(d16, p)));
+}
+template <class DF>
+HWY_INLINE hn::Vec<DF> load_values(DF df, const float* HWY_RESTRICT p) noexcept {
+  return hn::LoadU(df, p);
+}
+
+/// h[c] = v0 + f (v1 - v0) for the channels c in [first, last) (first a multiple of N) of a
+/// row planned by `plan_magnified_row` with period P vectors: vector q reads the plan's entries
+/// of vector q mod P, from value base[q mod P] + (q / P) advance of `v` (a plan of the whole row:
+/// P its length, advance 0). v0 and v1 are the values (16-bit linear values or floats, unscaled)
+/// of c's texel pair in `v`, the row's channels from its first pair's left texel on, readable up
+/// to N + 3 values past each vector's base. One permute per value: each vector's left values lie
+/// within N, its right values within the N three on. With `acc` (nullptr: none), also
+/// acc[c] += w0 above[c] + w1 h[c] in the same pass (`detail::blend_rows` of the row above and
+/// this one, from the same channel on).
+template <class V>
+inline void resample_planned_row(Target, const V* HWY_RESTRICT v, const std::int32_t* HWY_RESTRICT base,
+                                 const std::int32_t* HWY_RESTRICT lane, const float* HWY_RESTRICT f, std::size_t period,
+                                 std::size_t advance, float* HWY_RESTRICT h, std::size_t first, std::size_t last,
+                                 const float* HWY_RESTRICT above = nullptr, float w0 = 0, float w1 = 0,
+                                 float* HWY_RESTRICT acc = nullptr) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::RebindToSigned<DF> di;
+  const std::size_t lanes = hn::Lanes(df);
+  const auto a0 = hn::Set(df, w0), a1 = hn::Set(df, w1);
+  HWY_ALIGN float tail[hn::MaxLanes(DF())];
+  std::size_t p = first / lanes % period;             // the plan's vector
+  const V* at = v + first / lanes / period * advance; // its period's start in v
+  for (std::size_t q0 = first; q0 < last; q0 += lanes) {
+    const V* w = at + base[p];
+    const std::size_t e = p * lanes;
+    const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, lane + e));
+    const auto left = hn::TableLookupLanes(load_values(df, w), idx);
+    const auto right = hn::TableLookupLanes(load_values(df, w + 3), idx);
+    const auto out = hn::MulAdd(hn::LoadU(df, f + e), hn::Sub(right, left), left);
+    if (q0 + lanes <= last) {
+      hn::StoreU(out, df, h + q0);
+      if (acc != nullptr)
+        hn::StoreU(
+            hn::Add(hn::LoadU(df, acc + q0 - first), hn::MulAdd(a1, out, hn::Mul(a0, hn::LoadU(df, above + q0)))), df,
+            acc + q0 - first);
+    } else {
+      hn::Store(out, df, tail);
+      for (std::size_t c = q0; c < last; ++c) {
+        h[c] = tail[c - q0];
+        if (acc != nullptr) acc[c - first] += w0 * above[c] + w1 * h[c];
+      }
+    }
+    if (++p == period) {
+      p = 0;
+      at += advance;
+    }
+  }
+}
+
+/// out[k] = scale v(a[k]) for k in [0, count): a row's channels as scaled floats, from 16-bit
+/// linear values (v: the value), 8-bit codes (v: `lut`'s entry) or floats (v: the value).
+inline void row_floats(Target, const std::uint16_t* HWY_RESTRICT a, const std::uint16_t*, float scale,
+                       float* HWY_RESTRICT out, std::size_t count) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const hn::Rebind<std::int32_t, DF> di;
+  const hn::Rebind<std::uint16_t, DF> d16;
+  const std::size_t lanes = hn::Lanes(df);
+  const auto w = hn::Set(df, scale);
+  std::size_t k = 0;
+  for (; k + lanes <= count; k += lanes)
+    hn::StoreU(hn::Mul(w, hn::ConvertTo(df, hn::PromoteTo(di, hn::LoadU(d16, a + k)))), df, out + k);
+  for (; k < count; ++k) out[k] = scale * static_cast<float>(a[k]);
+}
+
+inline void row_floats(Target, const std::uint8_t* HWY_RESTRICT a, const std::uint16_t* lut, float scale,
+                       float* HWY_RESTRICT out, std::size_t count) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const CodeDecoder decode(lut);
+  const auto w = hn::Set(df, scale);
+  std::size_t k = 0;
+  for (; k + lanes <= count; k += lanes) hn::StoreU(hn::Mul(w, decode(a + k)), df, out + k);
+  for (; k < count; ++k) out[k] = scale * decode[a[k]];
+}
+
+inline void row_floats(Target, const float* HWY_RESTRICT a, const std::uint16_t*, float scale, float* HWY_RESTRICT out,
+                       std::size_t count) noexcept {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const auto w = hn::Set(df, scale);
+  std::size_t k = 0;
+  for (; k + lanes <= count; k += lanes) hn::StoreU(hn::Mul(w, hn::LoadU(df, a + k)), df, out + k);
+  for (; k < count; ++k) out[k] = scale * a[k];
+}

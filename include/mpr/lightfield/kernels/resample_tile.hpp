@@ -9,8 +9,8 @@
 /// into it in one pass, with no row written in between.
 
 #include <mpr/core/simd.hpp>
-#include <mpr/lightfield/kernels/sampler_rows.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
+#include <mpr/lightfield/kernels/sampler_rows.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -29,17 +29,20 @@ namespace mpr::detail {
 /// `scale` applied). Preconditions: width >= 2, x >= 0, 0 < s, 0 <= iy[r] < height - 1.
 template <class C>
 struct ResampleTile {
-  const C* texels = nullptr;          ///< the camera image, flat channels, rows of `width` texels
-  std::size_t width = 0;              ///< texels per camera row
-  double x = 0, s = 1;                ///< the first pixel's camera column and the step (camera pixels)
-  std::size_t n = 0;                  ///< pixels per output row
-  std::size_t rows = 0;               ///< output rows
-  const int* iy = nullptr;            ///< per output row: its upper camera row
-  const float* ay = nullptr;          ///< per output row: its vertical fraction in [0, 1]
-  float scale = 1;                    ///< channel scale of the texel type
-  const std::uint16_t* lut = nullptr; ///< decode table of 8-bit codes (unused otherwise)
-  float* acc = nullptr;               ///< the output rows' accumulators (flat r g b)
-  std::ptrdiff_t acc_stride = 0;      ///< channels from one output row's accumulators to the next
+  const C* texels = nullptr;             ///< the camera image, flat channels, rows of `width` texels
+  std::size_t width = 0;                 ///< texels per camera row
+  double x = 0, s = 1;                   ///< the first pixel's camera column and the step (camera pixels)
+  std::size_t n = 0;                     ///< pixels per output row
+  std::size_t rows = 0;                  ///< output rows
+  const int* iy = nullptr;               ///< per output row: its upper camera row
+  const float* ay = nullptr;             ///< per output row: its vertical fraction in [0, 1]
+  float scale = 1;                       ///< channel scale of the texel type
+  const std::uint16_t* lut = nullptr;    ///< decode table of 8-bit codes (unused otherwise)
+  const std::uint16_t* linear = nullptr; ///< the texels' channels as 16-bit linear values, or nullptr
+  const void* ahead = nullptr;           ///< where the next block's camera rows start (prefetched only), or nullptr
+  std::ptrdiff_t ahead_stride = 0;       ///< bytes from one of those rows to the next
+  float* acc = nullptr;                  ///< the output rows' accumulators (flat r g b)
+  std::ptrdiff_t acc_stride = 0;         ///< channels from one output row's accumulators to the next
 };
 
 /// Where a group of 16 pixels reads its texel pairs (`ResampleGroup`), as stored between rows.
@@ -69,6 +72,11 @@ struct ResampleGroups {
 struct ResampleTileWork {
   std::vector<float> h;  // two resampled rows (the portable form)
   ResampleGroups groups; // the groups of a block (the VBMI form)
+#if MPR_HAVE_HWY
+  kernels::MagnifiedPlan plan;    // the planned form's pairs (`resample_tile_stored`)
+  std::vector<float> v;           // ... and a camera row's values (float texels)
+  std::vector<std::uint16_t> v16; // ... (8-bit codes: their 16-bit table values)
+#endif
 };
 
 #if defined(MPR_SIMD_X86)
