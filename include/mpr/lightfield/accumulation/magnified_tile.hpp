@@ -65,18 +65,21 @@ template <class C>
   // Rows read in place: 16-bit values, which the frames follow with 32 more (frame_linear16.hpp).
   const bool in_place = t.linear != nullptr && plan.lanes + 3 <= 32;
   const std::size_t pad = plan.lanes + 3 + 3; // (a period's positions: within a texel of the row's)
+  const long y_low = std::min(t.iy[0], t.iy[t.rows - 1]), y_high = std::max(t.iy[0], t.iy[t.rows - 1]) + 1;
+  const std::size_t camera_rows = static_cast<std::size_t>(y_high - y_low + 1);
+  // Rows not read in place: each strip's part of every camera row of the block taken first (the
+  // resampling then reads no value still on its way to the cache), a row every `held` values.
+  const std::size_t held = count + pad;
   try {
     if (work.h.size() < 6 * n) work.h.resize(6 * n);
     if constexpr (std::is_same_v<C, float>) {
-      if (work.v.size() < count + pad) work.v.assign(count + pad, 0.0f);
+      if (work.v.size() < held * camera_rows) work.v.assign(held * camera_rows, 0.0f);
     } else {
-      if (!in_place && work.v16.size() < count + pad) work.v16.assign(count + pad, 0);
+      if (!in_place && work.v16.size() < held * camera_rows) work.v16.assign(held * camera_rows, 0);
     }
   } catch (...) {
     return kernels::PlanOutcome::out_of_memory;
   }
-  const long y_low = std::min(t.iy[0], t.iy[t.rows - 1]), y_high = std::max(t.iy[0], t.iy[t.rows - 1]) + 1;
-  const std::size_t camera_rows = static_cast<std::size_t>(y_high - y_low + 1);
   const std::size_t strip = (kMagnifiedStrip + plan.lanes - 1) / plan.lanes * plan.lanes;
   const std::size_t row_bytes = count * (in_place ? sizeof(std::uint16_t) : sizeof(C));
   const std::size_t strips = (n + strip - 1) / strip, part = (row_bytes + strips - 1) / strips;
@@ -90,6 +93,15 @@ template <class C>
     // The values the strip reads (converted, when not read in place).
     const std::size_t v0 = plan.base_of(c0 / plan.lanes);
     const std::size_t v1 = std::min(count, plan.base_of((c1 - 1) / plan.lanes) + plan.lanes + 3);
+    if (!in_place)
+      for (long y = y_low; y <= y_high; ++y) {
+        const std::size_t at = stride * static_cast<std::size_t>(y) + 3 * static_cast<std::size_t>(j_first) + v0;
+        const std::size_t to = held * static_cast<std::size_t>(y - y_low) + v0;
+        if constexpr (std::is_same_v<C, float>)
+          std::copy(t.texels + at, t.texels + at + (v1 - v0), work.v.data() + to);
+        else
+          decode_row16(t.texels + at, t.lut, work.v16.data() + to, v1 - v0, level);
+      }
     long key[2] = {-1, -1};
     // Camera row y resampled into a slot other than `keep` if none holds it (the top row's
     // fetch keeps the slot of y + 1 where it has it: the bottom row needs it next); with `acc`
@@ -98,17 +110,15 @@ template <class C>
       const int s = keep >= 0 ? 1 - keep : (key[0] == y + 1 ? 1 : 0);
       const float* above = keep >= 0 ? slot[keep] : nullptr;
       const std::size_t at = stride * static_cast<std::size_t>(y) + 3 * static_cast<std::size_t>(j_first);
-      if constexpr (std::is_same_v<C, float>) {
-        std::copy(t.texels + at + v0, t.texels + at + v1, work.v.data() + v0);
-        kernels::resample_planned_hwy(plan, static_cast<const float*>(work.v.data()), slot[s], c0, c1, above, w0, w1,
-                                      acc);
-      } else if (in_place) {
+      const std::size_t row = held * static_cast<std::size_t>(y - y_low);
+      if constexpr (std::is_same_v<C, float>)
+        kernels::resample_planned_hwy(plan, static_cast<const float*>(work.v.data() + row), slot[s], c0, c1, above, w0,
+                                      w1, acc);
+      else if (in_place)
         kernels::resample_planned_hwy(plan, t.linear + at, slot[s], c0, c1, above, w0, w1, acc);
-      } else {
-        decode_row16(t.texels + at + v0, t.lut, work.v16.data() + v0, v1 - v0, level);
-        kernels::resample_planned_hwy(plan, static_cast<const std::uint16_t*>(work.v16.data()), slot[s], c0, c1, above,
-                                      w0, w1, acc);
-      }
+      else
+        kernels::resample_planned_hwy(plan, static_cast<const std::uint16_t*>(work.v16.data() + row), slot[s], c0, c1,
+                                      above, w0, w1, acc);
       key[s] = y;
       return s;
     };
