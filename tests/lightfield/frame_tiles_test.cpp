@@ -63,6 +63,8 @@ TEMPLATE_TEST_CASE("shift_add_tile adds what the runs add one by one, edges incl
       {"half the cameras' scale, across the edges", -101.3, -29.6, 60, true, 2, 2},
       {"a 960x540 view of 1400x800 cameras", -60.2, -11.1, 90, true, 1.4583333, 1.4583333},
       {"twice the cameras' scale", -30.7, -2.2, 100, true, 0.5, 0.5},
+      {"1.5x the cameras' scale", -30.7, -2.2, 100, true, T(2) / 3, T(2) / 3},
+      {"1.5x the cameras' scale, across the edges", -105.2, -33.4, 330, true, T(2) / 3, T(2) / 3},
       {"rows two camera pixels apart", 0.3, -5.2, 40, true, 1, 2},
       {"pixels three camera pixels apart", 0.3, -5.2, 40, false, 3, 3},
       {"rows sheared", 0.3, -5.2, 40, false, 1, 1, 0.5},
