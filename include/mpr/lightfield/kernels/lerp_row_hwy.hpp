@@ -423,8 +423,8 @@ struct MagnifiedPlan {
   std::size_t n = 0, texels = 0, lanes = 0;
   std::size_t period = 0, advance = 0; ///< vectors of a period, values from one to the next
   detail::SimdLevel level = detail::SimdLevel::portable;
-  std::vector<std::int32_t> base, lane;
-  std::vector<float> f;
+  std::vector<std::int32_t> base;  ///< per vector: where its values start (`plan_magnified_row`)
+  std::vector<std::int32_t> entry; ///< per vector: its lanes' value indices, then their fractions' bits
 
   /// Whether the plan is the one of these positions at `level1` (positions within 1e-6 pixel).
   [[nodiscard]] bool serves(double x1, double s1, std::size_t n1, std::size_t texels1,
@@ -476,14 +476,12 @@ enum class PlanOutcome {
   if (advance == 0 && !(s <= 0.999)) return PlanOutcome::no_plan; // float positions near a step of 1
   try {
     plan.base.resize(vectors);
-    plan.lane.resize(vectors * lanes);
-    plan.f.resize(vectors * lanes);
+    plan.entry.resize(2 * vectors * lanes);
   } catch (...) {
     return PlanOutcome::out_of_memory;
   }
-  hwy_visit(level, false, [&](auto t) {
-    plan_magnified_row(t, x, step, pixels, texels, plan.base.data(), plan.lane.data(), plan.f.data());
-  });
+  hwy_visit(level, false,
+            [&](auto t) { plan_magnified_row(t, x, step, pixels, texels, plan.base.data(), plan.entry.data()); });
   plan.x = x, plan.s = s, plan.n = n, plan.texels = texels, plan.lanes = lanes, plan.level = level;
   plan.period = vectors, plan.advance = advance;
   return PlanOutcome::made;
@@ -500,8 +498,8 @@ inline void resample_planned_hwy(const MagnifiedPlan& plan, const V* v, float* h
                                  const float* above = nullptr, float w0 = 0, float w1 = 0,
                                  float* acc = nullptr) noexcept {
   hwy_visit(plan.level, false, [&](auto t) {
-    resample_planned_row(t, v, plan.base.data(), plan.lane.data(), plan.f.data(), plan.period, plan.advance, h, first,
-                         last, above, w0, w1, acc);
+    resample_planned_row(t, v, plan.base.data(), plan.entry.data(), plan.period, plan.advance, h, first, last, above,
+                         w0, w1, acc);
   });
 }
 

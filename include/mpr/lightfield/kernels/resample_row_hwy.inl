@@ -261,15 +261,14 @@ inline std::size_t magnified_lanes(Target) noexcept { return hn::Lanes(hn::Scala
 /// pairs clamped to [0, texels - 2], fractions to [0, 1], as `detail::resample_row_portable`)
 /// read their texel pairs, for `resample_planned_row`: vector q holds the row's channels
 /// [q N, q N + N) (N lanes; channel c is pixel c / 3's channel c mod 3); lane l takes value
-/// `lane[q N + l]` of the N values from `base[q]` on as its pair's left value (values counted
-/// from the left texel of j_first = the pair of x), the value 3 on as its right, and `f[q N + l]`
-/// as its fraction. Every lane's left value lies within the N from `base[q]` (the least of them)
-/// when no pixel's pair is more than one texel on from the last's: a step s <= 1 (and, for the
-/// float positions, not within 1e-3 of it unless 1 exactly). Writes ceil(3 n / N) entries of
-/// `base` and N as many of the others.
+/// `entry[2 N q + l]` of the N values from `base[q]` on as its pair's left value (values counted
+/// from the left texel of j_first = the pair of x), the value 3 on as its right, and the float
+/// whose bits are `entry[2 N q + N + l]` as its fraction. Every lane's left value lies within the N from `base[q]` (the
+/// least of them) when no pixel's pair is more than one texel on from the last's: a step s <= 1 (and, for the float
+/// positions, not within 1e-3 of it unless 1 exactly). Writes ceil(3 n / N) entries of `base` and 2 N as many of
+/// `entry`.
 inline void plan_magnified_row(Target, double x, double s, std::size_t n, std::size_t texels,
-                               std::int32_t* HWY_RESTRICT base, std::int32_t* HWY_RESTRICT lane,
-                               float* HWY_RESTRICT f) noexcept {
+                               std::int32_t* HWY_RESTRICT base, std::int32_t* HWY_RESTRICT entry) noexcept {
   using DF = hn::ScalableTag<float>;
   const DF df;
   const hn::RebindToSigned<DF> di;
@@ -306,8 +305,9 @@ inline void plan_magnified_row(Target, double x, double s, std::size_t n, std::s
       const auto least = hn::MinOfLanes(di, at);
       const std::int32_t b = hn::GetLane(least);
       base[q0 / lanes] = static_cast<std::int32_t>(3 * (jg - j_first)) + b;
-      hn::StoreU(hn::Min(hn::Sub(at, least), top), di, lane + q0); // (within N by the precondition)
-      hn::StoreU(fl, df, f + q0);
+      std::int32_t* e = entry + 2 * q0;
+      hn::StoreU(hn::Min(hn::Sub(at, least), top), di, e); // (within N by the precondition)
+      hn::StoreU(hn::BitCast(di, fl), di, e + lanes);
     }
   }
 }
@@ -330,15 +330,15 @@ HWY_INLINE hn::Vec<DF> load_values(DF df, const float* HWY_RESTRICT p) noexcept 
 /// P its length, advance 0). v0 and v1 are the values (16-bit linear values or floats, unscaled)
 /// of c's texel pair in `v`, the row's channels from its first pair's left texel on, readable up
 /// to N + 3 values past each vector's base. One permute per value: each vector's left values lie
-/// within N, its right values within the N three on. With `acc` (nullptr: none), also
-/// acc[c] += w0 above[c] + w1 h[c] in the same pass (`detail::blend_rows` of the row above and
-/// this one, from the same channel on).
-template <class V>
-inline void resample_planned_row(Target, const V* HWY_RESTRICT v, const std::int32_t* HWY_RESTRICT base,
-                                 const std::int32_t* HWY_RESTRICT lane, const float* HWY_RESTRICT f, std::size_t period,
-                                 std::size_t advance, float* HWY_RESTRICT h, std::size_t first, std::size_t last,
-                                 const float* HWY_RESTRICT above = nullptr, float w0 = 0, float w1 = 0,
-                                 float* HWY_RESTRICT acc = nullptr) noexcept {
+/// within N, its right values within the N three on. With `kBlend`, also
+/// acc[c - first] += w0 above[c] + w1 h[c] in the same pass (`detail::blend_rows` of the row
+/// above and this one).
+template <bool kBlend, class V>
+HWY_INLINE void resample_planned_body(const V* HWY_RESTRICT v, const std::int32_t* HWY_RESTRICT base,
+                                      const std::int32_t* HWY_RESTRICT entry, std::size_t period, std::size_t advance,
+                                      float* HWY_RESTRICT h, std::size_t first, std::size_t last,
+                                      const float* HWY_RESTRICT above, float w0, float w1,
+                                      float* HWY_RESTRICT acc) noexcept {
   using DF = hn::ScalableTag<float>;
   const DF df;
   const hn::RebindToSigned<DF> di;
@@ -347,31 +347,49 @@ inline void resample_planned_row(Target, const V* HWY_RESTRICT v, const std::int
   HWY_ALIGN float tail[hn::MaxLanes(DF())];
   std::size_t p = first / lanes % period;             // the plan's vector
   const V* at = v + first / lanes / period * advance; // its period's start in v
-  for (std::size_t q0 = first; q0 < last; q0 += lanes) {
+  std::size_t q0 = first;
+  for (; q0 + lanes <= last; q0 += lanes) {
     const V* w = at + base[p];
-    const std::size_t e = p * lanes;
-    const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, lane + e));
+    const std::int32_t* e = entry + 2 * lanes * p;
+    const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, e));
     const auto left = hn::TableLookupLanes(load_values(df, w), idx);
     const auto right = hn::TableLookupLanes(load_values(df, w + 3), idx);
-    const auto out = hn::MulAdd(hn::LoadU(df, f + e), hn::Sub(right, left), left);
-    if (q0 + lanes <= last) {
-      hn::StoreU(out, df, h + q0);
-      if (acc != nullptr)
-        hn::StoreU(
-            hn::Add(hn::LoadU(df, acc + q0 - first), hn::MulAdd(a1, out, hn::Mul(a0, hn::LoadU(df, above + q0)))), df,
-            acc + q0 - first);
-    } else {
-      hn::Store(out, df, tail);
-      for (std::size_t c = q0; c < last; ++c) {
-        h[c] = tail[c - q0];
-        if (acc != nullptr) acc[c - first] += w0 * above[c] + w1 * h[c];
-      }
+    const auto out = hn::MulAdd(hn::BitCast(df, hn::LoadU(di, e + lanes)), hn::Sub(right, left), left);
+    hn::StoreU(out, df, h + q0);
+    if constexpr (kBlend) {
+      float* sum = acc + (q0 - first);
+      hn::StoreU(hn::Add(hn::LoadU(df, sum), hn::MulAdd(a1, out, hn::Mul(a0, hn::LoadU(df, above + q0)))), df, sum);
     }
     if (++p == period) {
       p = 0;
       at += advance;
     }
   }
+  if (q0 < last) { // the last, partial vector through a buffer
+    const V* w = at + base[p];
+    const std::int32_t* e = entry + 2 * lanes * p;
+    const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, e));
+    const auto left = hn::TableLookupLanes(load_values(df, w), idx);
+    const auto right = hn::TableLookupLanes(load_values(df, w + 3), idx);
+    hn::Store(hn::MulAdd(hn::BitCast(df, hn::LoadU(di, e + lanes)), hn::Sub(right, left), left), df, tail);
+    for (std::size_t c = q0; c < last; ++c) {
+      h[c] = tail[c - q0];
+      if constexpr (kBlend) acc[c - first] += w0 * above[c] + w1 * h[c];
+    }
+  }
+}
+
+/// `resample_planned_body` at this target, blending into `acc` when it is not nullptr.
+template <class V>
+inline void resample_planned_row(Target, const V* HWY_RESTRICT v, const std::int32_t* HWY_RESTRICT base,
+                                 const std::int32_t* HWY_RESTRICT entry, std::size_t period, std::size_t advance,
+                                 float* HWY_RESTRICT h, std::size_t first, std::size_t last,
+                                 const float* HWY_RESTRICT above = nullptr, float w0 = 0, float w1 = 0,
+                                 float* HWY_RESTRICT acc = nullptr) noexcept {
+  if (acc != nullptr)
+    resample_planned_body<true>(v, base, entry, period, advance, h, first, last, above, w0, w1, acc);
+  else
+    resample_planned_body<false>(v, base, entry, period, advance, h, first, last, above, w0, w1, acc);
 }
 
 /// out[k] = scale v(a[k]) for k in [0, count): a row's channels as scaled floats, from 16-bit
