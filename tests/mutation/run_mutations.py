@@ -198,7 +198,7 @@ MUTATIONS = [
       [("include/mpr/lightfield/frame_tiles.hpp", "right = ax == 0 && ay == 0 ? 0 : 1;", "right = 0;")],
       ["lightfield"], "a 2-D shift takes the image's last column into the block where it interpolates past it"),
     M("magnified_plan_period_drifts", "lightfield",
-      [("include/mpr/lightfield/kernels/lerp_row_hwy.hpp", "advance = 3 * static_cast<std::size_t>(p) * (pixels / q);",
+      [("include/mpr/lightfield/kernels/magnified_plan.hpp", "advance = 3 * static_cast<std::size_t>(p) * (pixels / q);",
         "advance = 3 * static_cast<std::size_t>(p) * (pixels / q) + 3;")],
       ["lightfield"], "a magnified row's next period starts one texel too far on",
       focus=["lightfield/accumulation/magnified_tile_test.cpp"]),

@@ -12,6 +12,7 @@
 
 #include <mpr/lightfield/frame_set.hpp>
 #include <mpr/lightfield/kernels/lerp_row_hwy.hpp>
+#include <mpr/lightfield/kernels/magnified_plan.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
 
 #include <algorithm>

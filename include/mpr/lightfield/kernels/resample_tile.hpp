@@ -9,6 +9,7 @@
 /// into it in one pass, with no row written in between.
 
 #include <mpr/core/simd.hpp>
+#include <mpr/lightfield/kernels/magnified_plan.hpp>
 #include <mpr/lightfield/kernels/resample_row.hpp>
 #include <mpr/lightfield/kernels/sampler_rows.hpp>
 
