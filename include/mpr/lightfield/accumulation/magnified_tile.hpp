@@ -68,14 +68,14 @@ template <class C>
   const long y_low = std::min(t.iy[0], t.iy[t.rows - 1]), y_high = std::max(t.iy[0], t.iy[t.rows - 1]) + 1;
   const std::size_t camera_rows = static_cast<std::size_t>(y_high - y_low + 1);
   // Rows not read in place: each strip's part of every camera row of the block taken first (the
-  // resampling then reads no value still on its way to the cache), a row every `held` values.
-  const std::size_t held = count + pad;
+  // resampling then reads no value still on its way to the cache), a row every `span` values.
+  const std::size_t span = count + pad;
   try {
     if (work.h.size() < 6 * n) work.h.resize(6 * n);
     if constexpr (std::is_same_v<C, float>) {
-      if (work.v.size() < held * camera_rows) work.v.assign(held * camera_rows, 0.0f);
+      if (work.v.size() < span * camera_rows) work.v.assign(span * camera_rows, 0.0f);
     } else {
-      if (!in_place && work.v16.size() < held * camera_rows) work.v16.assign(held * camera_rows, 0);
+      if (!in_place && work.v16.size() < span * camera_rows) work.v16.assign(span * camera_rows, 0);
     }
   } catch (...) {
     return kernels::PlanOutcome::out_of_memory;
@@ -96,7 +96,7 @@ template <class C>
     if (!in_place)
       for (long y = y_low; y <= y_high; ++y) {
         const std::size_t at = stride * static_cast<std::size_t>(y) + 3 * static_cast<std::size_t>(j_first) + v0;
-        const std::size_t to = held * static_cast<std::size_t>(y - y_low) + v0;
+        const std::size_t to = span * static_cast<std::size_t>(y - y_low) + v0;
         if constexpr (std::is_same_v<C, float>)
           std::copy(t.texels + at, t.texels + at + (v1 - v0), work.v.data() + to);
         else
@@ -110,7 +110,7 @@ template <class C>
       const int s = keep >= 0 ? 1 - keep : (key[0] == y + 1 ? 1 : 0);
       const float* above = keep >= 0 ? slot[keep] : nullptr;
       const std::size_t at = stride * static_cast<std::size_t>(y) + 3 * static_cast<std::size_t>(j_first);
-      const std::size_t row = held * static_cast<std::size_t>(y - y_low);
+      const std::size_t row = span * static_cast<std::size_t>(y - y_low);
       if constexpr (std::is_same_v<C, float>)
         kernels::resample_planned_hwy(plan, static_cast<const float*>(work.v.data() + row), slot[s], c0, c1, above, w0,
                                       w1, acc);
@@ -122,18 +122,18 @@ template <class C>
       key[s] = y;
       return s;
     };
-    const auto held = [&](long y) noexcept { return key[0] == y ? 0 : key[1] == y ? 1 : -1; };
+    const auto slot_of = [&](long y) noexcept { return key[0] == y ? 0 : key[1] == y ? 1 : -1; };
     for (std::size_t r = 0; r < t.rows; ++r) {
       const long y = t.iy[r];
       const float w0 = (1 - t.ay[r]) * t.scale, w1 = t.ay[r] * t.scale;
       float* acc = t.acc + static_cast<std::ptrdiff_t>(r) * t.acc_stride + static_cast<std::ptrdiff_t>(c0);
-      int top = held(y);
+      int top = slot_of(y);
       if (top < 0) top = fetch(y, -1);
       if (t.ay[r] == 0.0f) { // the top row alone (`blend_rows` does not read the second)
         blend_rows(slot[top] + c0, slot[top] + c0, w0, 0.0f, nullptr, acc, p1 - p0, level);
         continue;
       }
-      const int bottom = held(y + 1);
+      const int bottom = slot_of(y + 1);
       if (bottom >= 0)
         blend_rows(slot[top] + c0, slot[bottom] + c0, w0, w1, nullptr, acc, p1 - p0, level);
       else
