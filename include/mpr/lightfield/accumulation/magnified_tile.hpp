@@ -144,11 +144,13 @@ template <class C>
 }
 #endif
 
-/// Adds the block `t` to its accumulators at `level` as `resample_tile` does (same texel pairs,
-/// fractions and weights: the portable form's arithmetic), each camera row resampled once
-/// (`resample_row`) into one of two stored rows of `work.h`, each output row r the blend
-/// (1 - ay[r]) h_{iy[r]} + ay[r] h_{iy[r]+1} of two stored rows. False (nothing added) when
-/// working memory cannot grow. Preconditions as `resample_tile`'s.
+/// Adds the block `t` to its accumulators at `level` as `resample_tile` does, each camera row
+/// resampled once into one of two stored rows of `work.h`, each output row r the blend
+/// (1 - ay[r]) h_{iy[r]} + ay[r] h_{iy[r]+1} of two stored rows: through a plan
+/// (`resample_tile_planned`, positions within `kernels::kMagnifiedPeriodTolerance` pixel over the
+/// row) where the step has one, else with `resample_row` (same texel pairs, fractions and weights
+/// as the portable form). False (nothing added) when working memory cannot grow. Preconditions as
+/// `resample_tile`'s.
 template <class C>
 [[nodiscard]] bool resample_tile_stored(const ResampleTile<C>& t, ResampleTileWork& work,
                                         SimdLevel level = dispatch_level()) noexcept {

@@ -263,10 +263,10 @@ inline std::size_t magnified_lanes(Target) noexcept { return hn::Lanes(hn::Scala
 /// [q N, q N + N) (N lanes; channel c is pixel c / 3's channel c mod 3); lane l takes value
 /// `entry[2 N q + l]` of the N values from `base[q]` on as its pair's left value (values counted
 /// from the left texel of j_first = the pair of x), the value 3 on as its right, and the float
-/// whose bits are `entry[2 N q + N + l]` as its fraction. Every lane's left value lies within the N from `base[q]` (the
-/// least of them) when no pixel's pair is more than one texel on from the last's: a step s <= 1 (and, for the float
-/// positions, not within 1e-3 of it unless 1 exactly). Writes ceil(3 n / N) entries of `base` and 2 N as many of
-/// `entry`.
+/// whose bits are `entry[2 N q + N + l]` as its fraction. Every lane's left value lies within the
+/// N from `base[q]` (the least of them) when no pixel's pair is more than one texel on from the
+/// last's: a step s <= 1 (and, for the float positions, not within 1e-3 of it unless 1 exactly).
+/// Writes ceil(3 n / N) entries of `base` and 2 N as many of `entry`.
 inline void plan_magnified_row(Target, double x, double s, std::size_t n, std::size_t texels,
                                std::int32_t* HWY_RESTRICT base, std::int32_t* HWY_RESTRICT entry) noexcept {
   using DF = hn::ScalableTag<float>;
@@ -347,14 +347,18 @@ HWY_INLINE void resample_planned_body(const V* HWY_RESTRICT v, const std::int32_
   HWY_ALIGN float tail[hn::MaxLanes(DF())];
   std::size_t p = first / lanes % period;             // the plan's vector
   const V* at = v + first / lanes / period * advance; // its period's start in v
-  std::size_t q0 = first;
-  for (; q0 + lanes <= last; q0 += lanes) {
+  // The channels of the plan's vector p.
+  const auto resampled = [&]() HWY_ATTR {
     const V* w = at + base[p];
     const std::int32_t* e = entry + 2 * lanes * p;
     const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, e));
     const auto left = hn::TableLookupLanes(load_values(df, w), idx);
     const auto right = hn::TableLookupLanes(load_values(df, w + 3), idx);
-    const auto out = hn::MulAdd(hn::BitCast(df, hn::LoadU(di, e + lanes)), hn::Sub(right, left), left);
+    return hn::MulAdd(hn::BitCast(df, hn::LoadU(di, e + lanes)), hn::Sub(right, left), left);
+  };
+  std::size_t q0 = first;
+  for (; q0 + lanes <= last; q0 += lanes) {
+    const auto out = resampled();
     hn::StoreU(out, df, h + q0);
     if constexpr (kBlend) {
       float* sum = acc + (q0 - first);
@@ -366,12 +370,7 @@ HWY_INLINE void resample_planned_body(const V* HWY_RESTRICT v, const std::int32_
     }
   }
   if (q0 < last) { // the last, partial vector through a buffer
-    const V* w = at + base[p];
-    const std::int32_t* e = entry + 2 * lanes * p;
-    const auto idx = hn::IndicesFromVec(df, hn::LoadU(di, e));
-    const auto left = hn::TableLookupLanes(load_values(df, w), idx);
-    const auto right = hn::TableLookupLanes(load_values(df, w + 3), idx);
-    hn::Store(hn::MulAdd(hn::BitCast(df, hn::LoadU(di, e + lanes)), hn::Sub(right, left), left), df, tail);
+    hn::Store(resampled(), df, tail);
     for (std::size_t c = q0; c < last; ++c) {
       h[c] = tail[c - q0];
       if constexpr (kBlend) acc[c - first] += w0 * above[c] + w1 * h[c];
