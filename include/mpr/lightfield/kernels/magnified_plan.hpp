@@ -61,7 +61,7 @@ struct MagnifiedPlan {
 /// What `plan_magnified_hwy` did.
 enum class PlanOutcome {
   made,         ///< the plan is the one asked for
-  no_plan,      ///< the step has none (within 1e-3 of 1 but not 1, within 1e-4 pixel over the row)
+  no_plan,      ///< the step has none: within 1e-3 of 1 but no ratio within the period tolerance
   out_of_memory ///< memory could not grow
 };
 
